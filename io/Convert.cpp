@@ -1,0 +1,204 @@
+#include "Convert.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "AtomicOutput.h"
+#include "VdbFile.h"
+#include "sparse/CubicBSpline.h"
+#include "sparse/Error.h"
+#include "sparse/FccBuilder.h"
+
+namespace fcc::io {
+namespace {
+
+bool inside(const glm::ivec3& ijk, const glm::ivec3& dims) {
+  return glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) && glm::all(glm::lessThan(ijk, dims));
+}
+
+// Subsampling keeps the even-parity voxels of a dense volume, at their own positions.
+class DenseSubsampleField : public SampleField {
+ public:
+  DenseSubsampleField(const DenseVolume& volume, float background) : volume_(volume), background_(background) {}
+  float sample(const glm::ivec3& ijk) const override {
+    return inside(ijk, volume_.dims) ? volume_.at(ijk.x, ijk.y, ijk.z) : background_;
+  }
+  SiteBox bounds() const override { return {glm::ivec3(0), volume_.dims - 1}; }
+  float background() const override { return background_; }
+
+ private:
+  const DenseVolume& volume_;
+  float background_;
+};
+
+// Resampling reconstructs the source (tricubic B-spline) at the sites of a lattice of another spacing.
+class DenseResampleField : public SampleField {
+ public:
+  DenseResampleField(const DenseVolume& volume, float background, double spacingInVoxels)
+      : spline_(volume.dims, volume.values), background_(background), spacing_(spacingInVoxels) {
+    latticeMax_ = glm::ivec3(glm::floor(glm::dvec3(volume.dims - 1) / spacing_ + 1e-9));
+  }
+  float sample(const glm::ivec3& ijk) const override {
+    if (!inside(ijk, latticeMax_ + 1)) return background_;
+    return spline_.evaluate(glm::dvec3(ijk) * spacing_);
+  }
+  SiteBox bounds() const override { return {glm::ivec3(0), latticeMax_}; }
+  float background() const override { return background_; }
+
+ private:
+  CubicBSplineVolume spline_;
+  float background_;
+  double spacing_;
+  glm::ivec3 latticeMax_;
+};
+
+// Subsampling a sparse float grid: every value (active or not) at even-parity voxels; values equal to
+// the grid's background become `background` (the --background override).
+class VdbSubsampleField : public SampleField {
+ public:
+  VdbSubsampleField(const openvdb::FloatGrid& grid, float background) : grid_(grid), background_(background) {
+    const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+    if (grid.activeVoxelCount() > 0)
+      bounds_ = {glm::ivec3(box.min().x(), box.min().y(), box.min().z()),
+                 glm::ivec3(box.max().x(), box.max().y(), box.max().z())};
+  }
+  float sample(const glm::ivec3& ijk) const override {
+    // Value accessors are not thread-safe; the tree's own lookup is.
+    const float v = grid_.tree().getValue(openvdb::Coord(ijk.x, ijk.y, ijk.z));
+    return v == grid_.background() ? background_ : v;
+  }
+  SiteBox bounds() const override { return bounds_; }
+  bool mayHoldData(const SiteBox& box) const override {
+    if (!box.intersects(bounds_)) return false;
+    // Outside leaves the tree is piecewise constant (tiles): one probe per leaf-sized cell decides.
+    const auto& tree = grid_.tree();
+    constexpr int kLeaf = openvdb::FloatTree::LeafNodeType::DIM;
+    for (int z = box.min.z & ~(kLeaf - 1); z <= box.max.z; z += kLeaf)
+      for (int y = box.min.y & ~(kLeaf - 1); y <= box.max.y; y += kLeaf)
+        for (int x = box.min.x & ~(kLeaf - 1); x <= box.max.x; x += kLeaf) {
+          const openvdb::Coord c(x, y, z);
+          if (tree.probeConstLeaf(c) || tree.getValue(c) != grid_.background()) return true;
+        }
+    return false;
+  }
+  float background() const override { return background_; }
+
+ private:
+  const openvdb::FloatGrid& grid_;
+  float background_;
+  SiteBox bounds_;
+};
+
+openvdb::math::Transform::Ptr transformOf(const DenseVolume& v, double latticeSpacingInVoxels) {
+  auto xform = openvdb::math::Transform::createLinearTransform();
+  xform->preScale(openvdb::Vec3d(v.spacing.x, v.spacing.y, v.spacing.z) * latticeSpacingInVoxels);
+  xform->postTranslate(openvdb::Vec3d(v.origin.x, v.origin.y, v.origin.z));
+  return xform;
+}
+
+DenseVolume readDense(const std::string& input, Format format, const ConvertOptions& options) {
+  switch (format) {
+    case Format::Raw:
+      if (!options.raw)
+        throw ValueError(input + ": raw input needs --dims X,Y,Z and --type (valid inputs by extension: .vdb, "
+                                 ".nrrd, .nhdr, .nii, .nii.gz; anything else is raw)");
+      return readRaw(input, *options.raw);
+    case Format::Nrrd: return readNrrd(input);
+    case Format::Nifti: return readNifti(input);
+    case Format::Vdb: break;
+  }
+  throw Error("internal: not a dense format");
+}
+
+DenseVolume densify(const openvdb::FloatGrid& grid) {
+  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+  DenseVolume v;
+  const openvdb::Coord dim = box.dim();
+  v.dims = glm::ivec3(dim.x(), dim.y(), dim.z());
+  v.values.resize(size_t(v.dims.x) * v.dims.y * v.dims.z);
+  auto acc = grid.getConstAccessor();
+  for (int k = 0; k < v.dims.z; ++k)
+    for (int j = 0; j < v.dims.y; ++j)
+      for (int i = 0; i < v.dims.x; ++i)
+        v.values[v.index(i, j, k)] = acc.getValue(box.min() + openvdb::Coord(i, j, k));
+  return v;
+}
+
+}  // namespace
+
+ConvertSummary convertToFcc(const std::string& input, const std::string& output, const ConvertOptions& options,
+                            openvdb::util::NullInterrupter* interrupter) {
+  if (options.mode != "subsample" && options.mode != "resample")
+    throw ValueError("--mode " + options.mode + " is not valid (valid: subsample, resample)");
+  const bool resample = options.mode == "resample";
+  if (resample && options.samples == 0 && !(options.scale > 0.0))
+    throw ValueError("--mode resample needs --samples N or --scale S (> 0)");
+  // Fail on the output before reading a large input.
+  { AtomicOutput probe(output, options.overwrite, input); }
+
+  initializeVdb();
+  const Format format = detectFormat(input);
+  FccProvenance provenance;
+  provenance.sourceFile = std::filesystem::path(input).filename().string();
+  provenance.mode = options.mode;
+  provenance.coefficients = options.prefilter;
+  ConvertSummary summary;
+
+  openvdb::FloatGrid::Ptr sourceGrid;
+  DenseVolume dense;
+  openvdb::math::Transform::Ptr xform;
+  float background = options.background.value_or(0.0f);
+  if (format == Format::Vdb) {
+    sourceGrid = readFloatGrid(input, options.gridName);
+    provenance.sourceGrid = summary.gridName = sourceGrid->getName();
+    provenance.levelSet = sourceGrid->getGridClass() == openvdb::GRID_LEVEL_SET;
+    background = options.background.value_or(sourceGrid->background());
+    summary.inputVoxels = sourceGrid->activeVoxelCount();
+    if (resample) {
+      dense = densify(*sourceGrid);
+      const openvdb::CoordBBox box = sourceGrid->evalActiveVoxelBoundingBox();
+      xform = sourceGrid->transform().copy();
+      xform->preTranslate(box.min().asVec3d());  // dense index (0,0,0) is the bbox minimum
+    } else {
+      xform = sourceGrid->transform().copy();
+    }
+  } else {
+    dense = readDense(input, format, options);
+    summary.gridName = "density";
+    summary.inputVoxels = dense.values.size();
+    xform = transformOf(dense, 1.0);
+  }
+
+  std::unique_ptr<SampleField> field;
+  if (resample) {
+    // An FCC embedding of spacing h (in source voxels) holds about volume / (2 h^3) sites.
+    const glm::dvec3 extent = glm::dvec3(dense.dims - 1);
+    const double h = options.scale > 0.0 ? options.scale
+                                         : std::cbrt(extent.x * extent.y * extent.z / (2.0 * double(options.samples)));
+    if (!(h > 0.0) || !std::isfinite(h)) throw ValueError("--samples/--scale give no valid lattice spacing");
+    field = std::make_unique<DenseResampleField>(dense, background, h);
+    xform->preScale(h);
+  } else if (sourceGrid) {
+    field = std::make_unique<VdbSubsampleField>(*sourceGrid, background);
+  } else {
+    field = std::make_unique<DenseSubsampleField>(dense, background);
+  }
+  BuildOptions build;
+  build.prefilter = options.prefilter;
+  build.tolerance = options.tolerance;
+  BuildResult built = buildFccGrid(*field, build, interrupter);
+  FccGrid& grid = *built.grid;
+  grid.setTransform(xform);
+  grid.setName(summary.gridName);
+  provenance.sampleMin = built.sampleMin;
+  provenance.sampleMax = built.sampleMax;
+  setFccMetadata(grid, provenance);
+  grid.setSaveFloatAsHalf(options.half);
+  summary.activeSamples = grid.activeVoxelCount() * 4;
+  summary.bricks = grid.tree().leafCount();
+
+  writeVdbAtomically(output, openvdb::GridCPtrVec{built.grid}, options.overwrite, input);
+  return summary;
+}
+
+}  // namespace fcc::io

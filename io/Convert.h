@@ -1,0 +1,36 @@
+// `fccvdb convert`: a Cartesian volume (.vdb float grid, raw, NRRD, NIfTI) to an FCC grid in a .vdb.
+#pragma once
+
+#include <openvdb/util/NullInterrupter.h>
+
+#include <optional>
+#include <string>
+
+#include "DenseVolume.h"
+
+namespace fcc::io {
+
+struct ConvertOptions {
+  std::string mode = "subsample";     // "subsample" (even-parity voxels) or "resample"
+  uint64_t samples = 0;               // resample: about this many FCC samples over the extent
+  double scale = 0.0;                 // resample: lattice spacing in source voxels (instead of samples)
+  std::optional<float> background;    // default: the VDB's background, 0 for raw/NRRD/NIfTI
+  bool prefilter = true;
+  float tolerance = 0.0f;
+  bool half = false;
+  bool overwrite = false;
+  std::string gridName;               // .vdb input: which float grid (default: the first)
+  std::optional<RawLayout> raw;       // raw input layout (required for raw files)
+};
+
+struct ConvertSummary {
+  std::string gridName;
+  uint64_t inputVoxels = 0;
+  uint64_t activeSamples = 0;
+  uint64_t bricks = 0;
+};
+
+ConvertSummary convertToFcc(const std::string& input, const std::string& output, const ConvertOptions& options,
+                            openvdb::util::NullInterrupter* interrupter = nullptr);
+
+}  // namespace fcc::io

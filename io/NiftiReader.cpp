@@ -1,0 +1,158 @@
+// NIfTI-1 single-file volumes (.nii, .nii.gz): a 348-byte binary header, optional extensions, then the
+// voxels from vox_offset on. The header's own byte order (told by sizeof_hdr reading 348 one way or the
+// other) is the data's byte order too.
+#include <cmath>
+#include <cstring>
+
+#include "ByteSource.h"
+#include "DenseVolume.h"
+#include "MessageText.h"
+#include "SampleDecoding.h"
+#include "sparse/Error.h"
+
+namespace fcc::io {
+namespace {
+
+constexpr size_t kHeaderBytes = 348;
+
+// Byte offsets of the header fields this reader uses (NIfTI-1, nifti1.h).
+namespace field {
+constexpr size_t sizeofHdr = 0, dim = 40, datatype = 70, pixdim = 76, voxOffset = 108, sclSlope = 112,
+                 sclInter = 116, qformCode = 252, sformCode = 254, qoffset = 268, srowX = 280, srowY = 296,
+                 srowZ = 312, magic = 344;
+}  // namespace field
+
+struct DatatypeCode {
+  int16_t code;
+  const char* name;
+  bool supported;
+  ScalarType type;
+};
+
+constexpr DatatypeCode kDatatypes[] = {
+    {2, "uint8", true, ScalarType::U8},        {4, "int16", true, ScalarType::I16},
+    {8, "int32", true, ScalarType::I32},       {16, "float32", true, ScalarType::F32},
+    {64, "float64", true, ScalarType::F64},    {256, "int8", true, ScalarType::I8},
+    {512, "uint16", true, ScalarType::U16},    {768, "uint32", true, ScalarType::U32},
+    {1, "binary", false, ScalarType::U8},      {32, "complex64", false, ScalarType::U8},
+    {128, "rgb24", false, ScalarType::U8},     {1024, "int64", false, ScalarType::U8},
+    {1280, "uint64", false, ScalarType::U8},   {1536, "float128", false, ScalarType::U8},
+    {1792, "complex128", false, ScalarType::U8}, {2048, "complex256", false, ScalarType::U8},
+    {2304, "rgba32", false, ScalarType::U8},
+};
+
+ScalarType scalarTypeOf(int16_t code, const std::string& path) {
+  std::string known = "unknown";
+  for (const DatatypeCode& datatype : kDatatypes) {
+    if (datatype.code != code) continue;
+    if (datatype.supported) return datatype.type;
+    known = datatype.name;
+  }
+  throw InputError(path + ": datatype " + std::to_string(code) + " (" + known +
+                   ") is not supported; supported: 2 (uint8), 256 (int8), 512 (uint16), 4 (int16), "
+                   "768 (uint32), 8 (int32), 16 (float32), 64 (float64)");
+}
+
+// The header as stored, read in its own byte order.
+class Header {
+ public:
+  Header(const uint8_t* bytes, bool bigEndian) : bytes_(bytes), bigEndian_(bigEndian) {}
+  int16_t i16(size_t offset) const { return loadScalar<int16_t>(bytes_ + offset, bigEndian_); }
+  int32_t i32(size_t offset) const { return loadScalar<int32_t>(bytes_ + offset, bigEndian_); }
+  float f32(size_t offset) const { return loadScalar<float>(bytes_ + offset, bigEndian_); }
+
+ private:
+  const uint8_t* bytes_;
+  bool bigEndian_;
+};
+
+// Zero or non-finite pixdims occur in files whose writer did not know the spacing; 1 is what every
+// other reader then assumes too.
+double spacingFrom(float pixdim) { return std::isfinite(pixdim) && pixdim != 0.0f ? std::abs(double(pixdim)) : 1.0; }
+
+glm::dvec3 originFrom(const Header& header) {
+  if (header.i16(field::sformCode) > 0)
+    return {header.f32(field::srowX + 12), header.f32(field::srowY + 12), header.f32(field::srowZ + 12)};
+  if (header.i16(field::qformCode) > 0)
+    return {header.f32(field::qoffset), header.f32(field::qoffset + 4), header.f32(field::qoffset + 8)};
+  return glm::dvec3(0.0);
+}
+
+}  // namespace
+
+DenseVolume readNifti(const std::string& path) {
+  ByteSource source(path, 0, Compression::Detect);
+  uint8_t bytes[kHeaderBytes] = {};
+  const size_t got = source.read(bytes, kHeaderBytes);
+
+  // sizeof_hdr is 348 in the writer's byte order; reading it both ways tells that order.
+  const int32_t sizeLittle = loadScalar<int32_t>(bytes + field::sizeofHdr, false);
+  const int32_t sizeBig = loadScalar<int32_t>(bytes + field::sizeofHdr, true);
+  if (got < 4 || (sizeLittle != 348 && sizeBig != 348)) {
+    if (got >= 4 && (sizeLittle == 540 || sizeBig == 540))
+      throw InputError(path + ": NIfTI-2 is not supported; only NIfTI-1 (sizeof_hdr 348)");
+    throw InputError(path + ": not a NIfTI-1 file: sizeof_hdr is " +
+                     (got < 4 ? std::string("missing") : std::to_string(sizeLittle)) + ", must be 348");
+  }
+  if (got < kHeaderBytes)
+    throw InputError(path + ": truncated NIfTI-1 header: file holds " + std::to_string(got) + " bytes" +
+                     (source.gzip() ? " once decompressed" : "") + ", the header needs 348");
+  const bool bigEndian = sizeLittle != 348;
+  const Header header(bytes, bigEndian);
+
+  const std::string_view magic(reinterpret_cast<const char*>(bytes + field::magic), 4);
+  if (magic == std::string_view("ni1\0", 4))
+    throw InputError(path + ": two-file NIfTI-1 (.hdr/.img, magic \"ni1\") is not supported; use a single-file .nii");
+  if (magic != std::string_view("n+1\0", 4))
+    throw InputError(path + ": bad NIfTI-1 magic " + quotedText(magic) + "; a single-file .nii has \"n+1\\0\"");
+
+  // dim[0] axes; beyond the third they must be 1 (a 3-D volume stored as one time point, say).
+  const int16_t rank = header.i16(field::dim);
+  if (rank < 3 || rank > 7)
+    throw InputError(path + ": dim[0] is " + std::to_string(rank) + "; only 3-D volumes are supported (dim[0] 3, or more with size 1)");
+  for (int axis = 4; axis <= rank; ++axis)
+    if (header.i16(field::dim + 2 * axis) != 1)
+      throw InputError(path + ": dim[" + std::to_string(axis) + "] is " + std::to_string(header.i16(field::dim + 2 * axis)) +
+                       "; only 3-D volumes are supported (every dimension past the third must be 1)");
+  const glm::ivec3 dims(header.i16(field::dim + 2), header.i16(field::dim + 4), header.i16(field::dim + 6));
+  const uint64_t voxels = checkedVoxelCount(dims, path);
+  const ScalarType type = scalarTypeOf(header.i16(field::datatype), path);
+  const uint64_t payload = voxels * scalarTypeSize(type);
+
+  const float voxOffsetStored = header.f32(field::voxOffset);
+  // Bounded so the cast is defined; a real offset is a few hundred bytes plus extensions.
+  if (!(voxOffsetStored >= float(kHeaderBytes) && voxOffsetStored < 1e15f))
+    throw InputError(path + ": vox_offset " + numberText(voxOffsetStored) + " is invalid; it must be at least 348");
+  const uint64_t voxOffset = uint64_t(voxOffsetStored);
+
+  auto sizeError = [&](uint64_t holds) {
+    return InputError(path + ": file holds " + std::to_string(holds) + " bytes" + (source.gzip() ? " once decompressed" : "") +
+                      " but dims " + commaList(dims) + " of datatype " + scalarTypeName(type) + " need " +
+                      std::to_string(payload) + " from vox_offset " + std::to_string(voxOffset));
+  };
+  if (source.knownSize() && *source.knownSize() < voxOffset + payload) throw sizeError(*source.knownSize());
+
+  DenseVolume volume;
+  volume.dims = dims;
+  volume.spacing = {spacingFrom(header.f32(field::pixdim + 4)), spacingFrom(header.f32(field::pixdim + 8)),
+                    spacingFrom(header.f32(field::pixdim + 12))};
+  volume.origin = originFrom(header);
+  if (source.knownSize()) volume.values.reserve(voxels);  // the size check passed: the data is there
+
+  const uint64_t extensions = voxOffset - kHeaderBytes;
+  const bool skipped = source.skip(extensions) == extensions;
+  const uint64_t samples = skipped ? readSamples(source, type, bigEndian, voxels, volume.values) : 0;
+  if (!skipped || samples < voxels) throw sizeError(source.position());
+  if (source.gzip()) source.drain();  // reaches the gzip trailer, so a corrupt stream does not pass unnoticed
+
+  // A slope of 0 (or NaN) means "unscaled" in NIfTI-1.
+  const float slope = header.f32(field::sclSlope);
+  if (std::isfinite(slope) && slope != 0.0f) {
+    const float stored = header.f32(field::sclInter);
+    const float intercept = std::isfinite(stored) ? stored : 0.0f;
+    for (float& value : volume.values) value = value * slope + intercept;
+  }
+  return volume;
+}
+
+}  // namespace fcc::io

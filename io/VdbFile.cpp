@@ -1,0 +1,185 @@
+#include "VdbFile.h"
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+
+#include "AtomicOutput.h"
+#include "sparse/Error.h"
+
+namespace fcc::io {
+namespace {
+
+constexpr char kVdbMagic[4] = {' ', 'B', 'D', 'V'};  // 0x56444220 little-endian
+
+void checkReadableVdb(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
+  char magic[4] = {};
+  in.read(magic, 4);
+  if (in.gcount() != 4 || std::memcmp(magic, kVdbMagic, 4) != 0)
+    throw InputError(path + ": not an OpenVDB file (no VDB magic number); valid inputs are .vdb files written by OpenVDB");
+}
+
+// What the child does: read every grid completely, touching all leaf buffers.
+void readEverything(const std::string& path) {
+  initializeVdb();
+  openvdb::io::File file(path);
+  file.setCopyMaxBytes(0);
+  file.open(false);  // no delayed loading: the point is to read every byte now
+  openvdb::GridPtrVecPtr grids = file.getGrids();
+  file.close();
+  size_t count = 0;
+  for (const auto& g : *grids) count += g->activeVoxelCount();
+  (void)count;
+}
+
+}  // namespace
+
+void guardVdbFile(const std::string& path) {
+  checkReadableVdb(path);
+  struct stat st {};
+  ::stat(path.c_str(), &st);
+  // Generous: reading runs at hundreds of MB/s; a hang is what this limit catches.
+  const auto limit = std::chrono::seconds(20 + st.st_size / (20 << 20));
+
+  int fds[2];
+  if (::pipe(fds) != 0) throw Error(std::string("pipe: ") + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0) throw Error(std::string("fork: ") + std::strerror(errno));
+  if (pid == 0) {
+    ::close(fds[0]);
+    std::string message;
+    try {
+      readEverything(path);
+      ::_exit(0);
+    } catch (const std::exception& e) {
+      message = e.what();
+    } catch (...) {
+      message = "unknown error";
+    }
+    (void)!::write(fds[1], message.data(), message.size());
+    ::_exit(3);
+  }
+  ::close(fds[1]);
+  std::string message;
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  bool timedOut = false;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      timedOut = true;
+      break;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    const int r = ::poll(&p, 1, int(std::min<long long>(left.count(), 1000)));
+    if (r < 0 && errno == EINTR) continue;
+    if (r > 0) {
+      char buf[512];
+      const ssize_t n = ::read(fds[0], buf, sizeof buf);
+      if (n > 0) {
+        message.append(buf, size_t(n));
+        continue;
+      }
+      break;  // EOF: the child has exited (or closed the pipe)
+    }
+  }
+  ::close(fds[0]);
+  if (timedOut) ::kill(pid, SIGKILL);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (timedOut)
+    throw InputError(path + ": OpenVDB did not finish reading it within " + std::to_string(limit.count()) +
+                     " s; the file is corrupt or truncated");
+  if (WIFSIGNALED(status))
+    throw InputError(path + ": OpenVDB crashed reading it (signal " + std::to_string(WTERMSIG(status)) +
+                     "); the file is corrupt or truncated");
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    for (char& c : message)
+      if (c == '\n') c = ' ';
+    throw InputError(path + ": OpenVDB cannot read it: " + (message.empty() ? "unknown error" : message));
+  }
+}
+
+namespace {
+
+openvdb::GridPtrVecPtr readAllGrids(const std::string& path) {
+  guardVdbFile(path);
+  initializeVdb();
+  try {
+    openvdb::io::File file(path);
+    file.setCopyMaxBytes(0);
+    file.open(false);
+    auto grids = file.getGrids();
+    file.close();
+    return grids;
+  } catch (const std::exception& e) {
+    throw InputError(path + ": OpenVDB cannot read it: " + e.what());
+  }
+}
+
+std::string gridNames(const openvdb::GridPtrVec& grids) {
+  std::string names;
+  for (const auto& g : grids) names += (names.empty() ? "" : ", ") + g->getName() + " (" + g->type() + ")";
+  return names.empty() ? "none" : names;
+}
+
+}  // namespace
+
+std::vector<GridInfo> listGrids(const std::string& path) {
+  std::vector<GridInfo> out;
+  for (const auto& g : *readAllGrids(path)) out.push_back({g->getName(), g->type(), isFccGrid(*g)});
+  return out;
+}
+
+FccGrid::Ptr readFccGrid(const std::string& path, const std::string& gridName) {
+  const auto grids = readAllGrids(path);
+  for (const auto& g : *grids) {
+    if (!gridName.empty() && g->getName() != gridName) continue;
+    if (isFccGrid(*g)) return openvdb::gridPtrCast<FccGrid>(g);
+    if (!gridName.empty())
+      throw InputError(path + ": grid '" + gridName + "' is a " + g->type() +
+                       " grid, not an FCC grid; run `fccvdb convert " + path + " OUT.vdb` first");
+  }
+  if (!gridName.empty())
+    throw InputError(path + ": no grid named '" + gridName + "'; grids: " + gridNames(*grids));
+  throw InputError(path + ": holds no FCC grid (grids: " + gridNames(*grids) + "); run `fccvdb convert " + path +
+                   " OUT.vdb` first");
+}
+
+openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName) {
+  const auto grids = readAllGrids(path);
+  for (const auto& g : *grids) {
+    if (!gridName.empty() && g->getName() != gridName) continue;
+    if (auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(g)) return f;
+    if (!gridName.empty())
+      throw InputError(path + ": grid '" + gridName + "' is a " + g->type() + " grid; convert needs a float grid");
+  }
+  if (!gridName.empty())
+    throw InputError(path + ": no grid named '" + gridName + "'; grids: " + gridNames(*grids));
+  throw InputError(path + ": holds no float grid to convert (grids: " + gridNames(*grids) + ")");
+}
+
+void writeVdbAtomically(const std::string& path, const openvdb::GridCPtrVec& grids, bool overwrite,
+                        const std::string& inputPath) {
+  initializeVdb();
+  AtomicOutput out(path, overwrite, inputPath);
+  try {
+    openvdb::io::File file(out.tempPath());
+    file.write(grids);
+    file.close();
+  } catch (const std::exception& e) {
+    throw OutputError(path + ": writing failed: " + e.what());
+  }
+  out.commit();
+}
+
+}  // namespace fcc::io

@@ -1,0 +1,39 @@
+// Reading and writing .vdb files. Debian's OpenVDB 10.0.1 can crash or hang on corrupt files, so every
+// file is first read once in a child process with a time limit (guardVdbFile) before this process
+// trusts it.
+#pragma once
+
+#include <openvdb/openvdb.h>
+
+#include <string>
+#include <vector>
+
+#include "sparse/FccGrid.h"
+
+namespace fcc::io {
+
+// Throws InputError naming the file if it is missing, not a .vdb, or if OpenVDB fails, crashes or
+// takes longer than the time limit while reading it fully in a child process.
+void guardVdbFile(const std::string& path);
+
+struct GridInfo {
+  std::string name;
+  std::string type;
+  bool fcc = false;
+};
+
+// Names and types of the grids in a (guarded) .vdb file.
+std::vector<GridInfo> listGrids(const std::string& path);
+
+// The FCC grid `gridName` (empty: the first FCC grid) of a .vdb file, fully read. InputError if the
+// file has none: the message says to run `fccvdb convert`.
+FccGrid::Ptr readFccGrid(const std::string& path, const std::string& gridName = {});
+
+// The float grid `gridName` (empty: the first float grid), for conversion. Half-stored grids read as float.
+openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName = {});
+
+// File-level metadata and grids, written to a temporary file and renamed (AtomicOutput).
+void writeVdbAtomically(const std::string& path, const openvdb::GridCPtrVec& grids, bool overwrite,
+                        const std::string& inputPath = {});
+
+}  // namespace fcc::io

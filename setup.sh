@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# fccvdb set-up: installs what is missing (Debian 12 packages; needs root or sudo), builds in Release,
+# then runs the demo or the test suite.
+#
+#   ./setup.sh demo    install, build, convert a generated dataset and render it headless (EGL)
+#   ./setup.sh test    install, build, run the whole test suite (ctest)
+#   ./setup.sh build   install and build only
+set -euo pipefail
+cd "$(dirname "$0")"
+mode=${1:-demo}
+case "$mode" in demo|test|build) ;; *) echo "setup.sh: unknown mode '$mode' (valid: demo, test, build)" >&2; exit 2 ;; esac
+
+packages=(build-essential cmake pkg-config ccache python3
+  libopenvdb-dev libboost-dev libboost-iostreams-dev libtbb-dev zlib1g-dev
+  pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers
+  libglfw3-dev libglm-dev libopenexr-dev libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev
+  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev xvfb xauth)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup.sh: installing ${missing[*]}" >&2
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+build=${FCC_BUILD_DIR:-build}
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" -j2
+
+case "$mode" in
+  demo)
+    out=${FCC_DEMO_DIR:-demo-output}
+    mkdir -p "$out"
+    "$build/bin/fccvdb" synth marschner-lobb "$out/marschner-lobb.vdb" --dims 64,64,64 --force --quiet
+    "$build/bin/fccvdb" info "$out/marschner-lobb.vdb"
+    if "$build/bin/fccvdb" render --help >/dev/null 2>&1; then
+      "$build/bin/fccvdb" render "$out/marschner-lobb.vdb" -o "$out/marschner-lobb.png" --iso 0.5 --res 512x512
+      echo "demo image: $(cd "$out" && pwd)/marschner-lobb.png"
+    fi
+    ;;
+  test)
+    ctest --test-dir "$build" --output-on-failure -j2
+    ;;
+esac

@@ -1,0 +1,81 @@
+#include "CubicBSpline.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+namespace fcc {
+namespace {
+
+// In-place interpolation prefilter of one line (Unser 1999), mirror-symmetric boundaries.
+void prefilterLine(float* c, int n, ptrdiff_t stride) {
+  if (n < 2) return;
+  const double z = std::sqrt(3.0) - 2.0, lambda = (1.0 - z) * (1.0 - 1.0 / z);
+  auto at = [&](int i) -> float& { return c[ptrdiff_t(i) * stride]; };
+  for (int i = 0; i < n; ++i) at(i) = float(at(i) * lambda);
+  // Causal initialisation: truncated geometric sum of the mirrored signal.
+  const int horizon = std::min(n, 30);
+  double sum = at(0), zn = z;
+  for (int i = 1; i < horizon; ++i, zn *= z) sum += zn * at(i);
+  at(0) = float(sum);
+  for (int i = 1; i < n; ++i) at(i) = float(at(i) + z * at(i - 1));
+  at(n - 1) = float((z / (z * z - 1.0)) * (at(n - 1) + z * at(n - 2)));
+  for (int i = n - 2; i >= 0; --i) at(i) = float(z * (at(i + 1) - at(i)));
+}
+
+inline void weights(double t, double w[4]) {
+  const double s = 1.0 - t;
+  w[0] = s * s * s / 6.0;
+  w[1] = (4.0 - 6.0 * t * t + 3.0 * t * t * t) / 6.0;
+  w[2] = (4.0 - 6.0 * s * s + 3.0 * s * s * s) / 6.0;
+  w[3] = t * t * t / 6.0;
+}
+
+}  // namespace
+
+CubicBSplineVolume::CubicBSplineVolume(const glm::ivec3& dims, const std::vector<float>& values)
+    : dims_(dims), coefficients_(values) {
+  const ptrdiff_t sx = 1, sy = dims.x, sz = ptrdiff_t(dims.x) * dims.y;
+  float* c = coefficients_.data();
+  tbb::parallel_for(0, dims.z, [&](int k) {
+    for (int j = 0; j < dims.y; ++j) prefilterLine(c + k * sz + j * sy, dims.x, sx);
+  });
+  tbb::parallel_for(0, dims.z, [&](int k) {
+    for (int i = 0; i < dims.x; ++i) prefilterLine(c + k * sz + i * sx, dims.y, sy);
+  });
+  tbb::parallel_for(0, dims.y, [&](int j) {
+    for (int i = 0; i < dims.x; ++i) prefilterLine(c + j * sy + i * sx, dims.z, sz);
+  });
+}
+
+float CubicBSplineVolume::coefficient(int i, int j, int k) const {
+  // Mirror boundary, matching the prefilter's assumption.
+  auto mirror = [](int a, int n) {
+    if (n == 1) return 0;
+    const int period = 2 * n - 2;
+    a = ((a % period) + period) % period;
+    return a < n ? a : period - a;
+  };
+  i = mirror(i, dims_.x), j = mirror(j, dims_.y), k = mirror(k, dims_.z);
+  return coefficients_[(size_t(k) * dims_.y + j) * dims_.x + i];
+}
+
+float CubicBSplineVolume::evaluate(const glm::dvec3& xyzIn) const {
+  const glm::dvec3 xyz = glm::clamp(xyzIn, glm::dvec3(0.0), glm::dvec3(dims_ - 1));
+  const glm::dvec3 f = glm::floor(xyz);
+  const glm::ivec3 base = glm::ivec3(f) - 1;
+  double wx[4], wy[4], wz[4];
+  weights(xyz.x - f.x, wx);
+  weights(xyz.y - f.y, wy);
+  weights(xyz.z - f.z, wz);
+  double sum = 0.0;
+  for (int c = 0; c < 4; ++c)
+    for (int b = 0; b < 4; ++b) {
+      double row = 0.0;
+      for (int a = 0; a < 4; ++a) row += wx[a] * coefficient(base.x + a, base.y + b, base.z + c);
+      sum += wz[c] * wy[b] * row;
+    }
+  return float(sum);
+}
+
+}  // namespace fcc

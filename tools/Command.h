@@ -1,0 +1,25 @@
+// A subcommand of `fccvdb`: each lives in its own tools/cmd_*.cpp and registers its flags on the app;
+// `run` is called after parsing when the subcommand was chosen. Errors are thrown (sparse/Error.h).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <vector>
+
+namespace fcc::cli {
+
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+
+Command addConvertCommand(CLI::App& parent);
+Command addInfoCommand(CLI::App& parent);
+Command addProbeCommand(CLI::App& parent);
+Command addSynthCommand(CLI::App& parent);
+
+// Validators shared by several subcommands.
+CLI::Validator tripleValidator(const std::string& what);  // "X,Y,Z"
+
+}  // namespace fcc::cli

@@ -1,0 +1,68 @@
+// fccvdb convert INPUT OUTPUT.vdb: Cartesian data to an FCC grid.
+#include <cstdio>
+
+#include "Command.h"
+#include "ProgressBar.h"
+#include "Triple.h"
+#include "io/Convert.h"
+
+namespace fcc::cli {
+namespace {
+
+struct ConvertArgs {
+  std::string input, output, dims, type = "u8", endian = "little", spacing = "1,1,1";
+  uint64_t headerBytes = 0;
+  float background = 0.0f;
+  bool quiet = false, noPrefilter = false;
+  io::ConvertOptions options;
+};
+
+}  // namespace
+
+Command addConvertCommand(CLI::App& parent) {
+  auto args = std::make_shared<ConvertArgs>();
+  CLI::App* app = parent.add_subcommand("convert", "Convert a Cartesian volume (.vdb float grid, raw, NRRD, NIfTI) to an FCC grid in a .vdb file");
+  app->add_option("INPUT", args->input, "Input: .vdb (fog volume or level set), .nrrd/.nhdr, .nii/.nii.gz, or raw (anything else; needs --dims and --type)")->required();
+  app->add_option("OUTPUT", args->output, "Output .vdb (written to a temporary file, then renamed)")->required();
+  app->add_option("--grid", args->options.gridName, ".vdb input: the float grid to convert (default: the first float grid)");
+  app->add_option("--dims", args->dims, "Raw input: voxels per axis X,Y,Z (x fastest)")->check(tripleValidator("--dims"));
+  app->add_option("--type", args->type, "Raw input: voxel type")->check(CLI::IsMember({"u8", "i8", "u16", "i16", "u32", "i32", "f32", "f64"}))->capture_default_str();
+  app->add_option("--endian", args->endian, "Raw input: byte order")->check(CLI::IsMember({"little", "big"}))->capture_default_str();
+  app->add_option("--spacing", args->spacing, "Raw input: voxel spacing SX,SY,SZ in world units")->check(tripleValidator("--spacing"))->capture_default_str();
+  app->add_option("--header-bytes", args->headerBytes, "Raw input: bytes to skip before the voxels")->capture_default_str();
+  app->add_option("--mode", args->options.mode, "subsample: keep the even-parity voxels (exact, half the samples); resample: reconstruct the source (tricubic B-spline) on an FCC lattice of another spacing")->check(CLI::IsMember({"subsample", "resample"}))->capture_default_str();
+  app->add_option("--samples", args->options.samples, "Resample: about this many FCC samples over the source's extent");
+  app->add_option("--scale", args->options.scale, "Resample: lattice spacing in source voxels (instead of --samples)")->check(CLI::PositiveNumber);
+  auto* bg = app->add_option("--background", args->background, "Value outside the data and of inactive voxels (default: the .vdb's background; 0 for raw, NRRD, NIfTI)");
+  app->add_flag("--no-prefilter", args->noPrefilter, "Store the raw samples instead of the prefiltered spline coefficients the renderer uses");
+  app->add_option("--tolerance", args->options.tolerance, "A packed voxel whose four values are within this of the background is inactive")->check(CLI::NonNegativeNumber)->capture_default_str();
+  app->add_flag("--half", args->options.half, "Store values as 16-bit floats");
+  app->add_flag("--force", args->options.overwrite, "Overwrite an existing OUTPUT");
+  app->add_flag("--quiet", args->quiet, "No progress bar");
+  return {app, [args, bg]() {
+            io::ConvertOptions& o = args->options;
+            o.prefilter = !args->noPrefilter;
+            if (bg->count() > 0) o.background = args->background;
+            if (!args->dims.empty()) {
+              io::RawLayout raw;
+              glm::dvec3 dims, spacing;
+              parseTriple(args->dims, dims);
+              parseTriple(args->spacing, spacing);
+              raw.dims = glm::ivec3(dims);
+              raw.spacing = spacing;
+              raw.type = io::parseScalarType(args->type);
+              raw.bigEndian = args->endian == "big";
+              raw.headerBytes = args->headerBytes;
+              o.raw = raw;
+            }
+            ProgressBar progress(args->quiet);
+            const io::ConvertSummary s = io::convertToFcc(args->input, args->output, o, &progress);
+            if (!args->quiet)
+              std::fprintf(stderr, "wrote %s: grid '%s', %llu active samples in %llu bricks (from %llu input voxels)\n",
+                           args->output.c_str(), s.gridName.c_str(), (unsigned long long)s.activeSamples,
+                           (unsigned long long)s.bricks, (unsigned long long)s.inputVoxels);
+            return 0;
+          }};
+}
+
+}  // namespace fcc::cli

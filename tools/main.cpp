@@ -1,0 +1,39 @@
+// fccvdb: sparse, out-of-core isosurface rendering of FCC-lattice volumes stored in OpenVDB files.
+#include <cstdio>
+#include <exception>
+
+#include "Command.h"
+#include "sparse/Error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"fccvdb: isosurfaces of volumes on the face-centered cubic (FCC) lattice, from OpenVDB files"};
+  app.name("fccvdb");
+  app.require_subcommand(1, 1);
+  app.set_version_flag("--version", "fccvdb 0.1.0");
+  const std::vector<fcc::cli::Command> commands = {
+      fcc::cli::addConvertCommand(app),
+      fcc::cli::addInfoCommand(app),
+      fcc::cli::addProbeCommand(app),
+      fcc::cli::addSynthCommand(app),
+  };
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "fccvdb: %s (see fccvdb --help)\n", e.what());
+    return 2;
+  }
+  try {
+    for (const auto& c : commands)
+      if (c.app->parsed()) return c.run();
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fccvdb: %s\n", e.what());
+    return 1;
+  }
+}
