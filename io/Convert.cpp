@@ -110,6 +110,22 @@ DenseVolume readDense(const std::string& input, Format format, const ConvertOpti
   throw Error("internal: not a dense format");
 }
 
+// The lattice spacing h (in source voxels) whose FCC embedding over the source's extent holds about
+// `samples` sites: (floor(E/h) + 1) points per axis, half of them FCC sites. Bisection on h.
+double spacingForSampleCount(const glm::ivec3& dims, uint64_t samples) {
+  const glm::dvec3 extent = glm::dvec3(dims - 1);
+  auto sites = [&](double h) {
+    const glm::dvec3 n = glm::floor(extent / h + 1e-9) + 1.0;  // as DenseResampleField rounds
+    return n.x * n.y * n.z / 2.0;
+  };
+  double lo = 1e-3, hi = 2.0 * glm::max(extent.x, glm::max(extent.y, extent.z)) + 1.0;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (sites(mid) > double(samples) ? lo : hi) = mid;
+  }
+  return hi;
+}
+
 DenseVolume densify(const openvdb::FloatGrid& grid) {
   const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
   DenseVolume v;
@@ -171,10 +187,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
 
   std::unique_ptr<SampleField> field;
   if (resample) {
-    // An FCC embedding of spacing h (in source voxels) holds about volume / (2 h^3) sites.
-    const glm::dvec3 extent = glm::dvec3(dense.dims - 1);
-    const double h = options.scale > 0.0 ? options.scale
-                                         : std::cbrt(extent.x * extent.y * extent.z / (2.0 * double(options.samples)));
+    const double h = options.scale > 0.0 ? options.scale : spacingForSampleCount(dense.dims, options.samples);
     if (!(h > 0.0) || !std::isfinite(h)) throw ValueError("--samples/--scale give no valid lattice spacing");
     field = std::make_unique<DenseResampleField>(dense, background, h);
     xform->preScale(h);

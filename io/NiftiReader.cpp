@@ -58,7 +58,6 @@ class Header {
  public:
   Header(const uint8_t* bytes, bool bigEndian) : bytes_(bytes), bigEndian_(bigEndian) {}
   int16_t i16(size_t offset) const { return loadScalar<int16_t>(bytes_ + offset, bigEndian_); }
-  int32_t i32(size_t offset) const { return loadScalar<int32_t>(bytes_ + offset, bigEndian_); }
   float f32(size_t offset) const { return loadScalar<float>(bytes_ + offset, bigEndian_); }
 
  private:

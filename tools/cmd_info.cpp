@@ -49,7 +49,7 @@ Summary summarize(const FccGrid& grid) {
   s.values = storesSamples(grid) ? kValuesSamples : kValuesCoefficients;
   s.gridClass = openvdb::GridBase::gridClassToString(grid.getGridClass());
   const openvdb::CoordBBox packed = grid.evalActiveVoxelBoundingBox();
-  s.siteBox = openvdb::CoordBBox(packed.min() * 2, packed.max() * 2 + openvdb::Coord(1));
+  s.siteBox = openvdb::CoordBBox(openvdb::Coord(packed.min().asVec3i() * 2), openvdb::Coord(packed.max().asVec3i() * 2 + openvdb::Vec3i(1)));
   s.samples = grid.activeVoxelCount() * 4;
   s.bricks = grid.tree().leafCount();
   s.tiles = grid.tree().activeTileCount();

@@ -1,6 +1,9 @@
 # Called by fcc_embed (Embed.cmake) with -DROOT -DPREFIX -DFILES -DINCLUDE_DIRS -DOUT_CPP -DOUT_H.
 # Inlines `#include "file"` recursively (each file once, like #pragma once), then writes the texts
 # as raw string literals.
+# Script mode (-P) starts with no policies set: without this, while(TRUE) reads TRUE as a variable
+# (CMP0012 OLD) and no #include is ever resolved.
+cmake_minimum_required(VERSION 3.20)
 string(REPLACE "|" ";" FILES "${FILES}")
 string(REPLACE "|" ";" INCLUDE_DIRS "${INCLUDE_DIRS}")
 set(FCC_EMBED_SEEN "")

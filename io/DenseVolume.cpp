@@ -1,0 +1,85 @@
+#include "DenseVolume.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+
+#include "MessageText.h"
+#include "sparse/Error.h"
+
+namespace fcc::io {
+namespace {
+
+struct ScalarTypeInfo {
+  ScalarType type;
+  const char* name;
+  size_t bytes;
+};
+
+constexpr ScalarTypeInfo kScalarTypes[] = {
+    {ScalarType::U8, "u8", 1},   {ScalarType::I8, "i8", 1},   {ScalarType::U16, "u16", 2}, {ScalarType::I16, "i16", 2},
+    {ScalarType::U32, "u32", 4}, {ScalarType::I32, "i32", 4}, {ScalarType::F32, "f32", 4}, {ScalarType::F64, "f64", 8},
+};
+
+const ScalarTypeInfo& infoOf(ScalarType type) {
+  for (const ScalarTypeInfo& info : kScalarTypes)
+    if (info.type == type) return info;
+  return kScalarTypes[0];  // unreachable: kScalarTypes lists every enumerator
+}
+
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return text;
+}
+
+bool endsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+size_t DenseVolume::index(int i, int j, int k) const {
+  return size_t(i) + size_t(dims.x) * (size_t(j) + size_t(dims.y) * size_t(k));
+}
+
+float DenseVolume::at(int i, int j, int k) const { return values[index(i, j, k)]; }
+
+bool DenseVolume::contains(int i, int j, int k) const {
+  return i >= 0 && j >= 0 && k >= 0 && i < dims.x && j < dims.y && k < dims.z;
+}
+
+ScalarType parseScalarType(const std::string& name) {
+  const std::string key = lowercase(name);
+  for (const ScalarTypeInfo& info : kScalarTypes)
+    if (key == info.name) return info.type;
+  throw ValueError("unknown scalar type " + quotedText(name) + "; valid: u8, i8, u16, i16, u32, i32, f32, f64");
+}
+
+const char* scalarTypeName(ScalarType type) { return infoOf(type).name; }
+
+size_t scalarTypeSize(ScalarType type) { return infoOf(type).bytes; }
+
+uint64_t checkedVoxelCount(const glm::ivec3& dims, const std::string& path) {
+  if (dims.x < 1 || dims.y < 1 || dims.z < 1)
+    throw InputError(path + ": dims " + commaList(dims) + " are invalid: every dimension must be at least 1");
+  // Each factor is below 2^31, so x*y fits; compare before the last multiplication so it cannot overflow.
+  const uint64_t xy = uint64_t(dims.x) * uint64_t(dims.y);
+  if (xy > kMaxVoxelCount / uint64_t(dims.z)) {
+    const long double count = static_cast<long double>(xy) * dims.z;
+    char countText[32];
+    std::snprintf(countText, sizeof countText, "%.3Lg", count);
+    throw InputError(path + ": dims " + commaList(dims) + " make " + countText + " voxels; at most " +
+                     std::to_string(kMaxVoxelCount) + " (2^34) are supported");
+  }
+  return xy * uint64_t(dims.z);
+}
+
+Format detectFormat(const std::string& path) {
+  const std::string name = lowercase(path);
+  if (endsWith(name, ".vdb")) return Format::Vdb;
+  if (endsWith(name, ".nrrd") || endsWith(name, ".nhdr")) return Format::Nrrd;
+  if (endsWith(name, ".nii") || endsWith(name, ".nii.gz")) return Format::Nifti;
+  return Format::Raw;
+}
+
+}  // namespace fcc::io

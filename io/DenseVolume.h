@@ -1,0 +1,75 @@
+// A Cartesian volume held in memory as float samples, and the readers that fill it from raw, NRRD and
+// NIfTI-1 files. Every reader converts its stored scalar type to float, so later stages handle one type.
+// Every bad input is an fcc::InputError (sparse/Error.h) whose one-line message names the file.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace fcc::io {
+
+struct DenseVolume {
+  glm::ivec3 dims{0};       // voxels, x fastest, then y, then z
+  glm::dvec3 spacing{1.0};  // world units per voxel along x, y, z
+  glm::dvec3 origin{0.0};   // world position of voxel (0,0,0)
+  std::vector<float> values;  // dims.x*dims.y*dims.z values
+
+  // Position of voxel (i, j, k) in `values`, x fastest.
+  size_t index(int i, int j, int k) const;
+  // Value of voxel (i, j, k); the voxel must be inside (see contains).
+  float at(int i, int j, int k) const;
+  bool contains(int i, int j, int k) const;
+};
+
+// Scalar types a file can store; readers convert all of them to float.
+enum class ScalarType { U8, I8, U16, I16, U32, I32, F32, F64 };
+
+// "u8|i8|u16|i16|u32|i32|f32|f64" (the command line's spelling); ValueError listing the valid names otherwise.
+ScalarType parseScalarType(const std::string& name);
+// The command line's spelling of `type` ("u8", ...), for messages.
+const char* scalarTypeName(ScalarType type);
+// Bytes one stored sample of `type` takes.
+size_t scalarTypeSize(ScalarType type);
+
+// Largest volume a reader accepts: 2^34 voxels is 64 GiB of float values, beyond any machine this tool
+// targets, and a header that claims more is far likelier corrupt than real.
+inline constexpr uint64_t kMaxVoxelCount = uint64_t(1) << 34;
+
+// dims.x*dims.y*dims.z, computed without overflow. InputError naming `path` if a dimension is below 1 or
+// the product exceeds kMaxVoxelCount — readers call it before sizing anything from a header's dims.
+uint64_t checkedVoxelCount(const glm::ivec3& dims, const std::string& path);
+
+// How a headerless raw file is laid out; everything comes from the command line.
+struct RawLayout {
+  glm::ivec3 dims{0};
+  ScalarType type = ScalarType::U8;
+  bool bigEndian = false;
+  glm::dvec3 spacing{1.0};
+  uint64_t headerBytes = 0;  // bytes before the first voxel (e.g. 62 for a VolPack .den)
+};
+
+// Reads a raw volume. Gzip-compressed input (a .gz name, or the gzip magic) is inflated transparently.
+// The (decompressed) file must hold exactly headerBytes + the voxels' bytes: any other size means the
+// layout is wrong, and guessing would render garbage.
+DenseVolume readRaw(const std::string& path, const RawLayout& layout);
+
+// Reads a 3-D NRRD: .nrrd (data attached after the header) or .nhdr (detached, "data file:"); encodings
+// raw and gzip; types: every NRRD spelling of the 8 ScalarTypes; spacing from "spacings" or axis-aligned
+// "space directions" (the diagonal's magnitude); origin from "space origin".
+DenseVolume readNrrd(const std::string& path);
+
+// Reads a single-file NIfTI-1 volume (.nii or .nii.gz, magic "n+1"), either byte order; scl_slope and
+// scl_inter are applied when the slope is nonzero; spacing = |pixdim[1..3]|; origin from the sform's
+// translation if sform_code > 0, else qoffset if qform_code > 0, else 0. Orientation is not kept.
+DenseVolume readNifti(const std::string& path);
+
+enum class Format { Vdb, Raw, Nrrd, Nifti };
+
+// By extension, case-insensitive: .vdb, .nrrd/.nhdr, .nii/.nii.gz; anything else is Raw.
+Format detectFormat(const std::string& path);
+
+}  // namespace fcc::io

@@ -1,0 +1,61 @@
+// Headerless raw volumes: the layout comes from the command line, so the file's size is the only check
+// there is — it must match exactly, or the dims, type or header size are wrong.
+#include <cmath>
+#include <limits>
+
+#include "ByteSource.h"
+#include "DenseVolume.h"
+#include "MessageText.h"
+#include "SampleDecoding.h"
+#include "sparse/Error.h"
+
+namespace fcc::io {
+namespace {
+
+bool hasGzipSuffix(const std::string& path) {
+  return path.size() >= 3 && (path.compare(path.size() - 3, 3, ".gz") == 0 || path.compare(path.size() - 3, 3, ".GZ") == 0);
+}
+
+}  // namespace
+
+DenseVolume readRaw(const std::string& path, const RawLayout& layout) {
+  const uint64_t voxels = checkedVoxelCount(layout.dims, path);
+  for (int axis = 0; axis < 3; ++axis)
+    if (!(std::isfinite(layout.spacing[axis]) && layout.spacing[axis] > 0.0))
+      throw ValueError(path + ": spacing " + numberText(layout.spacing[axis]) + " along axis " +
+                       std::to_string(axis) + " is invalid: it must be positive and finite");
+  const uint64_t payload = voxels * scalarTypeSize(layout.type);  // at most 2^37: no overflow
+  if (layout.headerBytes > std::numeric_limits<uint64_t>::max() - payload)
+    throw InputError(path + ": header size " + std::to_string(layout.headerBytes) + " bytes is beyond any file");
+  const uint64_t needed = layout.headerBytes + payload;
+
+  auto sizeError = [&](uint64_t holds, bool decompressed) {
+    return InputError(path + ": file holds " + std::to_string(holds) + " bytes" + (decompressed ? " once decompressed" : "") +
+                      " but --dims " + commaList(layout.dims) + " --type " + scalarTypeName(layout.type) + " needs " +
+                      std::to_string(payload) + " (+" + std::to_string(layout.headerBytes) + " header bytes)");
+  };
+
+  // A .gz name is always gzip. Otherwise the gzip magic decides, except that a plain file of exactly the
+  // right size is raw even if it starts with 1f 8b 08 (a 16-bit sample can).
+  Compression compression = Compression::Gzip;
+  if (!hasGzipSuffix(path)) {
+    const ByteSource probe(path, 0, Compression::Plain);
+    compression = probe.knownSize() == needed ? Compression::Plain : Compression::Detect;
+  }
+  ByteSource source(path, 0, compression);
+  if (source.knownSize() && *source.knownSize() != needed) throw sizeError(*source.knownSize(), false);
+
+  DenseVolume volume;
+  volume.dims = layout.dims;
+  volume.spacing = layout.spacing;
+  if (source.knownSize()) volume.values.reserve(voxels);  // the size matched: the data is there
+
+  const bool headerComplete = source.skip(layout.headerBytes) == layout.headerBytes;
+  const uint64_t samples =
+      headerComplete ? readSamples(source, layout.type, layout.bigEndian, voxels, volume.values) : 0;
+  const uint64_t extra = source.drain();
+  if (!headerComplete || samples < voxels || extra > 0) throw sizeError(source.position(), source.gzip());
+  return volume;
+}
+
+}  // namespace fcc::io

@@ -1,0 +1,67 @@
+// Runs the built `fccvdb` as a user would, capturing exit status, stdout and stderr.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fcc::test {
+
+struct CommandResult {
+  int status = -1;
+  std::string out, err;
+};
+
+inline std::string readText(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// `args` is appended to the executable's path as shell words; `stdinText` is fed on standard input.
+inline CommandResult runFccvdb(const std::string& args, const std::string& stdinText = {}) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(std::rand());
+  const auto in = dir / ("fcc_in_" + tag), out = dir / ("fcc_out_" + tag), err = dir / ("fcc_err_" + tag);
+  std::ofstream(in) << stdinText;
+  const std::string cmd = std::string(FCC_FCCVDB_EXE) + " " + args + " <" + in.string() + " >" + out.string() + " 2>" + err.string();
+  const int raw = std::system(cmd.c_str());
+  CommandResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  r.out = readText(out);
+  r.err = readText(err);
+  std::filesystem::remove(in);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
+}
+
+inline int lineCount(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+// A fresh directory removed at the end of the test.
+struct TempDir {
+  std::filesystem::path path;
+  TempDir() {
+    path = std::filesystem::temp_directory_path() / ("fcc_test_" + std::to_string(::getpid()) + "_" + std::to_string(std::rand()));
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() { std::filesystem::remove_all(path); }
+  std::string operator/(const std::string& name) const { return (path / name).string(); }
+  // Files in the directory (to check that nothing half-written was left behind).
+  int fileCount() const {
+    int n = 0;
+    for (auto& e : std::filesystem::directory_iterator(path)) n += e.is_regular_file();
+    return n;
+  }
+};
+
+}  // namespace fcc::test

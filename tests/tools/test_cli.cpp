@@ -1,0 +1,127 @@
+// The command line as a user meets it: help, flag errors, and the subcommands end to end.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "RunCommand.h"
+
+namespace fcc::test {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(Cli, HelpDescribesEverySubcommand) {
+  const auto r = runFccvdb("--help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* sub : {"convert", "info", "probe", "synth"}) EXPECT_THAT(r.out, HasSubstr(sub));
+  for (const char* sub : {"convert", "info", "probe", "synth"}) {
+    const auto h = runFccvdb(std::string(sub) + " --help");
+    EXPECT_EQ(h.status, 0) << sub;
+    EXPECT_THAT(h.out, HasSubstr("--")) << sub << " help lists its flags";
+  }
+}
+
+TEST(Cli, BadFlagsGiveOneLineAndStatus2) {
+  for (const char* args : {"", "nosuchcommand", "synth sphere", "synth sphere x.vdb --dims 1,2", "info --bogus x.vdb",
+                           "convert", "synth cube x.vdb --dims 8,8,8", "convert a b --mode sideways"}) {
+    const auto r = runFccvdb(args);
+    EXPECT_EQ(r.status, 2) << "args: " << args << "\nstderr: " << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << "args: " << args << "\nstderr: " << r.err;
+  }
+}
+
+TEST(Cli, SynthInfoProbeRoundTrip) {
+  TempDir dir;
+  const std::string vdb = dir / "sphere.vdb";
+  auto r = runFccvdb("synth sphere " + vdb + " --dims 24,24,24 --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = runFccvdb("info " + vdb + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* key : {"\"lattice\": \"fcc\"", "\"samples\":", "\"bricks\":", "\"bytes\":", "\"min\":", "\"max\":"})
+    EXPECT_THAT(r.out, HasSubstr(key));
+  // The sphere field f = |x - c|^2 / R^2 (c = 11.5, R = 11.5) is quadratic: the spline reproduces it.
+  r = runFccvdb("probe " + vdb, "11.5 11.5 11.5\n14 12 9.25\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream lines(r.out);
+  double v, gx, gy, gz;
+  ASSERT_TRUE(lines >> v >> gx >> gy >> gz);
+  EXPECT_NEAR(v, 0.0, 1e-5);
+  EXPECT_NEAR(gx, 0.0, 1e-5);
+  ASSERT_TRUE(lines >> v >> gx >> gy >> gz);
+  const double R2 = 11.5 * 11.5;
+  EXPECT_NEAR(v, (2.5 * 2.5 + 0.5 * 0.5 + 2.25 * 2.25) / R2, 1e-5);
+  EXPECT_NEAR(gx, 2 * 2.5 / R2, 1e-5);
+  EXPECT_NEAR(gy, 2 * 0.5 / R2, 1e-5);
+  EXPECT_NEAR(gz, -2 * 2.25 / R2, 1e-5);
+}
+
+TEST(Cli, ProbeFarFromDataIsTheBackground) {
+  TempDir dir;
+  const std::string vdb = dir / "blobs.vdb";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 32,32,32 --quiet").status, 0);
+  const auto r = runFccvdb("probe " + vdb, "-100 -100 -100\n500 3 3\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "0 0 0 0\n0 0 0 0\n");
+}
+
+TEST(Cli, ProbeNamesTheLineThatDoesNotParse) {
+  TempDir dir;
+  const std::string vdb = dir / "s.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 8,8,8 --quiet").status, 0);
+  const auto r = runFccvdb("probe " + vdb, "1 2 3\n4 five 6\n");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.err, HasSubstr("line 2"));
+  EXPECT_EQ(lineCount(r.err), 1);
+}
+
+TEST(Cli, SynthRefusesToOverwriteWithoutForce) {
+  TempDir dir;
+  const std::string vdb = dir / "s.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 8,8,8 --quiet").status, 0);
+  auto r = runFccvdb("synth sphere " + vdb + " --dims 8,8,8 --quiet");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.err, HasSubstr("--force"));
+  r = runFccvdb("synth sphere " + vdb + " --dims 8,8,8 --quiet --force");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(dir.fileCount(), 1) << "no temporary file is left beside the output";
+}
+
+TEST(Cli, NotAnFccFileSaysToConvert) {
+  const std::string sphere = std::string(FCC_SHARED_DATA_DIR) + "/sphere.vdb";
+  if (!std::ifstream(sphere)) GTEST_SKIP() << "missing " << sphere;
+  const auto r = runFccvdb("info " + sphere);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.err, HasSubstr("fccvdb convert"));
+  EXPECT_EQ(lineCount(r.err), 1);
+}
+
+TEST(Cli, CorruptVdbGivesOneLineNoCrash) {
+  TempDir dir;
+  const std::string good = dir / "good.vdb";
+  ASSERT_EQ(runFccvdb("synth marschner-lobb " + good + " --dims 32,32,32 --quiet").status, 0);
+  std::ifstream in(good, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Truncated at several places, and with bytes flipped in the middle.
+  for (double cut : {0.1, 0.5, 0.9}) {
+    const std::string bad = dir / "cut.vdb";
+    std::ofstream(bad, std::ios::binary) << bytes.substr(0, size_t(bytes.size() * cut));
+    const auto r = runFccvdb("info " + bad);
+    EXPECT_EQ(r.status, 1) << "cut at " << cut << ": " << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("cut.vdb"));
+  }
+  std::string flipped = bytes;
+  for (size_t i = flipped.size() / 3; i < flipped.size() / 3 + 64; ++i) flipped[i] = char(~flipped[i]);
+  const std::string bad = dir / "flipped.vdb";
+  std::ofstream(bad, std::ios::binary) << flipped;
+  const auto r = runFccvdb("info " + bad);
+  EXPECT_LE(r.status, 1) << "no crash: " << r.err;
+  EXPECT_LE(lineCount(r.err), 1) << r.err;
+}
+
+}  // namespace
+}  // namespace fcc::test
