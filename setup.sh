@@ -2,7 +2,7 @@
 # fccvdb set-up: installs what is missing (Debian 12 packages; needs root or sudo), builds in Release,
 # then runs the demo or the test suite.
 #
-#   ./setup.sh demo    install, build, convert a generated dataset and render it headless (EGL)
+#   ./setup.sh demo    install, build, convert a generated Cartesian volume to FCC and describe it
 #   ./setup.sh test    install, build, run the whole test suite (ctest)
 #   ./setup.sh build   install and build only
 set -euo pipefail
@@ -37,12 +37,10 @@ case "$mode" in
   demo)
     out=${FCC_DEMO_DIR:-demo-output}
     mkdir -p "$out"
-    "$build/bin/fccvdb" synth marschner-lobb "$out/marschner-lobb.vdb" --dims 64,64,64 --force --quiet
-    "$build/bin/fccvdb" info "$out/marschner-lobb.vdb"
-    if "$build/bin/fccvdb" render --help >/dev/null 2>&1; then
-      "$build/bin/fccvdb" render "$out/marschner-lobb.vdb" -o "$out/marschner-lobb.png" --iso 0.5 --res 512x512
-      echo "demo image: $(cd "$out" && pwd)/marschner-lobb.png"
-    fi
+    python3 tools/make_demo_volume.py "$out/torus_64.raw" 64
+    "$build/bin/fccvdb" convert "$out/torus_64.raw" "$out/torus_fcc.vdb" --dims 64,64,64 --type u8 --force --quiet
+    "$build/bin/fccvdb" info "$out/torus_fcc.vdb"
+    echo "demo dataset: $(cd "$out" && pwd)/torus_fcc.vdb"
     ;;
   test)
     ctest --test-dir "$build" --output-on-failure -j2

@@ -18,11 +18,7 @@ using test::PointSource;
 // float32 evaluation of O(1) data: a few ulps of the 24-term sums.
 constexpr float kFloatTol = 2e-6f;
 
-std::string str(const glm::vec3& v) {
-  char b[96];
-  std::snprintf(b, sizeof b, "(%.9g, %.9g, %.9g)", v.x, v.y, v.z);
-  return b;
-}
+using test::str;
 
 // The spline of a single unit coefficient at site `at` is the kernel M_fcc(x - at).
 float kernel(const glm::vec3& x) {

@@ -1,0 +1,39 @@
+// Compares results of the spline header compiled for a device (OpenCL C, GLSL) with the C++ path.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "SplineTestData.h"
+#include "sparse/Spline.h"
+
+namespace fcc::test {
+
+// `device[i]` = (value, gradient) at points[i]; fails at the first point beyond the tolerances and
+// prints the largest differences seen.
+inline void expectMatchesCpp(const char* dialect, const DenseBlock& block, const std::vector<glm::vec4>& points,
+                             const std::vector<glm::vec4>& device) {
+  ASSERT_EQ(device.size(), points.size());
+  float maxValue = 0.0f, maxGradient = 0.0f;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const glm::vec3 p(points[i]);
+    const auto cpu = spline::evaluateWithGradient(p, [&](const glm::ivec3& ijk) { return block.at(ijk); });
+    const float dv = std::abs(device[i].x - cpu.value);
+    const float dg = glm::max(glm::max(std::abs(device[i].y - cpu.gradient.x), std::abs(device[i].z - cpu.gradient.y)),
+                              std::abs(device[i].w - cpu.gradient.z));
+    ASSERT_LE(dv, kValueTol) << "value at point " << i << " " << str(p) << ": " << dialect << " " << device[i].x
+                             << ", C++ " << cpu.value;
+    ASSERT_LE(dg, kGradientTol) << "gradient at point " << i << " " << str(p) << ": " << dialect << " "
+                                << str(glm::vec3(device[i].y, device[i].z, device[i].w)) << ", C++ " << str(cpu.gradient);
+    maxValue = std::max(maxValue, dv);
+    maxGradient = std::max(maxGradient, dg);
+  }
+  std::printf("[   INFO   ] %s: max |value diff| %.3g (tol %.0e), max |gradient diff| %.3g (tol %.0e)\n", dialect,
+              maxValue, kValueTol, maxGradient, kGradientTol);
+}
+
+}  // namespace fcc::test

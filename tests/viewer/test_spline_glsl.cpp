@@ -1,0 +1,145 @@
+// The compute shader shaders/spline_eval.comp against the C++ spline (sparse/Spline.h), on a headless
+// EGL context (llvmpipe where there is no GPU), and the GL program errors. Without a usable EGL
+// display the tests are skipped, or fail when the environment variable CI is set.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "embedded_shaders.h"
+#include "sparse/Spline.h"
+#include "tests/sparse/DialectComparison.h"
+
+using fcc::test::DenseBlock;
+using fcc::test::kBackground;
+using fcc::test::kBlockSide;
+using fcc::test::kGradientTol;
+using fcc::test::kPoints;
+using fcc::test::kValueTol;
+using fcc::test::randomPoints;
+using fcc::test::str;
+#include "viewer/EglContext.h"
+#include "viewer/GlProgram.h"
+
+namespace fcc {
+namespace {
+
+constexpr const char* kShaderPath = "shaders/spline_eval.comp";
+
+class Glsl : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    try {
+      context = std::make_unique<EglContext>();
+    } catch (const Error& e) {
+      unavailable = e.what();
+    }
+  }
+  static void TearDownTestSuite() {
+    program.reset();  // before its context
+    context.reset();
+  }
+  void SetUp() override {
+    if (context) return;
+    if (std::getenv("CI")) FAIL() << "EGL/OpenGL 4.5 is required when CI is set: " << unavailable;
+    GTEST_SKIP() << unavailable;
+  }
+
+  // The spline shader, compiled once per test binary.
+  static const GlProgram& splineProgram() {
+    if (!program) program = GlProgram::compute(embedded::shaders(kShaderPath), kShaderPath);
+    return *program;
+  }
+
+  static std::vector<glm::vec4> evaluateOnDevice(const DenseBlock& block, const std::vector<glm::vec4>& points) {
+    const GlProgram& p = splineProgram();
+    const auto start = std::chrono::steady_clock::now();
+    const GlBuffer pointBuffer(points), coefficientBuffer(block.values);
+    const GlBuffer resultBuffer(points.size() * sizeof(glm::vec4));
+    pointBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    coefficientBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+    resultBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
+    p.use();
+    glUniform4i(p.uniformLocation("uOrigin"), block.origin.x, block.origin.y, block.origin.z, 0);
+    glUniform4i(p.uniformLocation("uDims"), block.dims.x, block.dims.y, block.dims.z, 0);
+    glUniform1f(p.uniformLocation("uBackground"), block.background);
+    glUniform1ui(p.uniformLocation("uCount"), GLuint(points.size()));
+    p.dispatch("spline evaluation", GLuint(points.size()));
+    std::vector<glm::vec4> results(points.size());
+    resultBuffer.read(results);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::printf("[   INFO   ] %zu points on %s: %.1f ms (upload, dispatch, read back)\n", points.size(),
+                context->describe().c_str(), ms);
+    return results;
+  }
+
+  static void expectMatchesCpp(const DenseBlock& block, const std::vector<glm::vec4>& points) {
+    test::expectMatchesCpp("GLSL", block, points, evaluateOnDevice(block, points));
+  }
+
+  static inline std::unique_ptr<EglContext> context;
+  static inline std::optional<GlProgram> program;
+  static inline std::string unavailable;
+};
+
+TEST(GlslEmbedding, VersionLineStaysFirst) {
+  const std::string_view source = embedded::shaders(kShaderPath);
+  ASSERT_FALSE(source.empty());
+  EXPECT_EQ(source.substr(0, 18), "#version 450 core\n");
+  EXPECT_NE(source.find("fcc_decasteljau3"), std::string_view::npos);  // from FccSplineTables.h
+  EXPECT_EQ(source.find("#include \""), std::string_view::npos);
+}
+
+TEST_F(Glsl, ContextIsOpenGL45Core) {
+  std::printf("[   INFO   ] %s\n", context->describe().c_str());
+  if (!context->fallbacks().empty()) std::printf("[   INFO   ] not used: %s\n", context->fallbacks().c_str());
+  EXPECT_FALSE(context->renderer().empty());
+  GLint major = 0, minor = 0, profile = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+  EXPECT_GE(major * 10 + minor, 45);
+  EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
+}
+
+TEST_F(Glsl, SplineMatchesCppAtRandomPoints) {
+  // An odd origin: the block's storage parity differs from the lattice's.
+  const DenseBlock block(glm::ivec3(-7, 3, 12), kBlockSide, kBackground, 21);
+  expectMatchesCpp(block, randomPoints(block, kPoints, 2.0f, 22));
+}
+
+TEST_F(Glsl, SplineUsesTheBackgroundOutsideTheBlock) {
+  // Points up to 3 outside the block on every side: stencils straddle the boundary or miss the block.
+  const DenseBlock block(glm::ivec3(4, -9, 0), 8, kBackground, 23);
+  expectMatchesCpp(block, randomPoints(block, 2000, -3.0f, 24));
+}
+
+TEST_F(Glsl, CompileErrorCarriesTheInfoLog) {
+  const char* broken = "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() { fcc_no_such_name = 1.0; }\n";
+  try {
+    GlProgram::compute(broken, "broken.comp");
+    FAIL() << "an invalid shader compiled";
+  } catch (const GlError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("compiling compute shader 'broken.comp' failed"), std::string::npos) << what;
+    EXPECT_NE(what.find("fcc_no_such_name"), std::string::npos) << what;  // from the info log
+  }
+}
+
+TEST_F(Glsl, UnknownUniformIsNamed) {
+  try {
+    splineProgram().uniformLocation("uNoSuchUniform");
+    FAIL() << "an unknown uniform had a location";
+  } catch (const GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("uNoSuchUniform"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace fcc

@@ -1,0 +1,160 @@
+#include "GlProgram.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace fcc {
+
+namespace {
+
+std::string trimmed(std::string s) {
+  while (!s.empty() && (s.back() == '\0' || s.back() == '\n' || s.back() == ' ' || s.back() == '\r')) s.pop_back();
+  return s;
+}
+
+std::string shaderLog(GLuint shader) {
+  GLint length = 0;
+  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+  std::string log(size_t(std::max(length, 1)), '\0');
+  glGetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
+  return trimmed(log);
+}
+
+std::string programLog(GLuint program) {
+  GLint length = 0;
+  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+  std::string log(size_t(std::max(length, 1)), '\0');
+  glGetProgramInfoLog(program, GLsizei(log.size()), nullptr, log.data());
+  return trimmed(log);
+}
+
+}  // namespace
+
+const char* glErrorName(GLenum code) {
+  switch (code) {
+    case GL_NO_ERROR: return "GL_NO_ERROR";
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST";
+    default: return "GL error";
+  }
+}
+
+void checkGl(std::string_view doing) {
+  std::string names;
+  for (int i = 0; i < 16; ++i) {  // bounded: a lost context may report errors forever
+    const GLenum e = glGetError();
+    if (e == GL_NO_ERROR) break;
+    if (!names.empty()) names += ", ";
+    names += glErrorName(e);
+  }
+  if (!names.empty()) throw GlError(std::string(doing) + ": " + names);
+}
+
+GlProgram GlProgram::compute(std::string_view source, std::string_view name) {
+  GlProgram p;
+  p.name_ = std::string(name);
+  if (source.empty()) throw GlError("compute shader '" + p.name_ + "' has no source text");
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  if (shader == 0) throw GlError("glCreateShader(GL_COMPUTE_SHADER) failed for '" + p.name_ + "'");
+  const GLchar* text = source.data();
+  const GLint length = GLint(source.size());
+  glShaderSource(shader, 1, &text, &length);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    const std::string log = shaderLog(shader);
+    glDeleteShader(shader);
+    throw GlError("compiling compute shader '" + p.name_ + "' failed:\n" + log);
+  }
+  p.id_ = glCreateProgram();
+  glAttachShader(p.id_, shader);
+  glLinkProgram(p.id_);
+  glDetachShader(p.id_, shader);
+  glDeleteShader(shader);
+  glGetProgramiv(p.id_, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) throw GlError("linking compute shader '" + p.name_ + "' failed:\n" + programLog(p.id_));
+  checkGl("building compute shader '" + p.name_ + "'");
+  return p;
+}
+
+GlProgram::GlProgram(GlProgram&& other) noexcept
+    : id_(std::exchange(other.id_, 0)), name_(std::move(other.name_)) {}
+
+GlProgram& GlProgram::operator=(GlProgram&& other) noexcept {
+  if (this != &other) {
+    if (id_) glDeleteProgram(id_);
+    id_ = std::exchange(other.id_, 0);
+    name_ = std::move(other.name_);
+  }
+  return *this;
+}
+
+GlProgram::~GlProgram() {
+  if (id_) glDeleteProgram(id_);
+}
+
+void GlProgram::use() const { glUseProgram(id_); }
+
+GLint GlProgram::uniformLocation(const char* uniform) const {
+  const GLint location = glGetUniformLocation(id_, uniform);
+  if (location < 0) throw GlError("compute shader '" + name_ + "' has no active uniform '" + uniform + "'");
+  return location;
+}
+
+std::array<GLint, 3> GlProgram::localSize() const {
+  std::array<GLint, 3> size{1, 1, 1};
+  glGetProgramiv(id_, GL_COMPUTE_WORK_GROUP_SIZE, size.data());
+  return size;
+}
+
+void GlProgram::dispatch(std::string_view description, GLuint count) const {
+  if (count == 0) return;
+  const GLuint local = GLuint(std::max(localSize()[0], 1));
+  glUseProgram(id_);
+  glDispatchCompute((count + local - 1) / local, 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  checkGl(std::string(description) + ": dispatching '" + name_ + "' over " + std::to_string(count) + " items");
+}
+
+GlBuffer::GlBuffer(std::size_t bytes, const void* data) : bytes_(bytes) {
+  glCreateBuffers(1, &id_);
+  // Zero-sized storage is an error; keep one byte so that empty inputs still bind.
+  glNamedBufferStorage(id_, GLsizeiptr(bytes == 0 ? 1 : bytes), bytes == 0 ? nullptr : data, GL_DYNAMIC_STORAGE_BIT);
+  checkGl("creating a " + std::to_string(bytes) + "-byte buffer");
+}
+
+GlBuffer::GlBuffer(GlBuffer&& other) noexcept
+    : id_(std::exchange(other.id_, 0)), bytes_(std::exchange(other.bytes_, 0)) {}
+
+GlBuffer& GlBuffer::operator=(GlBuffer&& other) noexcept {
+  if (this != &other) {
+    if (id_) glDeleteBuffers(1, &id_);
+    id_ = std::exchange(other.id_, 0);
+    bytes_ = std::exchange(other.bytes_, 0);
+  }
+  return *this;
+}
+
+GlBuffer::~GlBuffer() {
+  if (id_) glDeleteBuffers(1, &id_);
+}
+
+void GlBuffer::bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, id_); }
+
+void GlBuffer::read(void* out, std::size_t bytes, std::size_t offset) const {
+  if (bytes == 0) return;
+  if (offset + bytes > bytes_)
+    throw GlError("reading " + std::to_string(bytes) + " bytes at " + std::to_string(offset) + " of a " +
+                  std::to_string(bytes_) + "-byte buffer");
+  glGetNamedBufferSubData(id_, GLintptr(offset), GLsizeiptr(bytes), out);
+  checkGl("reading a buffer");
+}
+
+}  // namespace fcc

@@ -1,0 +1,89 @@
+// OpenGL compute programs and storage buffers (needs a current 4.5 context, e.g. fcc::EglContext).
+//
+//   fcc::GlProgram p = fcc::GlProgram::compute(fcc::embedded::shaders("shaders/spline_eval.comp"),
+//                                              "shaders/spline_eval.comp");
+//   fcc::GlBuffer points(pts);  points.bindBase(GL_SHADER_STORAGE_BUFFER, 0);  ...
+//   p.use();  glUniform1ui(p.uniformLocation("uCount"), n);
+//   p.dispatch("spline evaluation", n);   // ceil(n / local_size_x) groups, then a barrier
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sparse/Error.h"
+
+namespace fcc {
+
+// An OpenGL failure: a shader that does not compile or link (with its info log), or a GL error code.
+struct GlError : Error {
+  using Error::Error;
+};
+
+// "GL_INVALID_OPERATION" for 0x0502, ...
+const char* glErrorName(GLenum code);
+// Throws GlError "<doing>: GL_INVALID_VALUE" if glGetError() reports anything (all queued errors are
+// drained and named).
+void checkGl(std::string_view doing);
+
+class GlProgram {
+ public:
+  // Compiles and links one compute shader. `name` labels errors. Throws GlError: "compiling compute
+  // shader '<name>' failed:\n<info log>" (or linking).
+  static GlProgram compute(std::string_view source, std::string_view name = "compute shader");
+
+  GlProgram() = default;
+  GlProgram(GlProgram&& other) noexcept;
+  GlProgram& operator=(GlProgram&& other) noexcept;
+  GlProgram(const GlProgram&) = delete;
+  GlProgram& operator=(const GlProgram&) = delete;
+  ~GlProgram();
+
+  GLuint id() const { return id_; }
+  const std::string& name() const { return name_; }
+  void use() const;
+  // The location of an active uniform; throws GlError naming it if the program has no such uniform.
+  GLint uniformLocation(const char* uniform) const;
+  std::array<GLint, 3> localSize() const;  // GL_COMPUTE_WORK_GROUP_SIZE
+
+  // Binds the program, dispatches ceil(count / local_size_x) groups (the shader checks its bound),
+  // then issues a barrier so that later buffer reads and shader reads see the writes. Errors name
+  // `description`.
+  void dispatch(std::string_view description, GLuint count) const;
+
+ private:
+  GLuint id_ = 0;
+  std::string name_;
+};
+
+// An immutable-storage buffer object (glNamedBufferStorage, GL_DYNAMIC_STORAGE_BIT).
+class GlBuffer {
+ public:
+  explicit GlBuffer(std::size_t bytes, const void* data = nullptr);
+  template <class T>
+  explicit GlBuffer(const std::vector<T>& data) : GlBuffer(data.size() * sizeof(T), data.data()) {}
+  GlBuffer(GlBuffer&& other) noexcept;
+  GlBuffer& operator=(GlBuffer&& other) noexcept;
+  GlBuffer(const GlBuffer&) = delete;
+  GlBuffer& operator=(const GlBuffer&) = delete;
+  ~GlBuffer();
+
+  GLuint id() const { return id_; }
+  std::size_t size() const { return bytes_; }
+  void bindBase(GLenum target, GLuint index) const;  // e.g. GL_SHADER_STORAGE_BUFFER, binding = index
+  void read(void* out, std::size_t bytes, std::size_t offset = 0) const;
+  template <class T>
+  void read(std::vector<T>& out) const {
+    read(out.data(), out.size() * sizeof(T));
+  }
+
+ private:
+  GLuint id_ = 0;
+  std::size_t bytes_ = 0;
+};
+
+}  // namespace fcc
