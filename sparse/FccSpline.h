@@ -35,6 +35,8 @@
 #define FCC_STRUCT_END(name) };
 namespace fcc {
 namespace spline {
+using glm::max;
+using glm::min;
 #elif defined(__OPENCL_VERSION__)
 #define FCC_OPENCL 1
 #define FCC_FUNC
@@ -101,6 +103,12 @@ FCC_STRUCT_BEGIN(FccFrame)
   FCC_VEC3 q;
   int type;
 FCC_STRUCT_END(FccFrame)
+
+// A value interval [lo, hi].
+FCC_STRUCT_BEGIN(FccRange)
+  float lo;
+  float hi;
+FCC_STRUCT_END(FccRange)
 
 FCC_STRUCT_BEGIN(FccValueGradient)
   float value;
@@ -202,6 +210,33 @@ FCC_FUNC FccValueGradient fcc_value_gradient(FccSamples s, FccFrame frame) {
   r.value = fcc_value(s, frame);
   r.gradient = fcc_gradient(s, frame);
   return r;
+}
+
+// Empty-space skipping (paper 4.3): the spline on a tetrahedral piece lies in the convex hull of its
+// BB-coefficients, so their min and max bound it there.
+FCC_FUNC FccRange fcc_cubic_range(FccCubic c) {
+  FccRange r;
+  r.lo = c.b[0];
+  r.hi = c.b[0];
+  for (int i = 1; i < 20; ++i) {
+    r.lo = min(r.lo, c.b[i]);
+    r.hi = max(r.hi, c.b[i]);
+  }
+  r.lo *= 1.0f / FCC_CUBIC_DENOM;
+  r.hi *= 1.0f / FCC_CUBIC_DENOM;
+  return r;
+}
+
+// A point strictly inside piece `piece` (0..4) of the unit cube at integer corner `corner`: the
+// pieces' centroids. An odd cube is the point reflection of an even one, so its centroids are 1 - p.
+FCC_FUNC FCC_VEC3 fcc_piece_centroid(FCC_IVEC3 corner, int piece) {
+  FCC_VEC3 p = FCC_MAKE_VEC3(0.5f, 0.5f, 0.5f);
+  if (piece == 0) p = FCC_MAKE_VEC3(0.25f, 0.25f, 0.25f);
+  if (piece == 1) p = FCC_MAKE_VEC3(0.75f, 0.75f, 0.25f);
+  if (piece == 2) p = FCC_MAKE_VEC3(0.75f, 0.25f, 0.75f);
+  if (piece == 3) p = FCC_MAKE_VEC3(0.25f, 0.75f, 0.75f);
+  if (((corner.x + corner.y + corner.z) & 1) != 0) p = FCC_MAKE_VEC3(1.0f, 1.0f, 1.0f) - p;
+  return FCC_VEC3_FROM_IVEC3(corner) + p;
 }
 
 #if defined(FCC_CPP)

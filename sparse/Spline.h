@@ -4,6 +4,9 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
+#include <limits>
+
 #include "FccSpline.h"
 
 namespace fcc::spline {
@@ -27,6 +30,20 @@ template <class CoefficientAt>
 FccValueGradient evaluateWithGradient(const glm::vec3& xyz, CoefficientAt&& coefficientAt) {
   const FccFrame frame = fcc_locate(xyz);
   return fcc_value_gradient(gatherSamples(frame, coefficientAt), frame);
+}
+
+// Bounds of the spline on the unit cube at `corner`: min and max over the BB-coefficients of its five
+// tetrahedral pieces (conservative by the convex-hull property).
+template <class CoefficientAt>
+FccRange cubeBounds(const glm::ivec3& corner, CoefficientAt&& coefficientAt) {
+  FccRange bounds{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+  for (int piece = 0; piece < 5; ++piece) {
+    const FccFrame frame = fcc_locate(fcc_piece_centroid(corner, piece));
+    const FccRange r = fcc_cubic_range(fcc_cubic(gatherSamples(frame, coefficientAt), frame.type));
+    bounds.lo = std::min(bounds.lo, r.lo);
+    bounds.hi = std::max(bounds.hi, r.hi);
+  }
+  return bounds;
 }
 
 inline bool isFccSite(const glm::ivec3& ijk) { return ((ijk.x + ijk.y + ijk.z) & 1) == 0; }

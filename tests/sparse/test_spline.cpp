@@ -199,3 +199,46 @@ TEST(Spline, GradientMatchesCentralDifferences) {
 
 }  // namespace
 }  // namespace fcc::spline
+
+namespace fcc::spline {
+namespace {
+
+TEST(SplineBounds, CubeBoundsContainTheSpline) {
+  // Conservative: at 10^6 random points the spline lies within its cube's BB-coefficient bounds.
+  constexpr float kTol = 1e-6f;  // float round-off of the value against the scaled coefficients
+  auto c = [](const glm::ivec3& ijk) { return test::hashedCoefficient(ijk, 13); };
+  PointSource points(14, -6.0f, 6.0f);
+  for (int i = 0; i < 1000000; ++i) {
+    const glm::vec3 p = points.next();
+    const FccRange b = cubeBounds(glm::ivec3(glm::floor(p)), c);
+    const float v = evaluate(p, c);
+    ASSERT_GE(v, b.lo - kTol) << "at " << str(p);
+    ASSERT_LE(v, b.hi + kTol) << "at " << str(p);
+  }
+}
+
+TEST(SplineBounds, PieceCentroidsLieInTheirOwnPieces) {
+  // Each of a cube's five centroids locates to a different piece of that cube, inside it.
+  for (const glm::ivec3 corner : {glm::ivec3(0, 0, 0), glm::ivec3(1, 0, 0), glm::ivec3(-3, 2, 5), glm::ivec3(4, -1, -2)}) {
+    std::vector<glm::ivec4> seen;  // (origin, axis and type folded into one int)
+    for (int piece = 0; piece < 5; ++piece) {
+      const glm::vec3 x = fcc_piece_centroid(corner, piece);
+      EXPECT_EQ(glm::ivec3(glm::floor(x)), corner) << "piece " << piece;
+      const FccFrame f = fcc_locate(x);
+      const glm::vec4 l = fcc_barycentric(f.q, f.type);
+      EXPECT_GT(glm::min(glm::min(l.x, l.y), glm::min(l.z, l.w)), 0.1f) << "piece " << piece << " at " << str(x);
+      const glm::ivec4 id(f.origin, (f.axis.x + 1) * 9 + (f.axis.y + 1) * 3 + (f.axis.z + 1) + 27 * f.type);
+      for (const glm::ivec4& other : seen) EXPECT_NE(other, id) << "two centroids in one piece, piece " << piece;
+      seen.push_back(id);
+    }
+  }
+}
+
+TEST(SplineBounds, TightForConstantData) {
+  const FccRange b = cubeBounds(glm::ivec3(3, -2, 7), [](const glm::ivec3&) { return 0.75f; });
+  EXPECT_NEAR(b.lo, 0.75f, 1e-6f);
+  EXPECT_NEAR(b.hi, 0.75f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace fcc::spline
