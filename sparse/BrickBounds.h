@@ -1,0 +1,37 @@
+// Per-brick bounds of the FCC spline: the min/max hierarchy the renderer skips empty space with
+// (paper 4.3). Stored in the .vdb beside the FCC grid, so neither opening a file nor changing the
+// isovalue needs any preprocessing.
+//
+// Contract of a bounds grid (docs/FORMAT.md):
+//   - an openvdb::Vec2SGrid named boundsGridName(fccGridName);
+//   - voxel b = (bx, by, bz) is the brick of packed voxels [8b, 8b + 8)^3, i.e. the box
+//     [16b, 16b + 16]^3 of the lattice's index space (a VDB leaf of the FCC grid, present or not);
+//   - its value (lo, hi) bounds the spline there: lo <= s(xyz) <= hi for every xyz in that closed box,
+//     including the parts that depend on neighbouring bricks' coefficients;
+//   - active voxels are the bricks where the spline may vary (lo < hi); a brick where it is the
+//     constant c holds (c, c), as an inactive voxel or tile or as the background (c0, c0), where c0
+//     is the FCC grid's background;
+//   - the transform is the FCC grid's, pre-scaled by kBrickSites, so brick b's world box is the
+//     world box of its sites.
+#pragma once
+
+#include <openvdb/openvdb.h>
+
+#include <string>
+
+#include "FccGrid.h"
+
+namespace fcc {
+
+using BoundsGrid = openvdb::Vec2SGrid;
+
+inline constexpr int kBrickPackedDim = 8;                       // packed voxels per brick side (a leaf)
+inline constexpr int kBrickSites = 2 * kBrickPackedDim;         // lattice index units per brick side
+
+namespace meta {
+inline constexpr const char* kBoundsOf = "fcc_bounds_of";       // the FCC grid's name
+}  // namespace meta
+
+inline std::string boundsGridName(const std::string& fccGridName) { return fccGridName + ".bounds"; }
+
+}  // namespace fcc
