@@ -3,7 +3,8 @@
 // isovalue needs any preprocessing.
 //
 // Contract of a bounds grid (docs/FORMAT.md):
-//   - an openvdb::Vec2SGrid named boundsGridName(fccGridName);
+//   - a Vec2f grid (tree type Tree_vec2s_5_4_3, registered by fcc::initializeVdb) named
+//     boundsGridName(fccGridName);
 //   - voxel b = (bx, by, bz) is the brick of packed voxels [8b, 8b + 8)^3, i.e. the box
 //     [16b, 16b + 16]^3 of the lattice's index space (a VDB leaf of the FCC grid, present or not);
 //   - its value (lo, hi) bounds the spline there: lo <= s(xyz) <= hi for every xyz in that closed box,
@@ -23,7 +24,7 @@
 
 namespace fcc {
 
-using BoundsGrid = openvdb::Vec2SGrid;
+using BoundsGrid = openvdb::Grid<openvdb::Vec2STree>;
 
 inline constexpr int kBrickPackedDim = 8;                       // packed voxels per brick side (a leaf)
 inline constexpr int kBrickSites = 2 * kBrickPackedDim;         // lattice index units per brick side

@@ -1,5 +1,7 @@
 #include "FccGrid.h"
 
+#include "BrickBounds.h"
+
 #include <mutex>
 
 namespace fcc {
@@ -9,6 +11,7 @@ void initializeVdb() {
   std::call_once(once, [] {
     openvdb::initialize();
     if (!FccGrid::isRegistered()) FccGrid::registerGrid();
+    if (!BoundsGrid::isRegistered()) BoundsGrid::registerGrid();  // OpenVDB registers no Vec2 grids
   });
 }
 

@@ -17,6 +17,7 @@ struct Command {
 Command addConvertCommand(CLI::App& parent);
 Command addInfoCommand(CLI::App& parent);
 Command addProbeCommand(CLI::App& parent);
+Command addRenderCommand(CLI::App& parent);
 Command addSynthCommand(CLI::App& parent);
 
 // Validators shared by several subcommands.
