@@ -46,6 +46,7 @@ uniform uint uPass;
 uniform uint uRequestCapacity;
 uniform int uLookahead;       // bricks requested past the first missing one
 uniform int uSkipEmpty;       // 0: evaluate every resident brick (for measuring the skipping)
+uniform int uFiniteDifferenceNormals;  // 1: central differences of the value (the paper's Table 5 baseline)
 uniform vec3 uSurfaceColor;
 uniform vec3 uLightDir;       // world, unit, towards the light
 
@@ -57,6 +58,30 @@ const float kBrickSites = 16.0;
 
 uint gSlotBase;
 ivec3 gSlotPackedOrigin;
+
+float coefficientAt(ivec3 ijk);
+
+FccSamples gatherStencil(FccFrame frame) {
+  FccSamples s;
+  for (int i = 0; i < FCC_STENCIL_SIZE; ++i) s.v[i] = coefficientAt(fcc_stencil_site(frame, i));
+  return s;
+}
+
+float valueAt(vec3 xyz) {
+  FccFrame frame = fcc_locate(xyz);
+  return fcc_value(gatherStencil(frame), frame);
+}
+
+// Central differences of the spline's value, six evaluations; the points are kept inside the brick
+// (whose halo is what the pool holds).
+vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick) {
+  const float h = 0.125;
+  vec3 lo = vec3(brick * 16) + h, hi = vec3(brick * 16 + 16) - h;
+  vec3 p = clamp(xyz, lo, hi);
+  return vec3(valueAt(p + vec3(h, 0, 0)) - valueAt(p - vec3(h, 0, 0)),
+              valueAt(p + vec3(0, h, 0)) - valueAt(p - vec3(0, h, 0)),
+              valueAt(p + vec3(0, 0, h)) - valueAt(p - vec3(0, 0, h))) / (2.0 * h);
+}
 
 float coefficientAt(ivec3 ijk) {
   ivec3 local = (ijk >> 1) - gSlotPackedOrigin;
@@ -109,19 +134,20 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
         if (k == 3) s1 = tExit;
         if (s1 <= s0) continue;
         FccFrame frame = fcc_locate(o + (0.5 * (s0 + s1)) * d);
-        FccSamples samples;
-        for (int i = 0; i < FCC_STENCIL_SIZE; ++i) samples.v[i] = coefficientAt(fcc_stencil_site(frame, i));
-        FccCubic cubic = fcc_cubic(samples, frame.type);
+        FccCubic cubic = fcc_cubic(gatherStencil(frame), frame.type);
         FccRange range = fcc_cubic_range(cubic);
         if (range.lo <= uIso && uIso <= range.hi) {
           float u = fcc_first_root_bernstein3(fcc_segment_bernstein(cubic, frame, o, d, s0, s1, uIso));
           if (u >= 0.0) {
             hit.t = s0 + u * (s1 - s0);
-            FccFrame hitFrame = fcc_locate(o + hit.t * d);
-            // The hit may round into the neighbouring piece; its gradient is the same (C1).
-            FccSamples hs;
-            for (int i = 0; i < FCC_STENCIL_SIZE; ++i) hs.v[i] = coefficientAt(fcc_stencil_site(hitFrame, i));
-            hit.gradient = fcc_gradient(hs, hitFrame);
+            vec3 xyz = o + hit.t * d;
+            if (uFiniteDifferenceNormals != 0) {
+              hit.gradient = finiteDifferenceGradient(xyz, b);
+            } else {
+              // The hit may round into the neighbouring piece; its gradient is the same (C1).
+              FccFrame hitFrame = fcc_locate(xyz);
+              hit.gradient = fcc_gradient(gatherStencil(hitFrame), hitFrame);
+            }
             return true;
           }
         }

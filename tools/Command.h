@@ -18,6 +18,8 @@ Command addConvertCommand(CLI::App& parent);
 Command addInfoCommand(CLI::App& parent);
 Command addProbeCommand(CLI::App& parent);
 Command addRenderCommand(CLI::App& parent);
+Command addBenchCommand(CLI::App& parent);
+Command addBenchRenderCommand(CLI::App& bench);  // under `bench`
 Command addSynthCommand(CLI::App& parent);
 
 // Validators shared by several subcommands.

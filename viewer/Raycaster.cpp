@@ -66,6 +66,11 @@ void Raycaster::setIso(float iso) {
   uploadPageTable();
 }
 
+void Raycaster::setSkipEmpty(bool skip) {
+  options_.skipEmpty = skip;
+  setIso(iso_);
+}
+
 void Raycaster::uploadPageTable() {
   pageTable_->write(residency_->pageEntries());
   if (options_.skipEmpty) {
@@ -113,6 +118,7 @@ uint32_t Raycaster::dispatchPass(const CameraFrame& frame, int width, int height
   glProgramUniform1ui(p, program_.uniformLocation("uRequestCapacity"), requestCapacity_);
   glProgramUniform1i(p, program_.uniformLocation("uLookahead"), options_.lookahead);
   glProgramUniform1i(p, program_.uniformLocation("uSkipEmpty"), options_.skipEmpty ? 1 : 0);
+  glProgramUniform1i(p, program_.uniformLocation("uFiniteDifferenceNormals"), options_.finiteDifferenceNormals ? 1 : 0);
   glProgramUniform3fv(p, program_.uniformLocation("uSurfaceColor"), 1, &options_.surfaceColor.x);
   glProgramUniform3fv(p, program_.uniformLocation("uLightDir"), 1, &lightDir.x);
 

@@ -25,6 +25,7 @@ struct RenderOptions {
   std::size_t hostCacheBytes = std::size_t(512) << 20;  // decoded bricks in host memory
   bool skipEmpty = true;   // skip nodes and bricks whose bounds exclude the isovalue
   int lookahead = 2;       // bricks a stopped ray requests beyond its first missing one
+  bool finiteDifferenceNormals = false;  // central differences instead of the analytic gradient
   glm::vec3 surfaceColor{0.85f, 0.72f, 0.52f};
 };
 
@@ -58,6 +59,10 @@ class Raycaster {
   uint32_t slotCount() const { return residency_->slotCount(); }
   const io::BrickCache& hostCache() const { return *hostCache_; }
   uint32_t residentCount() const { return residency_->residentCount(); }
+  const RenderOptions& options() const { return options_; }
+  // Switches skipping or the normals without reloading anything (for benchmarks and the viewer).
+  void setSkipEmpty(bool skip);
+  void setFiniteDifferenceNormals(bool on) { options_.finiteDifferenceNormals = on; }
 
  private:
   void prepareImages(int width, int height);
