@@ -10,13 +10,10 @@
 #define FCC_GLSL 1
 #include "FccSpline.h"
 #include "FccRay.h"
+#include "pool.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-// The pool: slot s holds packed voxels [8b - 1, 8b + 9)^3 of its brick b (the brick and the one-voxel
-// halo the stencil reaches), x fastest, kSlotTexels vec4 per slot.
-layout(std430, binding = 0) readonly buffer Pool { vec4 poolTexels[]; };
-// Per brick of the box [uBrickMin, uBrickMin + uBrickDims), x fastest: a pool slot, kSkip or kMissing.
 layout(std430, binding = 1) readonly buffer PageTable { uint pageEntries[]; };
 // Per node of 16^3 bricks (relative to uBrickMin): 0 if no brick in it needs evaluation.
 layout(std430, binding = 2) readonly buffer NodeTable { uint nodeEntries[]; };
@@ -26,6 +23,7 @@ layout(std430, binding = 3) buffer Requests { uint requestCount; uint requests[]
 layout(std430, binding = 4) buffer RequestBits { uint requestBits[]; };
 // Per slot: the last pass that read it (for least-recently-used eviction).
 layout(std430, binding = 5) buffer SlotUse { uint slotLastUse[]; };
+layout(std430, binding = 6) readonly buffer SlotBounds { vec2 slotBounds[]; };  // see pool.glsl
 
 layout(binding = 0, rgba32f) uniform writeonly image2D uColor;        // premultiplied shaded colour
 layout(binding = 1, rgba32f) uniform writeonly image2D uNormalDepth;  // unit gradient (world), depth
@@ -52,20 +50,7 @@ uniform vec3 uLightDir;       // world, unit, towards the light
 
 const uint kSkip = 0xFFFFFFFFu;
 const uint kMissing = 0xFFFFFFFEu;
-const int kSlotDim = 10;
-const int kSlotTexels = kSlotDim * kSlotDim * kSlotDim;
 const float kBrickSites = 16.0;
-
-uint gSlotBase;
-ivec3 gSlotPackedOrigin;
-
-float coefficientAt(ivec3 ijk);
-
-FccSamples gatherStencil(FccFrame frame) {
-  FccSamples s;
-  for (int i = 0; i < FCC_STENCIL_SIZE; ++i) s.v[i] = coefficientAt(fcc_stencil_site(frame, i));
-  return s;
-}
 
 float valueAt(vec3 xyz) {
   FccFrame frame = fcc_locate(xyz);
@@ -81,13 +66,6 @@ vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick) {
   return vec3(valueAt(p + vec3(h, 0, 0)) - valueAt(p - vec3(h, 0, 0)),
               valueAt(p + vec3(0, h, 0)) - valueAt(p - vec3(0, h, 0)),
               valueAt(p + vec3(0, 0, h)) - valueAt(p - vec3(0, 0, h))) / (2.0 * h);
-}
-
-float coefficientAt(ivec3 ijk) {
-  ivec3 local = (ijk >> 1) - gSlotPackedOrigin;
-  vec4 t = poolTexels[gSlotBase + uint((local.z * kSlotDim + local.y) * kSlotDim + local.x)];
-  int channel = ((ijk.x & 1) << 1) | (ijk.y & 1);
-  return t[channel];
 }
 
 void request(uint brickIndex, bool lookahead) {
@@ -112,8 +90,8 @@ struct Hit {
 
 // The first hit in the resident brick b between ta and tb, walking its unit cells.
 bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout Hit hit) {
-  gSlotBase = slot * uint(kSlotTexels);
-  gSlotPackedOrigin = b * 8 - 1;
+  selectSlot(slot, b);
+  uint boundsBase = slot * uint(kSlotVoxels);
   ivec3 cellLo = b * 16, cellHi = cellLo + 15;
   float tm = 0.5 * (ta + tb);
   // The starting cell: where the ray is just past ta (clamped: rounding may put it a hair outside).
@@ -126,7 +104,9 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
   float tCell = ta;
   for (int iter = 0; iter < 64; ++iter) {
     float tExit = min(min(min(tMax.x, tMax.y), tMax.z), tb);
-    if (tExit > tCell) {
+    ivec3 voxel = (cell - cellLo) >> 1;
+    vec2 cellBounds = slotBounds[boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
+    if (tExit > tCell && (uSkipEmpty == 0 || (cellBounds.x <= uIso && uIso <= cellBounds.y))) {
       vec4 splits = fcc_cell_splits(cell, o, d, tCell, tExit);
       float s0 = tCell;
       for (int k = 0; k < 4 && s0 < tExit; ++k) {

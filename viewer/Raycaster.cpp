@@ -15,6 +15,8 @@ namespace fcc::render {
 namespace {
 
 constexpr std::size_t kSlotBytes = std::size_t(io::kHaloBlockVoxels) * 4 * sizeof(float);
+constexpr std::size_t kSlotVoxels = 512;  // per-voxel cell bounds of a slot (shaders/pool.glsl)
+constexpr std::size_t kSlotBoundsBytes = kSlotVoxels * 2 * sizeof(float);
 constexpr int kLocalSize = 8;             // shaders/raycast.comp's local_size_x and _y
 constexpr std::size_t kUploadBatch = 256; // bricks assembled per staging batch (4 MB)
 constexpr int kMaxPasses = 1 << 20;       // a frame that needs more has a bug, not a small pool
@@ -25,6 +27,7 @@ glm::ivec3 toGlm(const openvdb::Coord& c) { return {c.x(), c.y(), c.z()}; }
 
 Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options) : store_(store), options_(options) {
   program_ = GlProgram::compute(embedded::shaders("shaders/raycast.comp"), "shaders/raycast.comp");
+  slotBoundsProgram_ = GlProgram::compute(embedded::shaders("shaders/slot_bounds.comp"), "shaders/slot_bounds.comp");
 
   const openvdb::CoordBBox box = store.activeBrickBox();
   const glm::ivec3 brickMin = box.empty() ? glm::ivec3(0) : toGlm(box.min());
@@ -33,7 +36,8 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options) 
 
   GLint64 maxBlock = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
-  std::size_t slots = options.gpuCacheBytes / kSlotBytes;
+  // The GPU budget pays for a slot's data and its cell bounds.
+  std::size_t slots = options.gpuCacheBytes / (kSlotBytes + kSlotBoundsBytes);
   slots = std::min(slots, std::size_t(maxBlock) / kSlotBytes);
   slots = std::min(slots, bricksInBox);
   slots = std::max<std::size_t>(slots, 1);
@@ -42,6 +46,8 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options) 
 
   requestCapacity_ = uint32_t(std::min<std::size_t>(bricksInBox, 1 << 16));
   pool_ = std::make_unique<GlBuffer>(slots * kSlotBytes);
+  slotBounds_ = std::make_unique<GlBuffer>(slots * kSlotBoundsBytes);
+  uploadedSlots_ = std::make_unique<GlBuffer>(kUploadBatch * sizeof(uint32_t));
   pageTable_ = std::make_unique<GlBuffer>(bricksInBox * sizeof(uint32_t));
   nodeTable_ = std::make_unique<GlBuffer>(residency_->nodeEntries().size() * sizeof(uint32_t));
   requests_ = std::make_unique<GlBuffer>((1 + std::size_t(requestCapacity_)) * sizeof(uint32_t));
@@ -69,6 +75,17 @@ void Raycaster::setIso(float iso) {
 void Raycaster::setSkipEmpty(bool skip) {
   options_.skipEmpty = skip;
   setIso(iso_);
+}
+
+void Raycaster::computeSlotBounds(const std::vector<uint32_t>& slots) {
+  uploadedSlots_->write(slots);
+  pool_->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  slotBounds_->bindBase(GL_SHADER_STORAGE_BUFFER, 6);
+  uploadedSlots_->bindBase(GL_SHADER_STORAGE_BUFFER, 7);
+  slotBoundsProgram_.use();
+  glDispatchCompute(GLuint(kSlotVoxels / 64), GLuint(slots.size()), 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  checkGl("computing the cell bounds of " + std::to_string(slots.size()) + " uploaded bricks");
 }
 
 void Raycaster::uploadPageTable() {
@@ -128,6 +145,7 @@ uint32_t Raycaster::dispatchPass(const CameraFrame& frame, int width, int height
   requests_->bindBase(GL_SHADER_STORAGE_BUFFER, 3);
   requestBits_->bindBase(GL_SHADER_STORAGE_BUFFER, 4);
   slotUse_->bindBase(GL_SHADER_STORAGE_BUFFER, 5);
+  slotBounds_->bindBase(GL_SHADER_STORAGE_BUFFER, 6);
   color_.bindImage(0, GL_WRITE_ONLY);
   normalDepth_.bindImage(1, GL_WRITE_ONLY);
   resume_.bindImage(2, GL_READ_WRITE);
@@ -166,12 +184,15 @@ uint64_t Raycaster::loadRequested(uint32_t requestCount) {
       io::assembleHaloBlock(store_, *hostCache_, assigned[i].first,
                             staging.data() + (i - begin) * io::kHaloBlockVoxels * 4);
     });
+    std::vector<uint32_t> slots;
     for (std::size_t i = begin; i < end; ++i) {
       pool_->write(staging.data() + (i - begin) * io::kHaloBlockVoxels * 4, kSlotBytes,
                    std::size_t(assigned[i].second) * kSlotBytes);
       // Freshly loaded slots count as used now, so the next assignment does not evict them first.
       slotUse_->write(&pass_, sizeof pass_, std::size_t(assigned[i].second) * sizeof(uint32_t));
+      slots.push_back(assigned[i].second);
     }
+    computeSlotBounds(slots);
   }
   uploadPageTable();
   return assigned.size();

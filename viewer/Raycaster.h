@@ -69,6 +69,7 @@ class Raycaster {
   uint32_t dispatchPass(const CameraFrame& frame, int width, int height);
   uint64_t loadRequested(uint32_t requestCount);
   void uploadPageTable();
+  void computeSlotBounds(const std::vector<uint32_t>& slots);
 
   const io::BrickStore& store_;
   RenderOptions options_;
@@ -77,8 +78,8 @@ class Raycaster {
   uint32_t requestCapacity_ = 0;
   std::unique_ptr<Residency> residency_;
   std::unique_ptr<io::BrickCache> hostCache_;
-  GlProgram program_;
-  std::unique_ptr<GlBuffer> pool_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;
+  GlProgram program_, slotBoundsProgram_;
+  std::unique_ptr<GlBuffer> pool_, slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;
   GlTexture2D color_, normalDepth_, resume_;
 };
 
