@@ -21,8 +21,10 @@ void selectSlot(uint slot, ivec3 brick) {
 float coefficientAt(ivec3 ijk) {
   ivec3 local = (ijk >> 1) - gSlotPackedOrigin;
   vec4 t = poolTexels[gSlotBase + uint((local.z * kSlotDim + local.y) * kSlotDim + local.x)];
-  int channel = ((ijk.x & 1) << 1) | (ijk.y & 1);
-  return t[channel];
+  // Select the channel ((x & 1) << 1) | (y & 1) without a dynamic vector index (which some
+  // compilers spill to local memory).
+  vec2 xy = (ijk.x & 1) != 0 ? t.zw : t.xy;
+  return (ijk.y & 1) != 0 ? xy.y : xy.x;
 }
 
 FccSamples gatherStencil(FccFrame frame) {

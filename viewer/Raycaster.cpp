@@ -27,7 +27,15 @@ glm::ivec3 toGlm(const openvdb::Coord& c) { return {c.x(), c.y(), c.z()}; }
 
 Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options) : store_(store), options_(options) {
   program_ = GlProgram::compute(embedded::shaders("shaders/raycast.comp"), "shaders/raycast.comp");
-  slotBoundsProgram_ = GlProgram::compute(embedded::shaders("shaders/slot_bounds.comp"), "shaders/slot_bounds.comp");
+  // A CPU rasteriser gets the cheap coefficient-hull cell bounds, a GPU the BB-coefficient ones
+  // (both conservative; the image is the same, only the work skipped differs).
+  std::string slotBounds(embedded::shaders("shaders/slot_bounds.comp"));
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (!(renderer && std::string(renderer).find("llvmpipe") != std::string::npos)) {
+    const auto eol = slotBounds.find('\n');  // after #version, which must stay first
+    slotBounds.insert(eol + 1, "#define FCC_SLOT_BOUNDS_BB 1\n");
+  }
+  slotBoundsProgram_ = GlProgram::compute(slotBounds, "shaders/slot_bounds.comp");
 
   const openvdb::CoordBBox box = store.activeBrickBox();
   const glm::ivec3 brickMin = box.empty() ? glm::ivec3(0) : toGlm(box.min());
