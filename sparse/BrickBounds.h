@@ -3,7 +3,9 @@
 // isovalue needs any preprocessing.
 //
 // Contract of a bounds grid (docs/FORMAT.md):
-//   - an openvdb::Vec2SGrid named boundsGridName(fccGridName);
+//   - an openvdb::Vec2SGrid named boundsGridName(fccGridName) (OpenVDB 10 has no Vec2SGrid alias and
+//     does not register the type: BoundsGrid below is Grid<Vec2STree>, "Tree_vec2s_5_4_3", registered
+//     by fcc::initializeVdb());
 //   - voxel b = (bx, by, bz) is the brick of packed voxels [8b, 8b + 8)^3, i.e. the box
 //     [16b, 16b + 16]^3 of the lattice's index space (a VDB leaf of the FCC grid, present or not);
 //   - its value (lo, hi) bounds the spline there: lo <= s(xyz) <= hi for every xyz in that closed box,
@@ -23,7 +25,7 @@
 
 namespace fcc {
 
-using BoundsGrid = openvdb::Vec2SGrid;
+using BoundsGrid = openvdb::Grid<openvdb::Vec2STree>;
 
 inline constexpr int kBrickPackedDim = 8;                       // packed voxels per brick side (a leaf)
 inline constexpr int kBrickSites = 2 * kBrickPackedDim;         // lattice index units per brick side
@@ -33,5 +35,24 @@ inline constexpr const char* kBoundsOf = "fcc_bounds_of";       // the FCC grid'
 }  // namespace meta
 
 inline std::string boundsGridName(const std::string& fccGridName) { return fccGridName + ".bounds"; }
+
+class BrickKernels;  // sparse/BrickKernels.h; null below means the C++/TBB reference
+
+// The bounds grid of an FCC grid holding coefficients (sparse/FccGrid.h: not storesSamples). Bricks
+// computed exactly: the FCC leaves and their 26 neighbour bricks. Elsewhere the spline is a convex
+// combination of tile values (or the background), so a brick whose 27-brick neighbourhood holds no
+// leaf gets the hull of those constant values. Sets name, transform, fcc_bounds_of and the
+// background (c0, c0).
+BoundsGrid::Ptr computeBrickBounds(const FccGrid& coefficients, BrickKernels* kernels = nullptr);
+
+// The quasi-interpolation prefilter q_fcc applied to a grid of raw samples (fcc_values = samples):
+// the grid the builder would have written without --no-prefilter. Active where a coefficient differs
+// from the background; uniform leaves are pruned to tiles; metadata and transform are copied, with
+// fcc_values = coefficients.
+FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernels = nullptr);
+
+// The coefficients to compute bounds of: the grid itself, or its prefiltered copy when it stores
+// samples.
+FccGrid::ConstPtr coefficientsOf(const FccGrid::ConstPtr& grid, BrickKernels* kernels = nullptr);
 
 }  // namespace fcc

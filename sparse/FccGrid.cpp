@@ -2,6 +2,8 @@
 
 #include <mutex>
 
+#include "BrickBounds.h"
+
 namespace fcc {
 
 void initializeVdb() {
@@ -9,6 +11,7 @@ void initializeVdb() {
   std::call_once(once, [] {
     openvdb::initialize();
     if (!FccGrid::isRegistered()) FccGrid::registerGrid();
+    if (!BoundsGrid::isRegistered()) BoundsGrid::registerGrid();
   });
 }
 
