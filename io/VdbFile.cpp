@@ -132,6 +132,31 @@ std::string gridNames(const openvdb::GridPtrVec& grids) {
   return names.empty() ? "none" : names;
 }
 
+// The bounds grid of `fccName` among `grids`, by its fcc_bounds_of metadata.
+BoundsGrid::Ptr findBoundsGrid(const openvdb::GridPtrVec& grids, const std::string& fccName) {
+  for (const auto& g : grids) {
+    auto bounds = openvdb::gridPtrCast<BoundsGrid>(g);
+    if (!bounds) continue;
+    const auto of = bounds->getMetadata<openvdb::StringMetadata>(meta::kBoundsOf);
+    if (of && of->value() == fccName) return bounds;
+  }
+  return nullptr;
+}
+
+FccGrid::Ptr findFccGrid(const std::string& path, const openvdb::GridPtrVec& grids, const std::string& gridName) {
+  for (const auto& g : grids) {
+    if (!gridName.empty() && g->getName() != gridName) continue;
+    if (isFccGrid(*g)) return openvdb::gridPtrCast<FccGrid>(g);
+    if (!gridName.empty())
+      throw InputError(path + ": grid '" + gridName + "' is a " + g->type() +
+                       " grid, not an FCC grid; run `fccvdb convert " + path + " OUT.vdb` first");
+  }
+  if (!gridName.empty())
+    throw InputError(path + ": no grid named '" + gridName + "'; grids: " + gridNames(grids));
+  throw InputError(path + ": holds no FCC grid (grids: " + gridNames(grids) + "); run `fccvdb convert " + path +
+                   " OUT.vdb` first");
+}
+
 }  // namespace
 
 std::vector<GridInfo> listGrids(const std::string& path) {
@@ -141,18 +166,19 @@ std::vector<GridInfo> listGrids(const std::string& path) {
 }
 
 FccGrid::Ptr readFccGrid(const std::string& path, const std::string& gridName) {
+  return findFccGrid(path, *readAllGrids(path), gridName);
+}
+
+FccWithBounds readFccGridWithBounds(const std::string& path, const std::string& gridName) {
   const auto grids = readAllGrids(path);
-  for (const auto& g : *grids) {
-    if (!gridName.empty() && g->getName() != gridName) continue;
-    if (isFccGrid(*g)) return openvdb::gridPtrCast<FccGrid>(g);
-    if (!gridName.empty())
-      throw InputError(path + ": grid '" + gridName + "' is a " + g->type() +
-                       " grid, not an FCC grid; run `fccvdb convert " + path + " OUT.vdb` first");
-  }
-  if (!gridName.empty())
-    throw InputError(path + ": no grid named '" + gridName + "'; grids: " + gridNames(*grids));
-  throw InputError(path + ": holds no FCC grid (grids: " + gridNames(*grids) + "); run `fccvdb convert " + path +
-                   " OUT.vdb` first");
+  FccWithBounds r;
+  r.grid = findFccGrid(path, *grids, gridName);
+  r.bounds = findBoundsGrid(*grids, r.grid->getName());
+  return r;
+}
+
+BoundsGrid::Ptr readBoundsGrid(const std::string& path, const std::string& fccGridName) {
+  return findBoundsGrid(*readAllGrids(path), fccGridName);
 }
 
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName) {

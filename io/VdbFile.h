@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "sparse/BrickBounds.h"
 #include "sparse/FccGrid.h"
 
 namespace fcc::io {
@@ -28,6 +29,17 @@ std::vector<GridInfo> listGrids(const std::string& path);
 // The FCC grid `gridName` (empty: the first FCC grid) of a .vdb file, fully read. InputError if the
 // file has none: the message says to run `fccvdb convert`.
 FccGrid::Ptr readFccGrid(const std::string& path, const std::string& gridName = {});
+
+// An FCC grid with the bounds grid stored beside it (null when the file has none: files written
+// before bounds existed), read in one pass.
+struct FccWithBounds {
+  FccGrid::Ptr grid;
+  BoundsGrid::Ptr bounds;
+};
+FccWithBounds readFccGridWithBounds(const std::string& path, const std::string& gridName = {});
+
+// The bounds grid of FCC grid `fccGridName` in a (guarded) .vdb file; null if there is none.
+BoundsGrid::Ptr readBoundsGrid(const std::string& path, const std::string& fccGridName);
 
 // The float grid `gridName` (empty: the first float grid), for conversion. Half-stored grids read as float.
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName = {});
