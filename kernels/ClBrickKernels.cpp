@@ -196,6 +196,8 @@ std::unique_ptr<BrickKernels> makeBrickKernels(std::string_view selector) {
     const bool noDeviceAtAll = e.code() == CL_DEVICE_NOT_FOUND && s == "auto";
     const bool noCompiler = e.code() == CL_BUILD_PROGRAM_FAILURE || e.code() == CL_COMPILER_NOT_AVAILABLE ||
                             e.code() == CL_INVALID_BUILD_OPTIONS;
+    if (e.code() == CL_DEVICE_NOT_FOUND && !noDeviceAtAll)
+      throw ClError(std::string(e.what()) + "; or reference (the C++/TBB path)", e.code());
     if (!noPlatform && !noDeviceAtAll && !noCompiler) throw;
     std::string reason = e.what();
     reason = reason.substr(0, reason.find('\n'));  // a build failure's log follows on further lines
