@@ -161,7 +161,8 @@ FccGrid::Ptr findFccGrid(const std::string& path, const openvdb::GridPtrVec& gri
 
 std::vector<GridInfo> listGrids(const std::string& path) {
   std::vector<GridInfo> out;
-  for (const auto& g : *readAllGrids(path)) out.push_back({g->getName(), g->type(), isFccGrid(*g)});
+  const auto grids = readAllGrids(path);  // not `: *readAllGrids(path)`: the range would outlive the pointer
+  for (const auto& g : *grids) out.push_back({g->getName(), g->type(), isFccGrid(*g)});
   return out;
 }
 
