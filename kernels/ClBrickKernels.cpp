@@ -78,19 +78,36 @@ std::string preprocessSource() {
 
 }  // namespace
 
-// One launch's inputs: the leaves the bricks read, their neighbour tables, the constant values.
+// One launch's inputs: the leaves the bricks read, and their neighbour tables. A neighbour brick
+// without a leaf is one constant value (a tile or the background): it gets a slot of 512 copies, one
+// per distinct value, so that the kernel reads every neighbour alike.
 struct ClBrickKernels::Staged {
   std::vector<openvdb::Vec4f> pool;
   std::vector<cl_int> neighbours;
-  std::vector<openvdb::Vec4f> constants;
+
+  // The pool without a copy where the device can read host memory (PoCL; others copy it); the
+  // staged vector outlives the launch.
+  cl::Buffer poolBuffer(ClRunner& runner) {
+    try {
+      return cl::Buffer(runner.context(), CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, pool.size() * sizeof(openvdb::Vec4f),
+                        pool.data());
+    } catch (const cl::Error& e) {
+      throwClError(e, "wrapping " + std::to_string(pool.size() * sizeof(openvdb::Vec4f)) + " bytes of bricks for " +
+                          runner.describe());
+    }
+  }
 
   void stage(const FccGrid& grid, const Coord* bricks, std::size_t count) {
     pool.clear();
     neighbours.clear();
-    constants.clear();
     neighbours.reserve(count * 27);
     std::unordered_map<const FccLeaf*, cl_int> slots;
+    std::vector<std::pair<openvdb::Vec4f, cl_int>> constantSlots;
     auto accessor = grid.getConstAccessor();
+    auto newSlot = [&] {
+      pool.resize(pool.size() + FccLeaf::SIZE);
+      return cl_int(pool.size() / FccLeaf::SIZE - 1);
+    };
     for (std::size_t i = 0; i < count; ++i)
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
@@ -98,15 +115,21 @@ struct ClBrickKernels::Staged {
             const Coord b = bricks[i].offsetBy(dx, dy, dz);
             const Coord packed(b.x() * kBrickPackedDim, b.y() * kBrickPackedDim, b.z() * kBrickPackedDim);
             if (const FccLeaf* leaf = accessor.probeConstLeaf(packed)) {
-              auto [it, added] = slots.try_emplace(leaf, cl_int(slots.size()));
-              if (added) pool.insert(pool.end(), leaf->buffer().data(), leaf->buffer().data() + FccLeaf::SIZE);
+              auto [it, added] = slots.try_emplace(leaf, 0);
+              if (added) {
+                it->second = newSlot();
+                std::copy(leaf->buffer().data(), leaf->buffer().data() + FccLeaf::SIZE, pool.end() - FccLeaf::SIZE);
+              }
               neighbours.push_back(it->second);
             } else {
-              // No leaf: the whole neighbour brick is one tile value or the background.
               const openvdb::Vec4f& v = accessor.getValue(packed);
-              auto found = std::find(constants.begin(), constants.end(), v);
-              if (found == constants.end()) found = constants.insert(constants.end(), v);
-              neighbours.push_back(-1 - cl_int(found - constants.begin()));
+              auto found = std::find_if(constantSlots.begin(), constantSlots.end(), [&](const auto& c) { return c.first == v; });
+              if (found == constantSlots.end()) {
+                constantSlots.emplace_back(v, newSlot());
+                std::fill(pool.end() - FccLeaf::SIZE, pool.end(), v);
+                found = constantSlots.end() - 1;
+              }
+              neighbours.push_back(found->second);
             }
           }
   }
@@ -138,11 +161,10 @@ void ClBrickKernels::bounds(const FccGrid& coefficients, const std::vector<Coord
   for (std::size_t first = 0; first < bricks.size(); first += kLaunchBricks) {
     const std::size_t count = std::min(kLaunchBricks, bricks.size() - first);
     staged.stage(coefficients, bricks.data() + first, count);
-    cl::Buffer pool = runner_->upload(staged.pool), table = runner_->upload(staged.neighbours),
-               constants = runner_->upload(staged.constants);
+    cl::Buffer pool = staged.poolBuffer(*runner_), table = runner_->upload(staged.neighbours);
     cl::Buffer results = runner_->allocate(count * sizeof(cl_float2), CL_MEM_WRITE_ONLY);
     const auto start = std::chrono::steady_clock::now();
-    runner_->launchGroups("brick bounds", boundsKernel_, count, groupSize_, pool, table, constants, results);
+    runner_->launchGroups("brick bounds", boundsKernel_, count, groupSize_, pool, table, results);
     runner_->finish();
     computeSeconds += secondsSince(start);
     std::vector<openvdb::Vec2f> part(count);
@@ -158,11 +180,10 @@ void ClBrickKernels::prefilter(const FccGrid& samples, const std::vector<Coord>&
   for (std::size_t first = 0; first < bricks.size(); first += kLaunchBricks) {
     const std::size_t count = std::min(kLaunchBricks, bricks.size() - first);
     staged.stage(samples, bricks.data() + first, count);
-    cl::Buffer pool = runner_->upload(staged.pool), table = runner_->upload(staged.neighbours),
-               constants = runner_->upload(staged.constants);
+    cl::Buffer pool = staged.poolBuffer(*runner_), table = runner_->upload(staged.neighbours);
     cl::Buffer results = runner_->allocate(count * FccLeaf::SIZE * sizeof(cl_float4), CL_MEM_WRITE_ONLY);
     const auto start = std::chrono::steady_clock::now();
-    runner_->launchGroups("brick prefilter", prefilterKernel_, count, groupSize_, pool, table, constants, results);
+    runner_->launchGroups("brick prefilter", prefilterKernel_, count, groupSize_, pool, table, results);
     runner_->finish();
     computeSeconds += secondsSince(start);
     try {

@@ -3,8 +3,8 @@
 // The host (kernels/ClBrickKernels.cpp) stages a batch of bricks as
 //   pool:       the FCC leaves the batch reads, 512 float4 each, in VDB leaf order (x slowest);
 //   neighbours: 27 ints per brick, for its neighbour brick (dx,dy,dz) in {-1,0,1}^3 at index
-//               (dx+1) + 3 (dy+1) + 9 (dz+1): a pool slot (>= 0), or -1 - k for constants[k] (a tile's
-//               value or the background) where the neighbour brick holds no leaf;
+//               (dx+1) + 3 (dy+1) + 9 (dz+1): its pool slot; a neighbour without a leaf (a tile's
+//               value or the background) points to a slot filled with that value, one per value;
 // and runs one work-group per brick. Results equal the C++ reference (sparse/BrickBounds.cpp) bit for
 // bit: the same operations in the same order, and no contraction into fma (below).
 
@@ -31,22 +31,20 @@
 // The first halo position of a brick voxel (packed (0,0,0) at h = (1,1,1)).
 #define FCC_FIRST_INNER 111
 
-void fcc_load_halo(__global const float4* pool, __global const int* neighbours, __global const float4* constants,
-                   __local float* planes) {
+void fcc_load_halo(__global const float4* pool, __global const int* neighbours, __local float* planes) {
   __global const int* table = neighbours + 27 * get_group_id(0);
-  for (int i = get_local_id(0); i < FCC_PLANE; i += FCC_GROUP_SIZE) {
-    float4 v = (float4)(0.0f);
-    if (i < FCC_HALO_VOXELS) {
-      // Packed voxel relative to the brick's first, -1..8 per axis; >> 3 gives its neighbour brick.
-      int px = i % FCC_HALO_SIDE - 1, py = (i / FCC_HALO_SIDE) % FCC_HALO_SIDE - 1, pz = i / (FCC_HALO_SIDE * FCC_HALO_SIDE) - 1;
-      int slot = table[((px >> 3) + 1) + 3 * ((py >> 3) + 1) + 9 * ((pz >> 3) + 1)];
-      v = slot >= 0 ? pool[slot * FCC_BRICK_VOXELS + (((px & 7) << 6) | ((py & 7) << 3) | (pz & 7))] : constants[-1 - slot];
-    }
+  for (int i = get_local_id(0); i < FCC_HALO_VOXELS; i += FCC_GROUP_SIZE) {
+    // Packed voxel relative to the brick's first, -1..8 per axis; >> 3 gives its neighbour brick.
+    int px = i % FCC_HALO_SIDE - 1, py = (i / FCC_HALO_SIDE) % FCC_HALO_SIDE - 1, pz = i / (FCC_HALO_SIDE * FCC_HALO_SIDE) - 1;
+    int slot = table[((px >> 3) + 1) + 3 * ((py >> 3) + 1) + 9 * ((pz >> 3) + 1)];
+    float4 v = pool[slot * FCC_BRICK_VOXELS + (((px & 7) << 6) | ((py & 7) << 3) | (pz & 7))];
     planes[i] = v.x;
     planes[FCC_PLANE + i] = v.y;
     planes[2 * FCC_PLANE + i] = v.z;
     planes[3 * FCC_PLANE + i] = v.w;
   }
+  for (int i = FCC_HALO_VOXELS + get_local_id(0); i < FCC_PLANE; i += FCC_GROUP_SIZE)
+    planes[i] = planes[FCC_PLANE + i] = planes[2 * FCC_PLANE + i] = planes[3 * FCC_PLANE + i] = 0.0f;
   barrier(CLK_LOCAL_MEM_FENCE);
 }
 
@@ -61,9 +59,9 @@ float fcc_plane_at(__local const float* planes, int h, int3 siteOffset) {
 // out[512 brick + n] = the prefiltered coefficients of packed voxel n (VDB leaf order).
 __kernel __attribute__((reqd_work_group_size(FCC_GROUP_SIZE, 1, 1)))
 void fcc_brick_prefilter(__global const float4* pool, __global const int* neighbours,
-                         __global const float4* constants, __global float4* out) {
+                         __global float4* out) {
   __local float planes[4 * FCC_PLANE];
-  fcc_load_halo(pool, neighbours, constants, planes);
+  fcc_load_halo(pool, neighbours, planes);
   // Work items over consecutive halo positions (reads at fixed offsets are consecutive); those
   // outside the brick compute and discard.
   for (int h = FCC_FIRST_INNER + get_local_id(0); h < FCC_HALO_VOXELS - FCC_FIRST_INNER; h += FCC_GROUP_SIZE) {
@@ -105,10 +103,10 @@ int fcc_cell_groups(int3 q) {
 // fcc_cell_bb_range is generated from the shared header's tables by the host.
 __kernel __attribute__((reqd_work_group_size(FCC_GROUP_SIZE, 1, 1)))
 void fcc_brick_bounds(__global const float4* pool, __global const int* neighbours,
-                      __global const float4* constants, __global float2* bounds) {
+                      __global float2* bounds) {
   __local float planes[4 * FCC_PLANE];
   __local float2 partial[FCC_GROUP_SIZE];
-  fcc_load_halo(pool, neighbours, constants, planes);
+  fcc_load_halo(pool, neighbours, planes);
   float lo = INFINITY, hi = -INFINITY;
   for (int h = FCC_FIRST_INNER + get_local_id(0); h < FCC_HALO_VOXELS; h += FCC_GROUP_SIZE) {
     int3 q = (int3)(h % FCC_HALO_SIDE, (h / FCC_HALO_SIDE) % FCC_HALO_SIDE, h / (FCC_HALO_SIDE * FCC_HALO_SIDE)) - 1;

@@ -254,18 +254,27 @@ FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernelsOrNull) 
   for (size_t first = 0; first < work.size(); first += kBatchBricks) {
     const std::vector<Coord> batch(work.begin() + first, work.begin() + std::min(work.size(), first + kBatchBricks));
     kernels.prefilter(samples, batch, results);
-    for (size_t i = 0; i < batch.size(); ++i) {
-      auto leaf = std::make_unique<FccLeaf>(packedOfBrick(batch[i]), background, false);
-      bool anyActive = false;
-      for (openvdb::Index n = 0; n < FccLeaf::SIZE; ++n) {
-        const Vec4f& v = results[i * FccLeaf::SIZE + n];
-        if (v == background) continue;
-        leaf->setValueOn(n, v);
-        anyActive = true;
+    // Leaves are built in parallel, then added to the tree (which is not thread-safe) in order.
+    std::vector<FccLeaf*> leaves(batch.size(), nullptr);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, batch.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        auto leaf = std::make_unique<FccLeaf>(packedOfBrick(batch[i]), background, false);
+        bool anyActive = false;
+        for (openvdb::Index n = 0; n < FccLeaf::SIZE; ++n) {
+          const Vec4f& v = results[i * FccLeaf::SIZE + n];
+          if (v == background) continue;
+          leaf->setValueOn(n, v);
+          anyActive = true;
+        }
+        if (anyActive) leaves[i] = leaf.release();
       }
-      if (anyActive) out.addLeaf(leaf.release());
-      else if (out.getValue(packedOfBrick(batch[i])) != background || out.isValueOn(packedOfBrick(batch[i])))
-        out.addLeaf(leaf.release());  // a background brick inside a tile's region
+    });
+    for (size_t i = 0; i < batch.size(); ++i) {
+      if (leaves[i]) {
+        out.addLeaf(leaves[i]);
+      } else if (out.getValue(packedOfBrick(batch[i])) != background || out.isValueOn(packedOfBrick(batch[i]))) {
+        out.addLeaf(new FccLeaf(packedOfBrick(batch[i]), background, false));  // a background brick inside a tile's region
+      }
     }
   }
   openvdb::tools::prune(out);
