@@ -62,7 +62,7 @@ BrickStore::BrickStore(const std::string& path, const std::string& gridName) : p
   } catch (const std::exception& e) {
     throw InputError(path + ": OpenVDB cannot read it: " + e.what());
   }
-  grid_ = findFccGrid(*grids, path, gridName);
+  grid_ = findFccGrid(path, *grids, gridName);
   if (storesSamples(*grid_))
     throw InputError(path + ": grid '" + grid_->getName() +
                      "' stores raw samples (converted with --no-prefilter); the renderer needs spline "
@@ -70,14 +70,13 @@ BrickStore::BrickStore(const std::string& path, const std::string& gridName) : p
   background_ = grid_->background()[0];
   worldFromIndex_ = affineWorldFromIndex(grid_->transform(), path);
 
-  for (const auto& g : *grids)
-    if (g->getName() == boundsGridName(grid_->getName()))
-      if (auto b = openvdb::gridPtrCast<BoundsGrid>(g)) {
-        b->tree().readNonresidentBuffers();
-        bounds_ = b;
-        boundsFromFile_ = true;
-      }
-  if (!bounds_) bounds_ = conservativeBounds(*grid_);
+  bounds_ = findBoundsGrid(*grids, grid_->getName());
+  if (bounds_) {
+    bounds_->tree().readNonresidentBuffers();  // small: 1/512 of the data; the guard read it already
+    boundsFromFile_ = true;
+  } else {
+    bounds_ = conservativeBounds(*grid_);
+  }
 
   activeBrickBox_ = bounds_->evalActiveVoxelBoundingBox();
   valueMin_ = valueMax_ = background_;

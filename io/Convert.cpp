@@ -5,6 +5,7 @@
 
 #include "AtomicOutput.h"
 #include "VdbFile.h"
+#include "sparse/BrickBounds.h"
 #include "sparse/CubicBSpline.h"
 #include "sparse/Error.h"
 #include "sparse/FccBuilder.h"
@@ -210,7 +211,14 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   summary.activeSamples = grid.activeVoxelCount() * 4;
   summary.bricks = grid.tree().leafCount();
 
-  writeVdbAtomically(output, openvdb::GridCPtrVec{built.grid}, options.overwrite, input);
+  openvdb::GridCPtrVec grids{built.grid};
+  if (options.bounds) {
+    // Bounds of the spline the renderer evaluates: of the prefiltered coefficients for a samples grid.
+    BoundsGrid::Ptr bounds = computeBrickBounds(*coefficientsOf(built.grid, options.preprocess), options.preprocess);
+    summary.boundsBricks = bounds->activeVoxelCount();
+    grids.push_back(bounds);
+  }
+  writeVdbAtomically(output, grids, options.overwrite, input);
   return summary;
 }
 

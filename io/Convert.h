@@ -8,6 +8,10 @@
 
 #include "DenseVolume.h"
 
+namespace fcc {
+class BrickKernels;
+}
+
 namespace fcc::io {
 
 struct ConvertOptions {
@@ -21,6 +25,8 @@ struct ConvertOptions {
   bool overwrite = false;
   std::string gridName;               // .vdb input: which float grid (default: the first)
   std::optional<RawLayout> raw;       // raw input layout (required for raw files)
+  bool bounds = true;                 // compute the bounds grid and store it beside the FCC grid
+  BrickKernels* preprocess = nullptr; // who computes it (null: the C++/TBB reference)
 };
 
 struct ConvertSummary {
@@ -28,6 +34,7 @@ struct ConvertSummary {
   uint64_t inputVoxels = 0;
   uint64_t activeSamples = 0;
   uint64_t bricks = 0;
+  uint64_t boundsBricks = 0;           // active bricks of the bounds grid (0 without bounds)
 };
 
 ConvertSummary convertToFcc(const std::string& input, const std::string& output, const ConvertOptions& options,

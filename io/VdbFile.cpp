@@ -136,17 +136,18 @@ std::string gridNames(const openvdb::GridPtrVec& grids) {
 
 }  // namespace
 
-std::vector<GridInfo> listGrids(const std::string& path) {
-  std::vector<GridInfo> out;
-  for (const auto& g : *readAllGrids(path)) out.push_back({g->getName(), g->type(), isFccGrid(*g)});
-  return out;
+// The bounds grid of `fccName` among `grids`, by its fcc_bounds_of metadata.
+BoundsGrid::Ptr findBoundsGrid(const openvdb::GridPtrVec& grids, const std::string& fccName) {
+  for (const auto& g : grids) {
+    auto bounds = openvdb::gridPtrCast<BoundsGrid>(g);
+    if (!bounds) continue;
+    const auto of = bounds->getMetadata<openvdb::StringMetadata>(meta::kBoundsOf);
+    if (of && of->value() == fccName) return bounds;
+  }
+  return nullptr;
 }
 
-FccGrid::Ptr readFccGrid(const std::string& path, const std::string& gridName) {
-  return findFccGrid(*readAllGrids(path), path, gridName);
-}
-
-FccGrid::Ptr findFccGrid(const openvdb::GridPtrVec& grids, const std::string& path, const std::string& gridName) {
+FccGrid::Ptr findFccGrid(const std::string& path, const openvdb::GridPtrVec& grids, const std::string& gridName) {
   for (const auto& g : grids) {
     if (!gridName.empty() && g->getName() != gridName) continue;
     if (isFccGrid(*g)) return openvdb::gridPtrCast<FccGrid>(g);
@@ -158,6 +159,30 @@ FccGrid::Ptr findFccGrid(const openvdb::GridPtrVec& grids, const std::string& pa
     throw InputError(path + ": no grid named '" + gridName + "'; grids: " + gridNames(grids));
   throw InputError(path + ": holds no FCC grid (grids: " + gridNames(grids) + "); run `fccvdb convert " + path +
                    " OUT.vdb` first");
+}
+
+
+std::vector<GridInfo> listGrids(const std::string& path) {
+  std::vector<GridInfo> out;
+  const auto grids = readAllGrids(path);  // not `: *readAllGrids(path)`: the range would outlive the pointer
+  for (const auto& g : *grids) out.push_back({g->getName(), g->type(), isFccGrid(*g)});
+  return out;
+}
+
+FccGrid::Ptr readFccGrid(const std::string& path, const std::string& gridName) {
+  return findFccGrid(path, *readAllGrids(path), gridName);
+}
+
+FccWithBounds readFccGridWithBounds(const std::string& path, const std::string& gridName) {
+  const auto grids = readAllGrids(path);
+  FccWithBounds r;
+  r.grid = findFccGrid(path, *grids, gridName);
+  r.bounds = findBoundsGrid(*grids, r.grid->getName());
+  return r;
+}
+
+BoundsGrid::Ptr readBoundsGrid(const std::string& path, const std::string& fccGridName) {
+  return findBoundsGrid(*readAllGrids(path), fccGridName);
 }
 
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "sparse/BrickBounds.h"
 #include "sparse/FccGrid.h"
 
 namespace fcc::io {
@@ -33,8 +34,21 @@ std::vector<GridInfo> listGrids(const std::string& path);
 // file has none: the message says to run `fccvdb convert`.
 FccGrid::Ptr readFccGrid(const std::string& path, const std::string& gridName = {});
 
-// The FCC grid `gridName` (empty: the first FCC grid) among grids read from `path` (named in errors).
-FccGrid::Ptr findFccGrid(const openvdb::GridPtrVec& grids, const std::string& path, const std::string& gridName);
+// An FCC grid with the bounds grid stored beside it (null when the file has none: files written
+// before bounds existed), read in one pass.
+struct FccWithBounds {
+  FccGrid::Ptr grid;
+  BoundsGrid::Ptr bounds;
+};
+FccWithBounds readFccGridWithBounds(const std::string& path, const std::string& gridName = {});
+
+// Among grids already read from `path` (named in errors): the FCC grid `gridName` (empty: the first
+// FCC grid; InputError if none), and the bounds grid of FCC grid `fccName` (null if none).
+FccGrid::Ptr findFccGrid(const std::string& path, const openvdb::GridPtrVec& grids, const std::string& gridName);
+BoundsGrid::Ptr findBoundsGrid(const openvdb::GridPtrVec& grids, const std::string& fccName);
+
+// The bounds grid of FCC grid `fccGridName` in a (guarded) .vdb file; null if there is none.
+BoundsGrid::Ptr readBoundsGrid(const std::string& path, const std::string& fccGridName);
 
 // The float grid `gridName` (empty: the first float grid), for conversion. Half-stored grids read as float.
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName = {});

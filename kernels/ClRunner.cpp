@@ -273,10 +273,11 @@ std::string ClRunner::kernelName(cl::Kernel& kernel) {
   }
 }
 
-void ClRunner::enqueue(std::string_view description, cl::Kernel& kernel, std::size_t count) {
+void ClRunner::enqueue(std::string_view description, cl::Kernel& kernel, std::size_t count, std::size_t groupSize) {
   if (count == 0) return;
   try {
-    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(count), cl::NullRange);
+    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(count),
+                                groupSize ? cl::NDRange(groupSize) : cl::NullRange);
   } catch (const cl::Error& e) {
     throwClError(e, std::string(description) + ": launching " + kernelName(kernel) + " over " +
                         std::to_string(count) + " items on " + describe());

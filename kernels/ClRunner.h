@@ -99,10 +99,16 @@ class ClRunner {
   // ... CL_INVALID_ARG_SIZE"). Does not wait; call finish() or download().
   template <class... Args>
   void launch(std::string_view description, cl::Kernel& kernel, std::size_t count, const Args&... args);
+  // As launch(), for a kernel written for work-groups of `groupSize` items: `groups` of them.
+  template <class... Args>
+  void launchGroups(std::string_view description, cl::Kernel& kernel, std::size_t groups, std::size_t groupSize,
+                    const Args&... args);
   void finish();
 
  private:
-  void enqueue(std::string_view description, cl::Kernel& kernel, std::size_t count);
+  template <class... Args>
+  void setArgs(std::string_view description, cl::Kernel& kernel, const Args&... args);
+  void enqueue(std::string_view description, cl::Kernel& kernel, std::size_t count, std::size_t groupSize = 0);
   static std::string kernelName(cl::Kernel& kernel);
 
   ClDeviceEntry entry_;
@@ -136,6 +142,19 @@ void ClRunner::download(const cl::Buffer& buffer, std::vector<T>& out) {
 
 template <class... Args>
 void ClRunner::launch(std::string_view description, cl::Kernel& kernel, std::size_t count, const Args&... args) {
+  setArgs(description, kernel, args...);
+  enqueue(description, kernel, count);
+}
+
+template <class... Args>
+void ClRunner::launchGroups(std::string_view description, cl::Kernel& kernel, std::size_t groups,
+                            std::size_t groupSize, const Args&... args) {
+  setArgs(description, kernel, args...);
+  enqueue(description, kernel, groups * groupSize, groupSize);
+}
+
+template <class... Args>
+void ClRunner::setArgs(std::string_view description, cl::Kernel& kernel, const Args&... args) {
   if constexpr (sizeof...(Args) > 0) {
     cl_uint index = 0;
     auto set = [&](const auto& arg) {
@@ -148,7 +167,6 @@ void ClRunner::launch(std::string_view description, cl::Kernel& kernel, std::siz
     };
     (set(args), ...);
   }
-  enqueue(description, kernel, count);
 }
 
 }  // namespace fcc

@@ -35,4 +35,23 @@ inline constexpr const char* kBoundsOf = "fcc_bounds_of";       // the FCC grid'
 
 inline std::string boundsGridName(const std::string& fccGridName) { return fccGridName + ".bounds"; }
 
+class BrickKernels;  // sparse/BrickKernels.h; null below means the C++/TBB reference
+
+// The bounds grid of an FCC grid holding coefficients (sparse/FccGrid.h: not storesSamples). Bricks
+// computed exactly: the FCC leaves and their 26 neighbour bricks. Elsewhere the spline is a convex
+// combination of tile values (or the background), so a brick whose 27-brick neighbourhood holds no
+// leaf gets the hull of those constant values. Sets name, transform, fcc_bounds_of and the
+// background (c0, c0).
+BoundsGrid::Ptr computeBrickBounds(const FccGrid& coefficients, BrickKernels* kernels = nullptr);
+
+// The quasi-interpolation prefilter q_fcc applied to a grid of raw samples (fcc_values = samples):
+// the grid the builder would have written without --no-prefilter. Active where a coefficient differs
+// from the background; uniform leaves are pruned to tiles; metadata and transform are copied, with
+// fcc_values = coefficients.
+FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernels = nullptr);
+
+// The coefficients to compute bounds of: the grid itself, or its prefiltered copy when it stores
+// samples.
+FccGrid::ConstPtr coefficientsOf(const FccGrid::ConstPtr& grid, BrickKernels* kernels = nullptr);
+
 }  // namespace fcc

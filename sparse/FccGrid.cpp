@@ -4,6 +4,8 @@
 
 #include <mutex>
 
+#include "BrickBounds.h"
+
 namespace fcc {
 
 void initializeVdb() {

@@ -14,7 +14,8 @@ using FccGrid = openvdb::Grid<FccTree>;
 // The type name OpenVDB (and NanoVDB's converter) use for this tree.
 inline constexpr const char* kFccTreeTypeName = "Tree_vec4s_5_4_3";
 
-// openvdb::initialize() plus registration of FccGrid; safe to call more than once.
+// openvdb::initialize() plus registration of FccGrid and BoundsGrid (sparse/BrickBounds.h); safe to
+// call more than once.
 void initializeVdb();
 
 // Metadata keys on an FCC grid.

@@ -5,7 +5,13 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <memory>
+#include <string>
 #include <vector>
+
+namespace fcc {
+class BrickKernels;
+}
 
 namespace fcc::cli {
 
@@ -21,8 +27,15 @@ Command addRenderCommand(CLI::App& parent);
 Command addBenchCommand(CLI::App& parent);
 Command addBenchRenderCommand(CLI::App& bench);  // under `bench`
 Command addSynthCommand(CLI::App& parent);
+// `bench` is a parent command; each benchmark registers itself on it from its own file.
+Command addBenchCommand(CLI::App& parent);
+Command addBenchPreprocessCommand(CLI::App& bench);
 
 // Validators shared by several subcommands.
 CLI::Validator tripleValidator(const std::string& what);  // "X,Y,Z"
+
+// --cl-device: where preprocessing runs (kernels/ClBrickKernels.h).
+CLI::Option* addDeviceOption(CLI::App& app, std::string& device);
+std::unique_ptr<BrickKernels> preprocessKernels(const std::string& device);
 
 }  // namespace fcc::cli

@@ -1,5 +1,6 @@
 #include "Command.h"
 #include "Triple.h"
+#include "kernels/ClBrickKernels.h"
 
 namespace fcc::cli {
 
@@ -12,5 +13,15 @@ CLI::Validator tripleValidator(const std::string& what) {
       },
       "X,Y,Z");
 }
+
+CLI::Option* addDeviceOption(CLI::App& app, std::string& device) {
+  CLI::Validator check(
+      [](std::string& value) -> std::string { return checkDeviceSelector(value); }, "DEVICE");
+  return app.add_option("--cl-device", device, std::string("Where preprocessing runs: ") + kDeviceSelectorHelp)
+      ->check(check)
+      ->capture_default_str();
+}
+
+std::unique_ptr<BrickKernels> preprocessKernels(const std::string& device) { return makeBrickKernels(device); }
 
 }  // namespace fcc::cli

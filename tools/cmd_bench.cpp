@@ -1,16 +1,18 @@
-// fccvdb bench …: benchmarks as programs (never timed unit tests); each kind lives in its own
-// cmd_bench_*.cpp and registers itself under `bench`.
+// fccvdb bench SUBCOMMAND: benchmarks as programs (docs/BENCHMARKS.md). Each benchmark lives in its own
+// tools/cmd_bench_*.cpp and registers itself on the `bench` app here.
 #include "Command.h"
 
 namespace fcc::cli {
 
 Command addBenchCommand(CLI::App& parent) {
-  CLI::App* app = parent.add_subcommand("bench", "Benchmarks: render (frames per second over a camera orbit)");
+  CLI::App* app = parent.add_subcommand("bench", "Benchmarks: time a stage of the pipeline on this machine (see docs/BENCHMARKS.md)");
   app->require_subcommand(1, 1);
-  const std::vector<Command> kinds = {addBenchRenderCommand(*app)};
-  return {app, [kinds]() {
-            for (const auto& k : kinds)
-              if (k.app->parsed()) return k.run();
+  auto benchmarks = std::make_shared<std::vector<Command>>();
+  benchmarks->push_back(addBenchPreprocessCommand(*app));
+  benchmarks->push_back(addBenchRenderCommand(*app));
+  return {app, [benchmarks]() {
+            for (const Command& c : *benchmarks)
+              if (c.app->parsed()) return c.run();
             return 2;
           }};
 }

@@ -5,12 +5,13 @@
 #include "ProgressBar.h"
 #include "Triple.h"
 #include "io/Convert.h"
+#include "sparse/BrickKernels.h"
 
 namespace fcc::cli {
 namespace {
 
 struct ConvertArgs {
-  std::string input, output, dims, type = "u8", endian = "little", spacing = "1,1,1";
+  std::string input, output, dims, type = "u8", endian = "little", spacing = "1,1,1", device = "auto";
   uint64_t headerBytes = 0;
   float background = 0.0f;
   bool quiet = false, noPrefilter = false;
@@ -39,6 +40,7 @@ Command addConvertCommand(CLI::App& parent) {
   app->add_flag("--half", args->options.half, "Store values as 16-bit floats");
   app->add_flag("--force", args->options.overwrite, "Overwrite an existing OUTPUT");
   app->add_flag("--quiet", args->quiet, "No progress bar");
+  addDeviceOption(*app, args->device);
   return {app, [args, bg]() {
             io::ConvertOptions& o = args->options;
             o.prefilter = !args->noPrefilter;
@@ -55,12 +57,16 @@ Command addConvertCommand(CLI::App& parent) {
               raw.headerBytes = args->headerBytes;
               o.raw = raw;
             }
+            const std::unique_ptr<BrickKernels> kernels = preprocessKernels(args->device);
+            o.preprocess = kernels.get();
             ProgressBar progress(args->quiet);
             const io::ConvertSummary s = io::convertToFcc(args->input, args->output, o, &progress);
             if (!args->quiet)
-              std::fprintf(stderr, "wrote %s: grid '%s', %llu active samples in %llu bricks (from %llu input voxels)\n",
+              std::fprintf(stderr, "wrote %s: grid '%s', %llu active samples in %llu bricks (from %llu input voxels); "
+                           "bounds: %llu varying bricks (%s)\n",
                            args->output.c_str(), s.gridName.c_str(), (unsigned long long)s.activeSamples,
-                           (unsigned long long)s.bricks, (unsigned long long)s.inputVoxels);
+                           (unsigned long long)s.bricks, (unsigned long long)s.inputVoxels,
+                           (unsigned long long)s.boundsBricks, kernels->describe().c_str());
             return 0;
           }};
 }

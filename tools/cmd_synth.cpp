@@ -5,6 +5,8 @@
 #include "ProgressBar.h"
 #include "Triple.h"
 #include "io/VdbFile.h"
+#include "sparse/BrickBounds.h"
+#include "sparse/BrickKernels.h"
 #include "sparse/FccBuilder.h"
 #include "sparse/SynthFields.h"
 
@@ -12,7 +14,7 @@ namespace fcc::cli {
 
 Command addSynthCommand(CLI::App& parent) {
   struct Args {
-    std::string kind, output, dims;
+    std::string kind, output, dims, device = "auto";
     uint64_t seed = 1;
     bool force = false, quiet = false, half = false, noPrefilter = false;
   };
@@ -26,6 +28,7 @@ Command addSynthCommand(CLI::App& parent) {
   app->add_flag("--no-prefilter", args->noPrefilter, "Store raw samples instead of spline coefficients");
   app->add_flag("--force", args->force, "Overwrite an existing OUTPUT");
   app->add_flag("--quiet", args->quiet, "No progress bar or summary");
+  addDeviceOption(*app, args->device);
   return {app, [args]() {
             SynthSpec spec;
             spec.kind = args->kind;
@@ -34,6 +37,7 @@ Command addSynthCommand(CLI::App& parent) {
             spec.dims = glm::ivec3(dims);
             spec.seed = args->seed;
             const SynthField synth = makeSynthField(spec);
+            const std::unique_ptr<BrickKernels> kernels = preprocessKernels(args->device);
             initializeVdb();
             ProgressBar progress(args->quiet);
             BuildOptions build;
@@ -53,11 +57,14 @@ Command addSynthCommand(CLI::App& parent) {
             p.levelSet = synth.levelSet;
             setFccMetadata(*built.grid, p);
             built.grid->setSaveFloatAsHalf(args->half);
-            io::writeVdbAtomically(args->output, openvdb::GridCPtrVec{built.grid}, args->force);
+            // Bounds of the spline the renderer evaluates: of the prefiltered coefficients for samples.
+            const BoundsGrid::Ptr bounds = computeBrickBounds(*coefficientsOf(built.grid, kernels.get()), kernels.get());
+            io::writeVdbAtomically(args->output, openvdb::GridCPtrVec{built.grid, bounds}, args->force);
             if (!args->quiet)
-              std::fprintf(stderr, "wrote %s: %s, %llu active samples in %llu bricks\n", args->output.c_str(),
-                           args->kind.c_str(), (unsigned long long)built.grid->activeVoxelCount() * 4,
-                           (unsigned long long)built.grid->tree().leafCount());
+              std::fprintf(stderr, "wrote %s: %s, %llu active samples in %llu bricks; bounds: %llu varying bricks (%s)\n",
+                           args->output.c_str(), args->kind.c_str(), (unsigned long long)built.grid->activeVoxelCount() * 4,
+                           (unsigned long long)built.grid->tree().leafCount(),
+                           (unsigned long long)bounds->activeVoxelCount(), kernels->describe().c_str());
             return 0;
           }};
 }

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "RunCommand.h"
+#include "sparse/FccGrid.h"
 
 namespace fcc::test {
 namespace {
@@ -17,8 +18,8 @@ using ::testing::HasSubstr;
 TEST(Cli, HelpDescribesEverySubcommand) {
   const auto r = runFccvdb("--help");
   EXPECT_EQ(r.status, 0);
-  for (const char* sub : {"convert", "info", "probe", "synth"}) EXPECT_THAT(r.out, HasSubstr(sub));
-  for (const char* sub : {"convert", "info", "probe", "synth"}) {
+  for (const char* sub : {"bench", "convert", "info", "probe", "synth"}) EXPECT_THAT(r.out, HasSubstr(sub));
+  for (const char* sub : {"bench", "bench preprocess", "convert", "info", "probe", "synth"}) {
     const auto h = runFccvdb(std::string(sub) + " --help");
     EXPECT_EQ(h.status, 0) << sub;
     EXPECT_THAT(h.out, HasSubstr("--")) << sub << " help lists its flags";
@@ -121,6 +122,109 @@ TEST(Cli, CorruptVdbGivesOneLineNoCrash) {
   const auto r = runFccvdb("info " + bad);
   EXPECT_LE(r.status, 1) << "no crash: " << r.err;
   EXPECT_LE(lineCount(r.err), 1) << r.err;
+}
+
+TEST(Cli, InfoReportsTheBoundsHierarchyForAnIsovalue) {
+  TempDir dir;
+  const std::string vdb = dir / "sphere.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 40,40,40 --quiet").status, 0);
+  auto r = runFccvdb("info " + vdb + " --iso 0.5 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* key : {"\"lattice\":", "\"samples\":", "\"bricks\":", "\"bytes\":", "\"min\":", "\"max\":",
+                          "\"bounds\": {\"bricks\":", "\"nodes1\":", "\"nodes2\":", "\"iso\": 0.5", "\"bricks_kept\":",
+                          "\"nodes1_kept\":", "\"nodes2_kept\":"})
+    EXPECT_THAT(r.out, HasSubstr(key));
+  // The JSON parses, and an isovalue inside the data keeps some but not all bricks.
+  const std::string json = dir / "info.json";
+  std::ofstream(json) << r.out;
+  EXPECT_EQ(std::system(("python3 -c \"import json,sys; b=json.load(open('" + json +
+                         "'))['bounds']; sys.exit(0 if 0 < b['bricks_kept'] < b['bricks'] else 1)\"").c_str()),
+            0)
+      << r.out;
+  r = runFccvdb("info " + vdb + " --iso 0.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("bounds:"));
+  EXPECT_THAT(r.out, HasSubstr("iso 0.5: keeps"));
+  // Outside the data's range nothing is kept.
+  r = runFccvdb("info " + vdb + " --iso 1000 --json");
+  EXPECT_THAT(r.out, HasSubstr("\"bricks_kept\": 0, \"nodes1_kept\": 0, \"nodes2_kept\": 0"));
+}
+
+TEST(Cli, BadIsoOrDeviceGivesOneLine) {
+  TempDir dir;
+  const std::string vdb = dir / "s.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 8,8,8 --quiet").status, 0);
+  for (const char* iso : {"nan", "inf", "-inf"}) {
+    const auto r = runFccvdb("info " + vdb + " --iso " + iso);
+    EXPECT_EQ(r.status, 1) << iso << ": " << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("--iso"));
+  }
+  auto r = runFccvdb("info " + vdb + " --iso twelve");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  for (const std::string& cmd : {"synth sphere " + dir / "t.vdb" + " --dims 8,8,8", "bench preprocess " + vdb}) {
+    r = runFccvdb(cmd + " --cl-device fastest");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    for (const char* valid : {"auto", "cpu", "gpu", "reference"}) EXPECT_THAT(r.err, HasSubstr(valid));
+  }
+  r = runFccvdb("synth sphere " + dir / "t.vdb" + " --dims 8,8,8 --cl-device 99");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("reference"));
+}
+
+TEST(Cli, NoOpenClFallsBackToTheReferenceWithOneLine) {
+  TempDir dir;
+  // The ICD loader finds no platform in an empty vendor directory.
+  const std::string vdb = dir / "s.vdb";
+  ::setenv("OCL_ICD_VENDORS", dir.path.c_str(), 1);
+  const auto r = runFccvdb("synth sphere " + vdb + " --dims 16,16,16");
+  ::unsetenv("OCL_ICD_VENDORS");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("OpenCL unavailable"));
+  EXPECT_THAT(r.err, HasSubstr("using the CPU reference path"));
+  EXPECT_THAT(r.err, HasSubstr("reference (C++/TBB)"));
+}
+
+TEST(Cli, FilesWithoutBoundsSayNone) {
+  TempDir dir;
+  const std::string vdb = dir / "old.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 16,16,16 --quiet").status, 0);
+  // Keep only the FCC grid, as files written before bounds existed.
+  initializeVdb();
+  openvdb::io::File in(vdb);
+  in.open();
+  openvdb::GridPtrVecPtr grids = in.getGrids();
+  in.close();
+  ASSERT_EQ(grids->size(), 2u);
+  grids->pop_back();
+  openvdb::io::File(vdb).write(*grids);
+  auto r = runFccvdb("info " + vdb + " --iso 0.5 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("\"bounds\": null"));
+  r = runFccvdb("info " + vdb);
+  EXPECT_THAT(r.out, HasSubstr("bounds:    none"));
+}
+
+TEST(Cli, BenchPreprocessJsonHasTheRequiredKeys) {
+  TempDir dir;
+  const std::string vdb = dir / "blobs.vdb";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 48,48,48 --quiet").status, 0);
+  const auto r = runFccvdb("bench preprocess " + vdb + " --json --repetitions 1 --warmup 0");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string json = dir / "bench.json";
+  std::ofstream(json) << r.out;
+  // Both stages on the reference path (and on each OpenCL device), with positive rates.
+  const std::string check =
+      "import json,sys\n"
+      "rows = json.load(open(sys.argv[1]))\n"
+      "assert all(k in r for r in rows for k in ('stage', 'device', 'samples_per_second', 'seconds', 'samples'))\n"
+      "assert all(r['samples_per_second'] > 0 for r in rows)\n"
+      "assert {(r['stage'], r['device']) for r in rows} >= {('prefilter', 'reference (C++/TBB)'), ('bounds', 'reference (C++/TBB)')}\n";
+  std::ofstream(dir / "check.py") << check;
+  EXPECT_EQ(std::system(("python3 " + dir / "check.py" + " " + json).c_str()), 0) << r.out;
 }
 
 }  // namespace

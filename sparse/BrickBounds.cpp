@@ -1,0 +1,289 @@
+// Preprocessing drivers (which bricks need work, tiles, assembling the grids) and the C++/TBB
+// reference of the per-brick work. The OpenCL kernels (kernels/preprocess.cl) do the same per-brick
+// work; see sparse/BrickKernels.h.
+#include "BrickBounds.h"
+
+#include <openvdb/tools/Prune.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+
+#include "BrickKernels.h"
+#include "Error.h"
+#include "Lattice.h"
+#include "Spline.h"
+
+namespace fcc {
+namespace {
+
+using openvdb::Coord;
+using openvdb::CoordBBox;
+using openvdb::Vec2f;
+using openvdb::Vec4f;
+using FccLeaf = FccTree::LeafNodeType;
+static_assert(FccLeaf::DIM == kBrickPackedDim, "a brick is a leaf of the FCC tree");
+
+constexpr int kHaloSide = kBrickPackedDim + 2;  // packed voxels of a brick and its one-voxel halo
+constexpr size_t kBatchBricks = 8192;           // bricks per call into the kernels: bounds the memory
+
+Vec2f hullOf(const Vec4f& v) {
+  return Vec2f(std::min(std::min(v[0], v[1]), std::min(v[2], v[3])), std::max(std::max(v[0], v[1]), std::max(v[2], v[3])));
+}
+
+Vec2f hullOf(const Vec2f& a, const Vec2f& b) { return Vec2f(std::min(a[0], b[0]), std::max(a[1], b[1])); }
+
+Coord brickOfPacked(const Coord& packed) { return Coord(packed.x() >> 3, packed.y() >> 3, packed.z() >> 3); }
+Coord packedOfBrick(const Coord& brick) { return Coord(brick.x() * kBrickPackedDim, brick.y() * kBrickPackedDim, brick.z() * kBrickPackedDim); }
+
+// The leaves' bricks and their 26 neighbours: the bricks whose halo holds a leaf value.
+std::vector<Coord> leafBricksDilated(const FccTree& tree) {
+  openvdb::MaskTree mask;
+  for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
+    const Coord b = brickOfPacked(leaf->origin());
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) mask.setValueOn(b.offsetBy(dx, dy, dz));
+  }
+  std::vector<Coord> bricks;
+  bricks.reserve(mask.activeVoxelCount());
+  for (auto it = mask.cbeginValueOn(); it; ++it) bricks.push_back(it.getCoord());
+  return bricks;
+}
+
+// A tile of the FCC tree (a region of one constant Vec4 value) that differs from the background.
+struct Tile {
+  CoordBBox bricks;  // brick coordinates covered
+  Vec4f value;
+};
+
+std::vector<Tile> nonBackgroundTiles(const FccTree& tree) {
+  std::vector<Tile> tiles;
+  auto it = tree.cbeginValueAll();
+  it.setMaxDepth(FccTree::ValueAllCIter::LEAF_DEPTH - 1);  // tiles only, not the leaves' voxels
+  for (; it; ++it) {
+    if (*it == tree.background()) continue;  // active or not, the same constant spline as outside
+    const CoordBBox packed = it.getBoundingBox();
+    tiles.push_back({CoordBBox(brickOfPacked(packed.min()), brickOfPacked(packed.max())), *it});
+  }
+  return tiles;
+}
+
+// Calls f(brick) for every brick within one brick of `box`'s boundary, inside or outside (the bricks
+// whose halo sees both the tile and what surrounds it).
+template <class F>
+void forEachShellBrick(const CoordBBox& box, F&& f) {
+  const CoordBBox outer = box.expandBy(1);
+  auto onShell = [&](int v, int lo, int hi) { return v <= lo + 1 || v >= hi - 1; };
+  for (int z = outer.min().z(); z <= outer.max().z(); ++z)
+    for (int y = outer.min().y(); y <= outer.max().y(); ++y) {
+      const bool yzShell = onShell(z, outer.min().z(), outer.max().z()) || onShell(y, outer.min().y(), outer.max().y());
+      if (yzShell) {
+        for (int x = outer.min().x(); x <= outer.max().x(); ++x) f(Coord(x, y, z));
+      } else {
+        for (int x : {outer.min().x(), outer.min().x() + 1, outer.max().x() - 1, outer.max().x()})
+          if (x >= outer.min().x() && x <= outer.max().x()) f(Coord(x, y, z));
+      }
+    }
+}
+
+// The packed voxels [8b - 1, 8b + 9)^3 of brick b, read through a value accessor (leaves, tiles and
+// the background alike): values[((pz * 10 + py) * 10 + px) * 4 + channel].
+struct HaloBlock {
+  glm::ivec3 packedOrigin;  // packed voxel of element 0
+  float values[kHaloSide * kHaloSide * kHaloSide * 4];
+
+  void gather(FccGrid::ConstAccessor& accessor, const Coord& brick) {
+    packedOrigin = glm::ivec3(brick.x(), brick.y(), brick.z()) * kBrickPackedDim - 1;
+    float* out = values;
+    for (int z = 0; z < kHaloSide; ++z)
+      for (int y = 0; y < kHaloSide; ++y)
+        for (int x = 0; x < kHaloSide; ++x, out += 4) {
+          const Vec4f& v = accessor.getValue(Coord(packedOrigin.x + x, packedOrigin.y + y, packedOrigin.z + z));
+          for (int c = 0; c < 4; ++c) out[c] = v[c];
+        }
+  }
+  // The value at FCC site ijk (which must lie in the block).
+  float at(const glm::ivec3& ijk) const {
+    const glm::ivec3 p = packedVoxelOfSite(ijk) - packedOrigin;
+    return values[((p.z * kHaloSide + p.y) * kHaloSide + p.x) * 4 + channelOfSite(ijk)];
+  }
+};
+
+class ReferenceBrickKernels : public BrickKernels {
+ public:
+  std::string describe() const override { return "reference (C++/TBB)"; }
+
+  void bounds(const FccGrid& coefficients, const std::vector<Coord>& bricks, std::vector<Vec2f>& out) override {
+    const auto start = std::chrono::steady_clock::now();
+    out.resize(bricks.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, bricks.size(), 4), [&](const tbb::blocked_range<size_t>& r) {
+      auto accessor = coefficients.getConstAccessor();
+      auto block = std::make_unique<HaloBlock>();
+      auto coefficientAt = [&](const glm::ivec3& ijk) { return block->at(ijk); };
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        block->gather(accessor, bricks[i]);
+        const glm::ivec3 siteOrigin = glm::ivec3(bricks[i].x(), bricks[i].y(), bricks[i].z()) * kBrickSites;
+        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+        for (int z = 0; z < kBrickSites; ++z)
+          for (int y = 0; y < kBrickSites; ++y)
+            for (int x = 0; x < kBrickSites; ++x) {
+              const spline::FccRange b = spline::cubeBounds(siteOrigin + glm::ivec3(x, y, z), coefficientAt);
+              lo = std::min(lo, b.lo);
+              hi = std::max(hi, b.hi);
+            }
+        out[i] = Vec2f(lo, hi);
+      }
+    });
+    computeSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  void prefilter(const FccGrid& samples, const std::vector<Coord>& bricks, std::vector<Vec4f>& out) override {
+    const auto start = std::chrono::steady_clock::now();
+    out.resize(bricks.size() * FccLeaf::SIZE);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, bricks.size(), 4), [&](const tbb::blocked_range<size_t>& r) {
+      auto accessor = samples.getConstAccessor();
+      auto block = std::make_unique<HaloBlock>();
+      auto sampleAt = [&](const glm::ivec3& ijk) { return block->at(ijk); };
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        block->gather(accessor, bricks[i]);
+        const glm::ivec3 packedOrigin = block->packedOrigin + 1;
+        for (openvdb::Index n = 0; n < FccLeaf::SIZE; ++n) {
+          const glm::ivec3 packed = packedOrigin + glm::ivec3(int(n >> 6), int((n >> 3) & 7), int(n & 7));
+          Vec4f& v = out[i * FccLeaf::SIZE + n];
+          for (int c = 0; c < 4; ++c) v[c] = spline::prefilterAt(siteOfChannel(packed, c), sampleAt);
+        }
+      }
+    });
+    computeSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+};
+
+BrickKernels& orReference(BrickKernels* kernels, std::unique_ptr<BrickKernels>& own) {
+  if (kernels) return *kernels;
+  own = makeReferenceBrickKernels();
+  return *own;
+}
+
+}  // namespace
+
+std::unique_ptr<BrickKernels> makeReferenceBrickKernels() { return std::make_unique<ReferenceBrickKernels>(); }
+
+BoundsGrid::Ptr computeBrickBounds(const FccGrid& coefficients, BrickKernels* kernelsOrNull) {
+  if (storesSamples(coefficients))
+    throw ValueError("grid '" + coefficients.getName() + "' stores raw samples: prefilter it before computing bounds");
+  std::unique_ptr<BrickKernels> own;
+  BrickKernels& kernels = orReference(kernelsOrNull, own);
+  const FccTree& fccTree = coefficients.tree();
+  const Vec2f background = hullOf(fccTree.background());
+  auto grid = BoundsGrid::create(background);
+  auto& tree = grid->tree();
+  auto set = [&](const Coord& brick, const Vec2f& b) {
+    if (b[0] < b[1]) tree.setValueOn(brick, b);
+    else tree.setValueOff(brick, b);
+  };
+
+  // Constant regions first, then the bricks at their borders, then the exact bricks, each
+  // overwriting what came before where they overlap.
+  const std::vector<Coord> exact = leafBricksDilated(fccTree);
+  const std::vector<Tile> tiles = nonBackgroundTiles(fccTree);
+  for (const Tile& t : tiles) {
+    const Vec2f b = hullOf(t.value);
+    tree.fill(t.bricks, b, b[0] < b[1]);
+  }
+  if (!tiles.empty()) {
+    openvdb::MaskTree exactMask;
+    for (const Coord& b : exact) exactMask.setValueOn(b);
+    for (const Tile& t : tiles)
+      forEachShellBrick(t.bricks, [&](const Coord& brick) {
+        if (exactMask.isValueOn(brick)) return;
+        // No leaf in the neighbourhood: each neighbour brick is one constant value (a tile, or the
+        // background), and the spline is a convex combination of them.
+        Vec2f b(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity());
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) b = hullOf(b, hullOf(fccTree.getValue(packedOfBrick(brick.offsetBy(dx, dy, dz)))));
+        set(brick, b);
+      });
+  }
+  std::vector<Vec2f> results;
+  for (size_t first = 0; first < exact.size(); first += kBatchBricks) {
+    const std::vector<Coord> batch(exact.begin() + first, exact.begin() + std::min(exact.size(), first + kBatchBricks));
+    kernels.bounds(coefficients, batch, results);
+    for (size_t i = 0; i < batch.size(); ++i) set(batch[i], results[i]);
+  }
+  openvdb::tools::prune(tree);
+
+  grid->setName(boundsGridName(coefficients.getName()));
+  auto xform = coefficients.transform().copy();
+  xform->preScale(double(kBrickSites));
+  grid->setTransform(xform);
+  grid->insertMeta(meta::kBoundsOf, openvdb::StringMetadata(coefficients.getName()));
+  return grid;
+}
+
+FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernelsOrNull) {
+  std::unique_ptr<BrickKernels> own;
+  BrickKernels& kernels = orReference(kernelsOrNull, own);
+  const FccTree& in = samples.tree();
+  const Vec4f background = in.background();
+  FccGrid::Ptr grid = openvdb::gridPtrCast<FccGrid>(samples.copyGridWithNewTree());
+  grid->insertMeta(meta::kValues, openvdb::StringMetadata(kValuesCoefficients));
+  FccTree& out = grid->tree();
+
+  // Inside a tile, away from its border, every site sees the tile's values only.
+  std::vector<Coord> work = leafBricksDilated(in);
+  const std::vector<Tile> tiles = nonBackgroundTiles(in);
+  if (!tiles.empty()) {
+    openvdb::MaskTree workMask;
+    for (const Coord& b : work) workMask.setValueOn(b);
+    for (const Tile& t : tiles) {
+      Vec4f v;
+      for (int c = 0; c < 4; ++c)
+        v[c] = spline::prefilterAt(siteOfChannel(glm::ivec3(0), c), [&](const glm::ivec3& ijk) { return t.value[channelOfSite(ijk)]; });
+      const CoordBBox packed(packedOfBrick(t.bricks.min()), packedOfBrick(t.bricks.max()).offsetBy(kBrickPackedDim - 1));
+      out.fill(packed, v, v != background);
+      forEachShellBrick(t.bricks, [&](const Coord& brick) { workMask.setValueOn(brick); });
+    }
+    work.clear();
+    for (auto it = workMask.cbeginValueOn(); it; ++it) work.push_back(it.getCoord());
+  }
+
+  std::vector<Vec4f> results;
+  for (size_t first = 0; first < work.size(); first += kBatchBricks) {
+    const std::vector<Coord> batch(work.begin() + first, work.begin() + std::min(work.size(), first + kBatchBricks));
+    kernels.prefilter(samples, batch, results);
+    // Leaves are built in parallel, then added to the tree (which is not thread-safe) in order.
+    std::vector<FccLeaf*> leaves(batch.size(), nullptr);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, batch.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        auto leaf = std::make_unique<FccLeaf>(packedOfBrick(batch[i]), background, false);
+        bool anyActive = false;
+        for (openvdb::Index n = 0; n < FccLeaf::SIZE; ++n) {
+          const Vec4f& v = results[i * FccLeaf::SIZE + n];
+          if (v == background) continue;
+          leaf->setValueOn(n, v);
+          anyActive = true;
+        }
+        if (anyActive) leaves[i] = leaf.release();
+      }
+    });
+    for (size_t i = 0; i < batch.size(); ++i) {
+      if (leaves[i]) {
+        out.addLeaf(leaves[i]);
+      } else if (out.getValue(packedOfBrick(batch[i])) != background || out.isValueOn(packedOfBrick(batch[i]))) {
+        out.addLeaf(new FccLeaf(packedOfBrick(batch[i]), background, false));  // a background brick inside a tile's region
+      }
+    }
+  }
+  openvdb::tools::prune(out);
+  return grid;
+}
+
+FccGrid::ConstPtr coefficientsOf(const FccGrid::ConstPtr& grid, BrickKernels* kernels) {
+  if (!storesSamples(*grid)) return grid;
+  return prefilterGrid(*grid, kernels);
+}
+
+}  // namespace fcc
