@@ -109,12 +109,14 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     if (tExit > tCell && (uSkipEmpty == 0 || (cellBounds.x <= uIso && uIso <= cellBounds.y))) {
       vec4 splits = fcc_cell_splits(cell, o, d, tCell, tExit);
       float s0 = tCell;
-      for (int k = 0; k < 4 && s0 < tExit; ++k) {
-        float s1 = k == 0 ? splits.x : (k == 1 ? splits.y : (k == 2 ? splits.z : splits.w));
-        if (k == 3) s1 = tExit;
+      // Up to five sub-segments, one per piece the ray passes (in practice at most three).
+      for (int k = 0; k < 5 && s0 < tExit; ++k) {
+        float s1 = k == 0 ? splits.x : (k == 1 ? splits.y : (k == 2 ? splits.z : (k == 3 ? splits.w : tExit)));
         if (s1 <= s0) continue;
-        FccFrame frame = fcc_locate(o + (0.5 * (s0 + s1)) * d);
-        FccCubic cubic = fcc_cubic(gatherStencil(frame), frame.type);
+        // Kept inside this cell, so the stencil stays inside the slot's halo whatever the rounding.
+        FccFrame frame = fcc_locate(clamp(o + (0.5 * (s0 + s1)) * d, vec3(cell), vec3(cell + 1)));
+        FccSamples samples = gatherStencil(frame);
+        FccCubic cubic = fcc_cubic(samples, frame.type);
         FccRange range = fcc_cubic_range(cubic);
         if (range.lo <= uIso && uIso <= range.hi) {
           float u = fcc_first_root_bernstein3(fcc_segment_bernstein(cubic, frame, o, d, s0, s1, uIso));
@@ -124,9 +126,10 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
             if (uFiniteDifferenceNormals != 0) {
               hit.gradient = finiteDifferenceGradient(xyz, b);
             } else {
-              // The hit may round into the neighbouring piece; its gradient is the same (C1).
-              FccFrame hitFrame = fcc_locate(xyz);
-              hit.gradient = fcc_gradient(gatherStencil(hitFrame), hitFrame);
+              // The gradient of this piece's polynomial at the hit, with the stencil already read:
+              // locating the rounded hit point anew could pick a cell outside the slot's halo.
+              frame.q = vec3(frame.axis) * (xyz - vec3(frame.origin));
+              hit.gradient = fcc_gradient(samples, frame);
             }
             return true;
           }
