@@ -2,7 +2,8 @@
 # fccvdb set-up: installs what is missing (Debian 12 packages; needs root or sudo), builds in Release,
 # then runs the demo or the test suite.
 #
-#   ./setup.sh demo    install, build, convert a generated Cartesian volume to FCC and describe it
+#   ./setup.sh demo    install, build, convert a generated Cartesian volume to FCC, describe it and
+#                      render its isosurface headless (PNG and EXR)
 #   ./setup.sh test    install, build, run the whole test suite (ctest)
 #   ./setup.sh build   install and build only
 set -euo pipefail
@@ -13,7 +14,7 @@ case "$mode" in demo|test|build) ;; *) echo "setup.sh: unknown mode '$mode' (val
 packages=(build-essential cmake pkg-config ccache python3
   libopenvdb-dev libboost-dev libboost-iostreams-dev libtbb-dev zlib1g-dev
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers
-  libglfw3-dev libglm-dev libopenexr-dev libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev
+  libglfw3-dev libglm-dev libopenexr-dev libpng-dev libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev xvfb xauth)
 
 missing=()
@@ -40,7 +41,9 @@ case "$mode" in
     python3 tools/make_demo_volume.py "$out/torus_64.raw" 64
     "$build/bin/fccvdb" convert "$out/torus_64.raw" "$out/torus_fcc.vdb" --dims 64,64,64 --type u8 --force --quiet
     "$build/bin/fccvdb" info "$out/torus_fcc.vdb"
-    echo "demo dataset: $(cd "$out" && pwd)/torus_fcc.vdb"
+    "$build/bin/fccvdb" render "$out/torus_fcc.vdb" -o "$out/torus.png" --res 512x512 --iso 128
+    "$build/bin/fccvdb" render "$out/torus_fcc.vdb" -o "$out/torus.exr" --res 512x512 --iso 128 --quiet
+    echo "demo dataset: $(cd "$out" && pwd)/torus_fcc.vdb, images: $(cd "$out" && pwd)/torus.png, torus.exr"
     ;;
   test)
     ctest --test-dir "$build" --output-on-failure -j2

@@ -28,22 +28,24 @@ void checkReadableVdb(const std::string& path) {
     throw InputError(path + ": not an OpenVDB file (no VDB magic number); valid inputs are .vdb files written by OpenVDB");
 }
 
-// What the child does: read every grid completely, touching all leaf buffers.
-void readEverything(const std::string& path) {
+// What the child does: read the grids (to `depth`), then walk every tree once: a file that reads but
+// holds an inconsistent tree should fail here, in the child, rather than later in the parent.
+void readInChild(const std::string& path, GuardDepth depth) {
   initializeVdb();
   openvdb::io::File file(path);
   file.setCopyMaxBytes(0);
-  file.open(false);  // no delayed loading: the point is to read every byte now
+  file.open(depth == GuardDepth::Topology);  // Everything: no delayed loading, every byte is read now
   openvdb::GridPtrVecPtr grids = file.getGrids();
+  for (const auto& g : *grids) {
+    if (depth == GuardDepth::Topology && !isFccGrid(*g)) g->baseTree().readNonresidentBuffers();
+    (void)g->activeVoxelCount();
+  }
   file.close();
-  // Walk every tree once as well: a file that reads but holds an inconsistent tree should fail here,
-  // in the child, rather than later in the parent.
-  for (const auto& g : *grids) (void)g->activeVoxelCount();
 }
 
 }  // namespace
 
-void guardVdbFile(const std::string& path) {
+void guardVdbFile(const std::string& path, GuardDepth depth) {
   checkReadableVdb(path);
   struct stat st {};
   ::stat(path.c_str(), &st);
@@ -58,7 +60,7 @@ void guardVdbFile(const std::string& path) {
     ::close(fds[0]);
     std::string message;
     try {
-      readEverything(path);
+      readInChild(path, depth);
       ::_exit(0);
     } catch (const std::exception& e) {
       message = e.what();
@@ -143,7 +145,32 @@ BoundsGrid::Ptr findBoundsGrid(const openvdb::GridPtrVec& grids, const std::stri
   return nullptr;
 }
 
-FccGrid::Ptr findFccGrid(const std::string& path, const openvdb::GridPtrVec& grids, const std::string& gridName) {
+}  // namespace
+
+std::vector<GridInfo> listGrids(const std::string& path) {
+  std::vector<GridInfo> out;
+  const auto grids = readAllGrids(path);  // not `: *readAllGrids(path)`: the range would outlive the pointer
+  for (const auto& g : *grids) out.push_back({g->getName(), g->type(), isFccGrid(*g)});
+  return out;
+}
+
+FccGrid::Ptr readFccGrid(const std::string& path, const std::string& gridName) {
+  return findFccGrid(*readAllGrids(path), path, gridName);
+}
+
+FccWithBounds readFccGridWithBounds(const std::string& path, const std::string& gridName) {
+  const auto grids = readAllGrids(path);
+  FccWithBounds r;
+  r.grid = findFccGrid(*grids, path, gridName);
+  r.bounds = findBoundsGrid(*grids, r.grid->getName());
+  return r;
+}
+
+BoundsGrid::Ptr readBoundsGrid(const std::string& path, const std::string& fccGridName) {
+  return findBoundsGrid(*readAllGrids(path), fccGridName);
+}
+
+FccGrid::Ptr findFccGrid(const openvdb::GridPtrVec& grids, const std::string& path, const std::string& gridName) {
   for (const auto& g : grids) {
     if (!gridName.empty() && g->getName() != gridName) continue;
     if (isFccGrid(*g)) return openvdb::gridPtrCast<FccGrid>(g);
@@ -155,31 +182,6 @@ FccGrid::Ptr findFccGrid(const std::string& path, const openvdb::GridPtrVec& gri
     throw InputError(path + ": no grid named '" + gridName + "'; grids: " + gridNames(grids));
   throw InputError(path + ": holds no FCC grid (grids: " + gridNames(grids) + "); run `fccvdb convert " + path +
                    " OUT.vdb` first");
-}
-
-}  // namespace
-
-std::vector<GridInfo> listGrids(const std::string& path) {
-  std::vector<GridInfo> out;
-  const auto grids = readAllGrids(path);  // not `: *readAllGrids(path)`: the range would outlive the pointer
-  for (const auto& g : *grids) out.push_back({g->getName(), g->type(), isFccGrid(*g)});
-  return out;
-}
-
-FccGrid::Ptr readFccGrid(const std::string& path, const std::string& gridName) {
-  return findFccGrid(path, *readAllGrids(path), gridName);
-}
-
-FccWithBounds readFccGridWithBounds(const std::string& path, const std::string& gridName) {
-  const auto grids = readAllGrids(path);
-  FccWithBounds r;
-  r.grid = findFccGrid(path, *grids, gridName);
-  r.bounds = findBoundsGrid(*grids, r.grid->getName());
-  return r;
-}
-
-BoundsGrid::Ptr readBoundsGrid(const std::string& path, const std::string& fccGridName) {
-  return findBoundsGrid(*readAllGrids(path), fccGridName);
 }
 
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName) {

@@ -13,9 +13,13 @@
 
 namespace fcc::io {
 
+// How much of a file the guard reads: all of it, or (for out-of-core use, where leaf buffers are read
+// later on demand) the metadata, the trees' topology and the buffers of every grid but the FCC grids.
+enum class GuardDepth { Everything, Topology };
+
 // Throws InputError naming the file if it is missing, not a .vdb, or if OpenVDB fails, crashes or
-// takes longer than the time limit while reading it fully in a child process.
-void guardVdbFile(const std::string& path);
+// takes longer than the time limit while reading it (to `depth`) in a child process.
+void guardVdbFile(const std::string& path, GuardDepth depth = GuardDepth::Everything);
 
 struct GridInfo {
   std::string name;
@@ -29,6 +33,9 @@ std::vector<GridInfo> listGrids(const std::string& path);
 // The FCC grid `gridName` (empty: the first FCC grid) of a .vdb file, fully read. InputError if the
 // file has none: the message says to run `fccvdb convert`.
 FccGrid::Ptr readFccGrid(const std::string& path, const std::string& gridName = {});
+
+// The FCC grid `gridName` (empty: the first FCC grid) among grids read from `path` (named in errors).
+FccGrid::Ptr findFccGrid(const openvdb::GridPtrVec& grids, const std::string& path, const std::string& gridName);
 
 // An FCC grid with the bounds grid stored beside it (null when the file has none: files written
 // before bounds existed), read in one pass.

@@ -3,9 +3,8 @@
 // isovalue needs any preprocessing.
 //
 // Contract of a bounds grid (docs/FORMAT.md):
-//   - an openvdb::Vec2SGrid named boundsGridName(fccGridName) (OpenVDB 10 has no Vec2SGrid alias and
-//     does not register the type: BoundsGrid below is Grid<Vec2STree>, "Tree_vec2s_5_4_3", registered
-//     by fcc::initializeVdb());
+//   - a Vec2f grid (tree type Tree_vec2s_5_4_3, registered by fcc::initializeVdb) named
+//     boundsGridName(fccGridName);
 //   - voxel b = (bx, by, bz) is the brick of packed voxels [8b, 8b + 8)^3, i.e. the box
 //     [16b, 16b + 16]^3 of the lattice's index space (a VDB leaf of the FCC grid, present or not);
 //   - its value (lo, hi) bounds the spline there: lo <= s(xyz) <= hi for every xyz in that closed box,

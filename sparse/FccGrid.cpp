@@ -1,8 +1,8 @@
 #include "FccGrid.h"
 
-#include <mutex>
-
 #include "BrickBounds.h"
+
+#include <mutex>
 
 namespace fcc {
 
@@ -11,7 +11,7 @@ void initializeVdb() {
   std::call_once(once, [] {
     openvdb::initialize();
     if (!FccGrid::isRegistered()) FccGrid::registerGrid();
-    if (!BoundsGrid::isRegistered()) BoundsGrid::registerGrid();
+    if (!BoundsGrid::isRegistered()) BoundsGrid::registerGrid();  // OpenVDB registers no Vec2 grids
   });
 }
 

@@ -26,6 +26,7 @@
 #define FCC_MAKE_IVEC3(x, y, z) glm::ivec3(x, y, z)
 #define FCC_MAKE_VEC4(x, y, z, w) glm::vec4(x, y, z, w)
 #define FCC_FLOOR3(v) glm::floor(v)
+#define FCC_ABS(x) std::abs(x)
 #define FCC_IVEC3_FROM_VEC3(v) glm::ivec3(v)
 #define FCC_VEC3_FROM_IVEC3(v) glm::vec3(v)
 #define FCC_CONST_INT_ARRAY(name, n) static constexpr int name[n] =
@@ -37,6 +38,7 @@ namespace fcc {
 namespace spline {
 using glm::max;
 using glm::min;
+using std::sqrt;
 #elif defined(__OPENCL_VERSION__)
 #define FCC_OPENCL 1
 #define FCC_FUNC
@@ -47,6 +49,7 @@ using glm::min;
 #define FCC_MAKE_IVEC3(x, y, z) ((int3)((x), (y), (z)))
 #define FCC_MAKE_VEC4(x, y, z, w) ((float4)((x), (y), (z), (w)))
 #define FCC_FLOOR3(v) floor(v)
+#define FCC_ABS(x) fabs(x)
 #define FCC_IVEC3_FROM_VEC3(v) convert_int3(v)
 #define FCC_VEC3_FROM_IVEC3(v) convert_float3(v)
 #define FCC_CONST_INT_ARRAY(name, n) __constant int name[n] =
@@ -63,6 +66,7 @@ using glm::min;
 #define FCC_MAKE_IVEC3(x, y, z) ivec3(x, y, z)
 #define FCC_MAKE_VEC4(x, y, z, w) vec4(x, y, z, w)
 #define FCC_FLOOR3(v) floor(v)
+#define FCC_ABS(x) abs(x)
 #define FCC_IVEC3_FROM_VEC3(v) ivec3(v)
 #define FCC_VEC3_FROM_IVEC3(v) vec3(v)
 #define FCC_CONST_INT_ARRAY(name, n) const int name[n] =

@@ -5,9 +5,11 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "FccSpline.h"
+#include "FccRay.h"
 
 namespace fcc::spline {
 

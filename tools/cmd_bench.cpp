@@ -1,17 +1,16 @@
-// fccvdb bench SUBCOMMAND: benchmarks as programs (docs/BENCHMARKS.md). Each benchmark lives in its own
-// tools/cmd_bench_*.cpp and registers itself on the `bench` app here.
+// fccvdb bench …: benchmarks as programs (never timed unit tests); each kind lives in its own
+// cmd_bench_*.cpp and registers itself under `bench`.
 #include "Command.h"
 
 namespace fcc::cli {
 
 Command addBenchCommand(CLI::App& parent) {
-  CLI::App* app = parent.add_subcommand("bench", "Benchmarks: time a stage of the pipeline on this machine (see docs/BENCHMARKS.md)");
+  CLI::App* app = parent.add_subcommand("bench", "Benchmarks: render (frames per second over a camera orbit), preprocess (prefilter and brick bounds, samples per second)");
   app->require_subcommand(1, 1);
-  auto benchmarks = std::make_shared<std::vector<Command>>();
-  benchmarks->push_back(addBenchPreprocessCommand(*app));
-  return {app, [benchmarks]() {
-            for (const Command& c : *benchmarks)
-              if (c.app->parsed()) return c.run();
+  const std::vector<Command> kinds = {addBenchRenderCommand(*app), addBenchPreprocessCommand(*app)};
+  return {app, [kinds]() {
+            for (const auto& k : kinds)
+              if (k.app->parsed()) return k.run();
             return 2;
           }};
 }

@@ -157,4 +157,61 @@ void GlBuffer::read(void* out, std::size_t bytes, std::size_t offset) const {
   checkGl("reading a buffer");
 }
 
+void GlBuffer::write(const void* data, std::size_t bytes, std::size_t offset) {
+  if (bytes == 0) return;
+  if (offset + bytes > bytes_)
+    throw GlError("writing " + std::to_string(bytes) + " bytes at " + std::to_string(offset) + " of a " +
+                  std::to_string(bytes_) + "-byte buffer");
+  glNamedBufferSubData(id_, GLintptr(offset), GLsizeiptr(bytes), data);
+  checkGl("writing a buffer");
+}
+
+void GlBuffer::clear() {
+  const GLuint zero = 0;
+  glClearNamedBufferData(id_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  checkGl("clearing a buffer");
+}
+
+GlTexture2D::GlTexture2D(GLenum internalFormat, int width, int height)
+    : format_(internalFormat), width_(width), height_(height) {
+  glCreateTextures(GL_TEXTURE_2D, 1, &id_);
+  glTextureStorage2D(id_, 1, internalFormat, width, height);
+  checkGl("creating a " + std::to_string(width) + "x" + std::to_string(height) + " texture");
+}
+
+GlTexture2D::GlTexture2D(GlTexture2D&& other) noexcept
+    : id_(std::exchange(other.id_, 0)), format_(other.format_), width_(other.width_), height_(other.height_) {}
+
+GlTexture2D& GlTexture2D::operator=(GlTexture2D&& other) noexcept {
+  if (this != &other) {
+    if (id_) glDeleteTextures(1, &id_);
+    id_ = std::exchange(other.id_, 0);
+    format_ = other.format_;
+    width_ = other.width_;
+    height_ = other.height_;
+  }
+  return *this;
+}
+
+GlTexture2D::~GlTexture2D() {
+  if (id_) glDeleteTextures(1, &id_);
+}
+
+void GlTexture2D::bindImage(GLuint unit, GLenum access) const {
+  glBindImageTexture(unit, id_, 0, GL_FALSE, 0, access, format_);
+}
+
+void GlTexture2D::clear(const float* value) {
+  const GLenum format = format_ == GL_R32F ? GL_RED : GL_RGBA;
+  glClearTexImage(id_, 0, format, GL_FLOAT, value);
+  checkGl("clearing a texture");
+}
+
+std::vector<float> GlTexture2D::read(GLenum format, int components) const {
+  std::vector<float> out(std::size_t(width_) * height_ * components);
+  glGetTextureImage(id_, 0, format, GL_FLOAT, GLsizei(out.size() * sizeof(float)), out.data());
+  checkGl("reading a texture");
+  return out;
+}
+
 }  // namespace fcc

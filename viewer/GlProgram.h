@@ -80,10 +80,43 @@ class GlBuffer {
   void read(std::vector<T>& out) const {
     read(out.data(), out.size() * sizeof(T));
   }
+  void write(const void* data, std::size_t bytes, std::size_t offset = 0);
+  template <class T>
+  void write(const std::vector<T>& data) {
+    write(data.data(), data.size() * sizeof(T));
+  }
+  void clear();  // every byte zero
 
  private:
   GLuint id_ = 0;
   std::size_t bytes_ = 0;
+};
+
+// A 2D texture with immutable storage of one level (glTextureStorage2D), e.g. GL_RGBA32F, used as a
+// compute shader image.
+class GlTexture2D {
+ public:
+  GlTexture2D() = default;
+  GlTexture2D(GLenum internalFormat, int width, int height);
+  GlTexture2D(GlTexture2D&& other) noexcept;
+  GlTexture2D& operator=(GlTexture2D&& other) noexcept;
+  GlTexture2D(const GlTexture2D&) = delete;
+  GlTexture2D& operator=(const GlTexture2D&) = delete;
+  ~GlTexture2D();
+
+  GLuint id() const { return id_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  void bindImage(GLuint unit, GLenum access) const;
+  // Fills every texel with `value` (components as the format has them).
+  void clear(const float* value);
+  // All texels as floats, `components` per texel (GL_RED: 1, GL_RGBA: 4), row 0 first.
+  std::vector<float> read(GLenum format, int components) const;
+
+ private:
+  GLuint id_ = 0;
+  GLenum format_ = 0;
+  int width_ = 0, height_ = 0;
 };
 
 }  // namespace fcc

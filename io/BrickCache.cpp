@@ -1,0 +1,88 @@
+#include "BrickCache.h"
+
+#include <cstring>
+
+namespace fcc::io {
+namespace {
+
+uint64_t brickKey(const glm::ivec3& b) {
+  // 21 bits per axis covers +-2^20 bricks = +-2^24 packed voxels, beyond any grid that fits a disk.
+  const auto u = [](int v) { return uint64_t(uint32_t(v) & 0x1FFFFFu); };
+  return u(b.x) | (u(b.y) << 21) | (u(b.z) << 42);
+}
+
+}  // namespace
+
+BrickCache::BrickCache(const BrickStore& store, std::size_t budgetBytes) : store_(store), budgetBytes_(budgetBytes) {}
+
+std::shared_ptr<const BrickValues> BrickCache::leafValues(const glm::ivec3& brick) {
+  const uint64_t key = brickKey(brick);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = entries_.find(key);
+    if (it != entries_.end()) {
+      lru_.splice(lru_.begin(), lru_, it->second.lru);
+      ++hits_;
+      return it->second.values;
+    }
+  }
+  auto values = std::make_shared<BrickValues>();
+  store_.readBrick(brick, *values);  // decoding happens outside the lock
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++decoded_;
+  auto [it, inserted] = entries_.try_emplace(key);
+  if (!inserted) return it->second.values;  // another thread decoded it meanwhile
+  lru_.push_front(key);
+  it->second = Entry{values, lru_.begin()};
+  while (!lru_.empty() && entries_.size() * kBytesPerBrick > budgetBytes_) {
+    entries_.erase(lru_.back());
+    lru_.pop_back();
+  }
+  return values;
+}
+
+std::size_t BrickCache::bytesUsed() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return entries_.size() * kBytesPerBrick;
+}
+
+uint64_t BrickCache::decodedCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return decoded_;
+}
+
+uint64_t BrickCache::hitCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return hits_;
+}
+
+void assembleHaloBlock(const BrickStore& store, BrickCache& cache, const glm::ivec3& brick, float* out) {
+  constexpr int D = kBrickPackedDim, H = kHaloBlockDim;
+  // The 27 bricks the block touches: the centre and its neighbours (only their border layer is used).
+  for (int nz = -1; nz <= 1; ++nz)
+    for (int ny = -1; ny <= 1; ++ny)
+      for (int nx = -1; nx <= 1; ++nx) {
+        const glm::ivec3 n(nx, ny, nz);
+        // Block coordinates covered by this neighbour: [lo, hi) per axis.
+        glm::ivec3 lo, hi;
+        for (int a = 0; a < 3; ++a) {
+          lo[a] = n[a] < 0 ? 0 : (n[a] == 0 ? 1 : D + 1);
+          hi[a] = n[a] < 0 ? 1 : (n[a] == 0 ? D + 1 : H);
+        }
+        const glm::ivec3 neighbour = brick + n;
+        std::shared_ptr<const BrickValues> values;
+        openvdb::Vec4f constant(0.0f);
+        if (store.hasLeaf(neighbour)) values = cache.leafValues(neighbour);
+        else constant = store.constantValue(neighbour);
+        for (int z = lo.z; z < hi.z; ++z)
+          for (int y = lo.y; y < hi.y; ++y)
+            for (int x = lo.x; x < hi.x; ++x) {
+              // Block voxel (x, y, z) is packed voxel 8b - 1 + (x, y, z); its place in the neighbour:
+              const int lx = (x - 1) - n.x * D, ly = (y - 1) - n.y * D, lz = (z - 1) - n.z * D;
+              const openvdb::Vec4f& v = values ? (*values)[(lx * D + ly) * D + lz] : constant;
+              std::memcpy(out + 4 * ((z * H + y) * H + x), v.asPointer(), 4 * sizeof(float));
+            }
+      }
+}
+
+}  // namespace fcc::io

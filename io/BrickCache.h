@@ -1,0 +1,53 @@
+// The host cache of decoded bricks: a least-recently-used map from brick coordinates to decoded
+// values, bounded in bytes (`--host-cache`). OpenVDB's tree stays the index only (io/BrickStore.h).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <unordered_map>
+
+#include "BrickStore.h"
+
+namespace fcc::io {
+
+class BrickCache {
+ public:
+  // Bytes one cached brick costs, with its bookkeeping.
+  static constexpr std::size_t kBytesPerBrick = sizeof(BrickValues) + 96;
+
+  BrickCache(const BrickStore& store, std::size_t budgetBytes);
+
+  // The decoded values of a brick that has a leaf, from the cache or decoded now. Thread-safe; the
+  // returned values stay valid while held, even if evicted meanwhile.
+  std::shared_ptr<const BrickValues> leafValues(const glm::ivec3& brick);
+
+  std::size_t budgetBytes() const { return budgetBytes_; }
+  std::size_t bytesUsed() const;
+  uint64_t decodedCount() const;  // bricks decoded from the file so far
+  uint64_t hitCount() const;
+
+ private:
+  struct Entry {
+    std::shared_ptr<const BrickValues> values;
+    std::list<uint64_t>::iterator lru;
+  };
+  const BrickStore& store_;
+  std::size_t budgetBytes_;
+  mutable std::mutex mutex_;
+  std::list<uint64_t> lru_;  // most recent first
+  std::unordered_map<uint64_t, Entry> entries_;
+  uint64_t decoded_ = 0, hits_ = 0;
+};
+
+// The packed voxels [8b - 1, 8b + 9)^3 of brick b (the brick and the one-voxel halo its cells'
+// stencils reach), x fastest, as four floats each: what one pool slot of the renderer holds.
+inline constexpr int kHaloBlockDim = kBrickPackedDim + 2;
+inline constexpr int kHaloBlockVoxels = kHaloBlockDim * kHaloBlockDim * kHaloBlockDim;
+void assembleHaloBlock(const BrickStore& store, BrickCache& cache, const glm::ivec3& brick, float* out);
+
+}  // namespace fcc::io

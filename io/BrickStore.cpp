@@ -1,0 +1,137 @@
+#include "BrickStore.h"
+
+#include <openvdb/tools/Morphology.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "VdbFile.h"
+#include "sparse/Error.h"
+
+namespace fcc::io {
+namespace {
+
+using LeafT = FccTree::LeafNodeType;
+static_assert(LeafT::DIM == kBrickPackedDim, "a brick is one leaf of the FCC tree");
+
+openvdb::Coord leafOrigin(const glm::ivec3& brick) {
+  return openvdb::Coord(brick.x * kBrickPackedDim, brick.y * kBrickPackedDim, brick.z * kBrickPackedDim);
+}
+
+glm::dmat4 affineWorldFromIndex(const openvdb::math::Transform& xform, const std::string& path) {
+  if (!xform.isLinear())
+    throw InputError(path + ": the FCC grid's transform (" + xform.mapType() +
+                     ") is not affine; the renderer supports linear transforms only");
+  // OpenVDB multiplies row vectors (p' = p * M): the column-vector matrix is M transposed.
+  const openvdb::Mat4d m = xform.baseMap()->getAffineMap()->getMat4();
+  glm::dmat4 out;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out[r][c] = m(r, c);  // glm: out[column][row]; column r = row r of m
+  return out;
+}
+
+// Bounds for a file written before bounds grids existed: every brick within one brick of a leaf or an
+// active tile may vary, over the whole float range (nothing is skipped, nothing is read).
+BoundsGrid::Ptr conservativeBounds(const FccGrid& grid) {
+  const float bg = grid.background()[0];
+  auto bounds = BoundsGrid::create(openvdb::Vec2f(bg, bg));
+  const float inf = std::numeric_limits<float>::max();
+  auto acc = bounds->getAccessor();
+  for (auto it = grid.tree().cbeginLeaf(); it; ++it) {
+    const openvdb::Coord b = it->origin() >> 3;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) acc.setValueOn(b.offsetBy(dx, dy, dz), openvdb::Vec2f(-inf, inf));
+  }
+  return bounds;
+}
+
+}  // namespace
+
+BrickStore::BrickStore(const std::string& path, const std::string& gridName) : path_(path) {
+  guardVdbFile(path, GuardDepth::Topology);
+  initializeVdb();
+  openvdb::GridPtrVecPtr grids;
+  try {
+    openvdb::io::File file(path);
+    file.setCopyMaxBytes(0);  // map the file itself rather than a temporary copy of it
+    file.open(/*delayLoad=*/true);
+    grids = file.getGrids();
+    file.close();  // delay-loaded buffers keep their own mapping of the file
+  } catch (const std::exception& e) {
+    throw InputError(path + ": OpenVDB cannot read it: " + e.what());
+  }
+  grid_ = findFccGrid(*grids, path, gridName);
+  if (storesSamples(*grid_))
+    throw InputError(path + ": grid '" + grid_->getName() +
+                     "' stores raw samples (converted with --no-prefilter); the renderer needs spline "
+                     "coefficients: convert again without --no-prefilter");
+  background_ = grid_->background()[0];
+  worldFromIndex_ = affineWorldFromIndex(grid_->transform(), path);
+
+  for (const auto& g : *grids)
+    if (g->getName() == boundsGridName(grid_->getName()))
+      if (auto b = openvdb::gridPtrCast<BoundsGrid>(g)) {
+        b->tree().readNonresidentBuffers();
+        bounds_ = b;
+        boundsFromFile_ = true;
+      }
+  if (!bounds_) bounds_ = conservativeBounds(*grid_);
+
+  activeBrickBox_ = bounds_->evalActiveVoxelBoundingBox();
+  valueMin_ = valueMax_ = background_;
+  for (auto it = bounds_->cbeginValueOn(); it; ++it) {
+    valueMin_ = std::min(valueMin_, (*it)[0]);
+    valueMax_ = std::max(valueMax_, (*it)[1]);
+  }
+  if (!boundsFromFile_) {  // the recorded sample range is the best guess there is
+    const auto lo = grid_->getMetadata<openvdb::FloatMetadata>(meta::kSampleMin);
+    const auto hi = grid_->getMetadata<openvdb::FloatMetadata>(meta::kSampleMax);
+    valueMin_ = lo ? lo->value() : background_;
+    valueMax_ = hi ? hi->value() : background_;
+  }
+}
+
+void BrickStore::worldBounds(glm::dvec3& lo, glm::dvec3& hi) const {
+  // Topology only (value masks), so no leaf buffer is read.
+  openvdb::CoordBBox packed = grid_->evalActiveVoxelBoundingBox();
+  if (packed.empty()) packed = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(0));
+  const glm::dvec3 indexLo = glm::dvec3(packed.min().x(), packed.min().y(), packed.min().z()) * 2.0;
+  const glm::dvec3 indexHi = glm::dvec3(packed.max().x(), packed.max().y(), packed.max().z()) * 2.0 + 1.0;
+  lo = glm::dvec3(std::numeric_limits<double>::max());
+  hi = -lo;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 xyz((corner & 1) ? indexHi.x : indexLo.x, (corner & 2) ? indexHi.y : indexLo.y,
+                         (corner & 4) ? indexHi.z : indexLo.z);
+    const glm::dvec3 pWorld = glm::dvec3(worldFromIndex_ * glm::dvec4(xyz, 1.0));
+    lo = glm::min(lo, pWorld);
+    hi = glm::max(hi, pWorld);
+  }
+}
+
+bool BrickStore::hasLeaf(const glm::ivec3& brick) const {
+  return grid_->tree().probeConstLeaf(leafOrigin(brick)) != nullptr;
+}
+
+openvdb::Vec4f BrickStore::constantValue(const glm::ivec3& brick) const {
+  // Only called where no leaf exists, so getValue reads a tile or the background and loads nothing.
+  return grid_->tree().getValue(leafOrigin(brick));
+}
+
+bool BrickStore::readBrick(const glm::ivec3& brick, BrickValues& out) const {
+  const LeafT* leaf = grid_->tree().probeConstLeaf(leafOrigin(brick));
+  if (!leaf) {
+    out.fill(constantValue(brick));
+    return false;
+  }
+  // Copying a buffer that is still out of core copies only its file position; reading the copy
+  // decodes into the copy and leaves the tree's leaf out of core.
+  const LeafT::Buffer copy(leaf->buffer());
+  const openvdb::Vec4f* values = copy.data();
+  if (!values) throw InputError(path_ + ": cannot decode the brick at packed voxel " + std::to_string(brick.x * kBrickPackedDim) + "," + std::to_string(brick.y * kBrickPackedDim) + "," + std::to_string(brick.z * kBrickPackedDim));
+  std::memcpy(out.data(), values, sizeof(BrickValues));
+  return true;
+}
+
+}  // namespace fcc::io

@@ -1,0 +1,64 @@
+// An FCC grid opened out of core. OpenVDB's delayed-loading tree is kept only as the index (which
+// bricks exist, tile values, the transform); a brick's values are decoded on demand into the caller's
+// memory and never retained by OpenVDB. (Debian's OpenVDB 10.0.1 keeps a delay-loaded leaf buffer
+// once it is read; decoding a *copy* of the still-unread buffer leaves the tree's leaf untouched.)
+#pragma once
+
+#include <glm/glm.hpp>
+#include <openvdb/openvdb.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "sparse/BrickBounds.h"
+#include "sparse/FccGrid.h"
+
+namespace fcc::io {
+
+// The 8^3 packed voxels of one brick in OpenVDB's leaf order: z fastest, index (x * 8 + y) * 8 + z.
+using BrickValues = std::array<openvdb::Vec4f, kBrickPackedDim * kBrickPackedDim * kBrickPackedDim>;
+
+class BrickStore {
+ public:
+  // Opens `gridName` (empty: the first FCC grid) of `path` with delayed loading, after a guarded read
+  // of its topology (io/VdbFile.h). Its bounds grid is read fully (it is 1/512 of the data); a file
+  // without one gets conservative bounds (every brick near data, the whole value range).
+  // Throws InputError for a file without an FCC grid (saying to run convert), one that stores raw
+  // samples, or a transform that is not affine.
+  BrickStore(const std::string& path, const std::string& gridName = {});
+
+  const std::string& path() const { return path_; }
+  const FccGrid& index() const { return *grid_; }  // leaf buffers stay out of core: do not read values
+  const BoundsGrid& bounds() const { return *bounds_; }
+  bool boundsFromFile() const { return boundsFromFile_; }
+  float background() const { return background_; }
+  // worldFromIndex of the lattice's index space (an affine map), column-vector convention.
+  const glm::dmat4& worldFromIndex() const { return worldFromIndex_; }
+  // Bricks of the bounds grid whose spline may vary, as an inclusive box of brick coordinates.
+  const openvdb::CoordBBox& activeBrickBox() const { return activeBrickBox_; }
+  // World-space bounding box of the active data (for framing a camera).
+  void worldBounds(glm::dvec3& lo, glm::dvec3& hi) const;
+  float valueMin() const { return valueMin_; }  // range of the spline (the bounds' hull)
+  float valueMax() const { return valueMax_; }
+
+  // The brick's packed voxels: the leaf's values if it has one (decoded from the file), else the
+  // tile value or the background everywhere. Thread-safe. Returns true if it was a leaf.
+  bool readBrick(const glm::ivec3& brick, BrickValues& out) const;
+  // True if brick has a leaf in the file (its values need decoding).
+  bool hasLeaf(const glm::ivec3& brick) const;
+  // The constant value of a brick without a leaf.
+  openvdb::Vec4f constantValue(const glm::ivec3& brick) const;
+
+ private:
+  std::string path_;
+  FccGrid::Ptr grid_;
+  BoundsGrid::Ptr bounds_;
+  bool boundsFromFile_ = false;
+  float background_ = 0.0f;
+  glm::dmat4 worldFromIndex_{1.0};
+  openvdb::CoordBBox activeBrickBox_;
+  float valueMin_ = 0.0f, valueMax_ = 0.0f;
+};
+
+}  // namespace fcc::io

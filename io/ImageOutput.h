@@ -1,0 +1,25 @@
+// Writing rendered frames: OpenEXR (float, zip) with channels R, G, B, A (premultiplied), Z (distance
+// along the unit ray, +inf on a miss) and N.X, N.Y, N.Z (unit world gradient direction); PNG (8-bit
+// shaded colour over a background). Both through a temporary file renamed into place.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+namespace fcc::io {
+
+struct RenderedImage {
+  int width = 0, height = 0;
+  const std::vector<float>* rgba = nullptr;         // 4 per pixel, row 0 at the top
+  const std::vector<float>* normalDepth = nullptr;  // 4 per pixel: N.X, N.Y, N.Z, Z
+};
+
+// By extension: ".exr" or ".png" (case-insensitive); anything else is a ValueError listing both.
+void writeRenderedImage(const std::string& path, const RenderedImage& image, const glm::vec3& background);
+
+// Throws ValueError unless `path` ends in .exr or .png.
+void checkImageExtension(const std::string& path);
+
+}  // namespace fcc::io

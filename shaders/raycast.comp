@@ -1,0 +1,234 @@
+#version 450 core
+// The brick-paged FCC isosurface raycaster: one invocation per pixel, one pass per dispatch.
+//
+// Rays walk the bricks of the page table (skipping whole nodes and bricks whose bounds exclude the
+// isovalue), then the unit cells of a resident brick, then the tetrahedral pieces of each cell; in a
+// piece whose BB-coefficients straddle the isovalue the first root of the cubic along the ray is found
+// exactly (sparse/FccRay.h). A ray that reaches a brick not resident in the pool requests it (and a
+// few bricks beyond it), saves where it stopped, and resumes there in the next pass, so a frame whose
+// working set exceeds the pool completes in several passes. Headers are inlined by fcc_embed.
+#define FCC_GLSL 1
+#include "FccSpline.h"
+#include "FccRay.h"
+#include "pool.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(std430, binding = 1) readonly buffer PageTable { uint pageEntries[]; };
+// Per node of 16^3 bricks (relative to uBrickMin): 0 if no brick in it needs evaluation.
+layout(std430, binding = 2) readonly buffer NodeTable { uint nodeEntries[]; };
+// Bricks requested this pass: count, then brick indices (bit 31 set for look-ahead requests).
+layout(std430, binding = 3) buffer Requests { uint requestCount; uint requests[]; };
+// One bit per brick: requested already this pass.
+layout(std430, binding = 4) buffer RequestBits { uint requestBits[]; };
+// Per slot: the last pass that read it (for least-recently-used eviction).
+layout(std430, binding = 5) buffer SlotUse { uint slotLastUse[]; };
+layout(std430, binding = 6) readonly buffer SlotBounds { vec2 slotBounds[]; };  // see pool.glsl
+
+layout(binding = 0, rgba32f) uniform writeonly image2D uColor;        // premultiplied shaded colour
+layout(binding = 1, rgba32f) uniform writeonly image2D uNormalDepth;  // unit gradient (world), depth
+layout(binding = 2, r32f) uniform image2D uResume;                    // t to resume from; < 0: done
+
+uniform ivec2 uResolution;
+uniform vec3 uEye;            // world
+uniform vec3 uForward;        // world, unit
+uniform vec3 uRight;          // world, scaled by tan(fov/2) * aspect
+uniform vec3 uUp;             // world, scaled by tan(fov/2)
+uniform mat4 uIndexFromWorld;
+uniform mat3 uNormalFromIndex;  // world gradient from index-space gradient: transpose of indexFromWorld
+uniform float uIso;
+uniform ivec3 uBrickMin;
+uniform ivec3 uBrickDims;
+uniform ivec3 uNodeDims;
+uniform uint uPass;
+uniform uint uRequestCapacity;
+uniform int uLookahead;       // bricks requested past the first missing one
+uniform int uSkipEmpty;       // 0: evaluate every resident brick (for measuring the skipping)
+uniform int uFiniteDifferenceNormals;  // 1: central differences of the value (the paper's Table 5 baseline)
+uniform vec3 uSurfaceColor;
+uniform vec3 uLightDir;       // world, unit, towards the light
+
+const uint kSkip = 0xFFFFFFFFu;
+const uint kMissing = 0xFFFFFFFEu;
+const float kBrickSites = 16.0;
+
+float valueAt(vec3 xyz) {
+  FccFrame frame = fcc_locate(xyz);
+  return fcc_value(gatherStencil(frame), frame);
+}
+
+// Central differences of the spline's value, six evaluations; the points are kept inside the brick
+// (whose halo is what the pool holds).
+vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick) {
+  const float h = 0.125;
+  vec3 lo = vec3(brick * 16) + h, hi = vec3(brick * 16 + 16) - h;
+  vec3 p = clamp(xyz, lo, hi);
+  return vec3(valueAt(p + vec3(h, 0, 0)) - valueAt(p - vec3(h, 0, 0)),
+              valueAt(p + vec3(0, h, 0)) - valueAt(p - vec3(0, h, 0)),
+              valueAt(p + vec3(0, 0, h)) - valueAt(p - vec3(0, 0, h))) / (2.0 * h);
+}
+
+void request(uint brickIndex, bool lookahead) {
+  uint bit = 1u << (brickIndex & 31u);
+  uint old = atomicOr(requestBits[brickIndex >> 5], bit);
+  if ((old & bit) != 0u) return;
+  uint at = atomicAdd(requestCount, 1u);
+  if (at < uRequestCapacity) requests[at] = brickIndex | (lookahead ? 0x80000000u : 0u);
+}
+
+// Slab test of the ray against a box; returns (tNear, tFar).
+vec2 clipBox(vec3 o, vec3 invD, vec3 lo, vec3 hi) {
+  vec3 ta = (lo - o) * invD, tb = (hi - o) * invD;
+  vec3 tmin = min(ta, tb), tmax = max(ta, tb);
+  return vec2(max(max(tmin.x, tmin.y), tmin.z), min(min(tmax.x, tmax.y), tmax.z));
+}
+
+struct Hit {
+  float t;
+  vec3 gradient;  // index space
+};
+
+// The first hit in the resident brick b between ta and tb, walking its unit cells.
+bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout Hit hit) {
+  selectSlot(slot, b);
+  uint boundsBase = slot * uint(kSlotVoxels);
+  ivec3 cellLo = b * 16, cellHi = cellLo + 15;
+  float tm = 0.5 * (ta + tb);
+  // The starting cell: where the ray is just past ta (clamped: rounding may put it a hair outside).
+  vec3 pStart = o + min(ta + 1e-4 * (tb - ta), tm) * d;
+  ivec3 cell = clamp(ivec3(floor(pStart)), cellLo, cellHi);
+  ivec3 stepDir = ivec3(sign(d));
+  vec3 nextBoundary = vec3(cell) + vec3(greaterThan(d, vec3(0.0)));
+  vec3 tMax = (nextBoundary - o) * invD;
+  vec3 tDelta = abs(invD);
+  float tCell = ta;
+  for (int iter = 0; iter < 64; ++iter) {
+    float tExit = min(min(min(tMax.x, tMax.y), tMax.z), tb);
+    ivec3 voxel = (cell - cellLo) >> 1;
+    vec2 cellBounds = slotBounds[boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
+    if (tExit > tCell && (uSkipEmpty == 0 || (cellBounds.x <= uIso && uIso <= cellBounds.y))) {
+      vec4 splits = fcc_cell_splits(cell, o, d, tCell, tExit);
+      float s0 = tCell;
+      for (int k = 0; k < 4 && s0 < tExit; ++k) {
+        float s1 = k == 0 ? splits.x : (k == 1 ? splits.y : (k == 2 ? splits.z : splits.w));
+        if (k == 3) s1 = tExit;
+        if (s1 <= s0) continue;
+        FccFrame frame = fcc_locate(o + (0.5 * (s0 + s1)) * d);
+        FccCubic cubic = fcc_cubic(gatherStencil(frame), frame.type);
+        FccRange range = fcc_cubic_range(cubic);
+        if (range.lo <= uIso && uIso <= range.hi) {
+          float u = fcc_first_root_bernstein3(fcc_segment_bernstein(cubic, frame, o, d, s0, s1, uIso));
+          if (u >= 0.0) {
+            hit.t = s0 + u * (s1 - s0);
+            vec3 xyz = o + hit.t * d;
+            if (uFiniteDifferenceNormals != 0) {
+              hit.gradient = finiteDifferenceGradient(xyz, b);
+            } else {
+              // The hit may round into the neighbouring piece; its gradient is the same (C1).
+              FccFrame hitFrame = fcc_locate(xyz);
+              hit.gradient = fcc_gradient(gatherStencil(hitFrame), hitFrame);
+            }
+            return true;
+          }
+        }
+        s0 = s1;
+      }
+    }
+    if (tExit >= tb) break;
+    tCell = tExit;
+    if (tMax.x <= tMax.y && tMax.x <= tMax.z) {
+      cell.x += stepDir.x;
+      tMax.x += tDelta.x;
+    } else if (tMax.y <= tMax.z) {
+      cell.y += stepDir.y;
+      tMax.y += tDelta.y;
+    } else {
+      cell.z += stepDir.z;
+      tMax.z += tDelta.z;
+    }
+    if (any(lessThan(cell, cellLo)) || any(greaterThan(cell, cellHi))) break;
+  }
+  return false;
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(pixel, uResolution))) return;
+  float tResume = imageLoad(uResume, pixel).x;
+  if (tResume < 0.0) return;
+
+  // Pinhole camera, rays through pixel centres, row 0 at the top.
+  vec2 ndc = (vec2(pixel) + 0.5) / vec2(uResolution) * 2.0 - 1.0;
+  vec3 dirWorld = normalize(uForward + ndc.x * uRight - ndc.y * uUp);
+  // Index space: the same parameter t measures world distance along the unit world direction.
+  vec3 o = (uIndexFromWorld * vec4(uEye, 1.0)).xyz;
+  vec3 d = mat3(uIndexFromWorld) * dirWorld;
+  // No zero components: keeps the slab and DDA arithmetic free of 0 * inf.
+  const float kTiny = 1e-20;
+  d = vec3(abs(d.x) < kTiny ? kTiny : d.x, abs(d.y) < kTiny ? kTiny : d.y, abs(d.z) < kTiny ? kTiny : d.z);
+  vec3 invD = 1.0 / d;
+
+  vec3 boxLo = vec3(uBrickMin) * kBrickSites, boxHi = vec3(uBrickMin + uBrickDims) * kBrickSites;
+  vec2 span = clipBox(o, invD, boxLo, boxHi);
+  float t = max(max(span.x, 0.0), tResume);
+  float tEnd = span.y;
+  bool found = false;
+  bool stopped = false;
+  int lookahead = uLookahead;
+  Hit hit;
+  hit.t = 0.0;
+  hit.gradient = vec3(0.0);
+
+  // Brick DDA (re-seeded after every node skip).
+  int guard = 0;
+  while (t < tEnd && guard < 4096) {
+    ++guard;
+    vec3 p = o + t * d;
+    ivec3 b = clamp(ivec3(floor(p / kBrickSites)), uBrickMin, uBrickMin + uBrickDims - 1);
+    ivec3 rel = b - uBrickMin;
+    ivec3 node = rel >> 4;
+    if (uSkipEmpty != 0 && nodeEntries[(node.z * uNodeDims.y + node.y) * uNodeDims.x + node.x] == 0u) {
+      vec3 nodeLo = vec3(uBrickMin + node * 16) * kBrickSites;
+      float tExitNode = clipBox(o, invD, nodeLo, nodeLo + 16.0 * kBrickSites).y;
+      t = max(tExitNode, t + 1e-5 * abs(t) + 1e-6);
+      continue;
+    }
+    vec3 brickLo = vec3(b) * kBrickSites;
+    float tExitBrick = min(clipBox(o, invD, brickLo, brickLo + kBrickSites).y, tEnd);
+    uint index = uint((rel.z * uBrickDims.y + rel.y) * uBrickDims.x + rel.x);
+    uint entry = pageEntries[index];
+    if (entry == kMissing) {
+      request(index, stopped);
+      if (!stopped) {
+        stopped = true;
+        imageStore(uResume, pixel, vec4(t));
+      } else if (--lookahead < 0) {
+        break;
+      }
+    } else if (entry != kSkip && !stopped) {
+      slotLastUse[entry] = uPass;
+      if (marchBrick(b, entry, o, d, invD, t, tExitBrick, hit)) {
+        found = true;
+        break;
+      }
+    }
+    t = max(tExitBrick, t + 1e-5 * abs(t) + 1e-6);
+  }
+  if (stopped && !found) return;  // resumes next pass
+
+  imageStore(uResume, pixel, vec4(-1.0));
+  if (!found) {
+    imageStore(uColor, pixel, vec4(0.0));
+    imageStore(uNormalDepth, pixel, vec4(0.0, 0.0, 0.0, 1.0 / 0.0));
+    return;
+  }
+  vec3 n = uNormalFromIndex * hit.gradient;
+  float len = length(n);
+  n = len > 0.0 ? n / len : -dirWorld;
+  // Two-sided Lambert with a little ambient light.
+  vec3 nFacing = dot(n, dirWorld) > 0.0 ? -n : n;
+  float diffuse = max(dot(nFacing, uLightDir), 0.0);
+  vec3 color = uSurfaceColor * (0.15 + 0.85 * diffuse);
+  imageStore(uColor, pixel, vec4(color, 1.0));
+  imageStore(uNormalDepth, pixel, vec4(n, hit.t));
+}

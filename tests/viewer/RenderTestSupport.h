@@ -1,0 +1,75 @@
+// Shared by the renderer tests: a headless GL context per test suite, writing an FCC file from a
+// sample field, and rendering a file through the library (as `fccvdb render` does).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "io/BrickStore.h"
+#include "io/VdbFile.h"
+#include "sparse/FccBuilder.h"
+#include "sparse/SampleField.h"
+#include "viewer/EglContext.h"
+#include "viewer/Raycaster.h"
+
+namespace fcc::test {
+
+// Holds one EGL context for a whole test suite; tests skip without one, or fail when CI is set.
+class GlSuite : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    try {
+      context() = std::make_unique<EglContext>();
+    } catch (const Error& e) {
+      unavailable() = e.what();
+    }
+  }
+  static void TearDownTestSuite() { context().reset(); }
+  void SetUp() override {
+    if (context()) return;
+    if (std::getenv("CI")) FAIL() << "EGL/OpenGL 4.5 is required when CI is set: " << unavailable();
+    GTEST_SKIP() << "no EGL/OpenGL 4.5: " << unavailable();
+  }
+  static std::unique_ptr<EglContext>& context() {
+    static std::unique_ptr<EglContext> c;
+    return c;
+  }
+  static std::string& unavailable() {
+    static std::string s;
+    return s;
+  }
+};
+
+// Builds the FCC grid of `field` (prefiltered), gives it worldFromIndex = translate(origin) *
+// scale(scale), and writes it to `path`.
+inline void writeFccFile(const std::string& path, const SampleField& field, double scale = 1.0,
+                         const openvdb::Vec3d& origin = openvdb::Vec3d(0.0)) {
+  initializeVdb();
+  BuildResult built = buildFccGrid(field, BuildOptions{});
+  auto xform = openvdb::math::Transform::createLinearTransform(scale);
+  xform->postTranslate(origin);
+  built.grid->setTransform(xform);
+  built.grid->setName("test");
+  FccProvenance p;
+  p.mode = "test";
+  p.sampleMin = built.sampleMin;
+  p.sampleMax = built.sampleMax;
+  setFccMetadata(*built.grid, p);
+  io::writeVdbAtomically(path, openvdb::GridCPtrVec{built.grid}, /*overwrite=*/true);
+}
+
+inline render::FrameImages renderFile(const std::string& path, const render::Camera& camera, int width, int height,
+                                      float iso, const render::RenderOptions& options = {},
+                                      render::FrameStats* stats = nullptr) {
+  const io::BrickStore store(path);
+  render::Raycaster raycaster(store, options);
+  raycaster.setIso(iso);
+  const render::FrameStats s = raycaster.render(camera, width, height);
+  if (stats) *stats = s;
+  return raycaster.readImages();
+}
+
+}  // namespace fcc::test

@@ -1,0 +1,234 @@
+// The raycaster on llvmpipe (or a GPU): exact isosurfaces of a quadratic field, thin features, and
+// independence of the image from the cache budgets.
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "RenderTestSupport.h"
+#include "sparse/SynthFields.h"
+#include "tests/tools/RunCommand.h"
+#include "viewer/Camera.h"
+
+namespace fcc {
+namespace {
+
+using test::GlSuite;
+using test::renderFile;
+using test::TempDir;
+using test::writeFccFile;
+
+// Tolerances of the exactness test (the numbers): depth in voxels, normals in degrees.
+constexpr double kDepthTolVoxels = 1e-3;
+constexpr double kNormalTolDegrees = 0.05;
+// Rays whose distance from the sphere's centre is within this fraction of the radius of grazing it
+// are left out of the coverage comparison (a pixel there is a matter of the last float bit).
+constexpr double kGrazingFraction = 0.01;
+
+class Render : public GlSuite {};
+
+// f = |x - c|^2 / R^2 is quadratic, so the prefiltered spline reproduces it exactly and the
+// isosurface f = iso is the sphere of radius R sqrt(iso) about c: coverage, depth and normals must
+// match the analytic sphere, here under a scaled and translated transform.
+TEST_F(Render, QuadraticFieldGivesTheExactSphere) {
+  TempDir dir;
+  const std::string path = dir / "sphere.vdb";
+  const glm::ivec3 dims(40);
+  const SynthField synth = makeSynthField(SynthSpec{"sphere", dims, 1});
+  const double scale = 0.25;
+  const openvdb::Vec3d origin(1.0, -2.0, 0.5);
+  writeFccFile(path, *synth.field, scale, origin);
+
+  const double R = 0.5 * (dims.x - 1), iso = 0.3;
+  const glm::dvec3 centerIndex(0.5 * (dims.x - 1));
+  const glm::dvec3 center = glm::dvec3(origin.x(), origin.y(), origin.z()) + scale * centerIndex;
+  const double radius = scale * R * std::sqrt(iso);
+
+  render::Camera camera;
+  camera.lookat = center + glm::dvec3(0.3, -0.2, 0.1);
+  camera.eye = center + glm::dvec3(9.0, 5.0, 7.0);
+  camera.fovYDegrees = 30.0;
+  const int w = 96, h = 80;
+  const render::FrameImages img = renderFile(path, camera, w, h, float(iso));
+  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+
+  int compared = 0, hits = 0;
+  double worstDepth = 0.0, worstAngle = 0.0;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const glm::dvec3 d = render::pixelRay(frame, px, py, w, h);
+      const glm::dvec3 oc = camera.eye - center;
+      const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - radius * radius;
+      const double closest = std::sqrt(std::max(glm::dot(oc, oc) - b * b, 0.0));
+      if (std::abs(closest - radius) < kGrazingFraction * radius) continue;
+      ++compared;
+      const std::size_t i = std::size_t(py) * w + px;
+      const bool expectHit = b * b - c >= 0.0;
+      const bool hit = img.rgba[4 * i + 3] > 0.5f;
+      ASSERT_EQ(hit, expectHit) << "pixel (" << px << ", " << py << ")";
+      if (!hit) {
+        EXPECT_TRUE(std::isinf(img.normalDepth[4 * i + 3])) << "a miss has depth +inf";
+        continue;
+      }
+      ++hits;
+      const double t = -b - std::sqrt(b * b - c);
+      const double depthErrorVoxels = std::abs(img.normalDepth[4 * i + 3] - t) / scale;
+      const glm::dvec3 nExpected = glm::normalize(camera.eye + t * d - center);
+      const glm::dvec3 n(img.normalDepth[4 * i], img.normalDepth[4 * i + 1], img.normalDepth[4 * i + 2]);
+      const double angle = glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(n), nExpected), -1.0, 1.0)));
+      worstDepth = std::max(worstDepth, depthErrorVoxels);
+      worstAngle = std::max(worstAngle, angle);
+      EXPECT_LT(depthErrorVoxels, kDepthTolVoxels) << "pixel (" << px << ", " << py << ") t " << t;
+      EXPECT_LT(angle, kNormalTolDegrees) << "pixel (" << px << ", " << py << ")";
+      EXPECT_NEAR(glm::length(n), 1.0, 1e-5);
+    }
+  EXPECT_GT(hits, w * h / 10) << "the sphere should cover a good part of the image";
+  std::printf("sphere: %d pixels compared, %d hits, worst depth error %.3g voxels, worst normal %.3g degrees\n",
+              compared, hits, worstDepth, worstAngle);
+}
+
+// f = ((x - x0) / 4)^2 is quadratic; the isosurface f = (eps / 4)^2 is the pair of planes
+// x = x0 +- eps bounding a slab 2 eps = 0.08 voxel thick. Every ray crossing the slab must hit it at
+// the first plane: no step size to fall between.
+class SlabField : public SampleField {
+ public:
+  static constexpr double kX0 = 23.37;
+  float sample(const glm::ivec3& ijk) const override {
+    const double u = (ijk.x - kX0) / 4.0;
+    return float(u * u);
+  }
+  SiteBox bounds() const override { return SiteBox{glm::ivec3(0), glm::ivec3(47)}; }
+  float background() const override { return 100.0f; }
+};
+
+TEST_F(Render, SlabThinnerThanATenthOfAVoxelHasNoHoles) {
+  TempDir dir;
+  const std::string path = dir / "slab.vdb";
+  writeFccFile(path, SlabField());
+  const double eps = 0.04;
+  const float iso = float((eps / 4.0) * (eps / 4.0));
+
+  render::Camera camera;
+  camera.eye = glm::dvec3(60.0, 30.0, 20.0);
+  camera.lookat = glm::dvec3(SlabField::kX0, 23.5, 23.5);
+  camera.fovYDegrees = 35.0;
+  const int w = 64, h = 64;
+  const render::FrameImages img = renderFile(path, camera, w, h, iso);
+  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+
+  int expected = 0, holes = 0;
+  double worstDepth = 0.0;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const glm::dvec3 d = render::pixelRay(frame, px, py, w, h);
+      // The first plane the ray meets: x = x0 + eps (the eye is at larger x).
+      const double t = (SlabField::kX0 + eps - camera.eye.x) / d.x;
+      const glm::dvec3 p = camera.eye + t * d;
+      // Away from the data's border, where the background breaks the quadratic.
+      if (!(t > 0.0 && p.y > 6.0 && p.y < 41.0 && p.z > 6.0 && p.z < 41.0)) continue;
+      ++expected;
+      const std::size_t i = std::size_t(py) * w + px;
+      if (img.rgba[4 * i + 3] < 0.5f) {
+        ++holes;
+        continue;
+      }
+      worstDepth = std::max(worstDepth, std::abs(double(img.normalDepth[4 * i + 3]) - t));
+    }
+  ASSERT_GT(expected, w * h / 4);
+  EXPECT_EQ(holes, 0) << "of " << expected << " rays that cross the slab";
+  EXPECT_LT(worstDepth, kDepthTolVoxels);
+}
+
+}  // namespace
+}  // namespace fcc
+
+namespace fcc {
+namespace {
+
+// Runs `fccvdb args...` in a child process; returns its exit status and peak resident memory.
+struct ChildRun {
+  int status = -1;
+  long peakRssKiB = 0;
+};
+ChildRun runMeasured(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  std::string exe = FCC_FCCVDB_EXE;
+  argv.push_back(exe.data());
+  std::vector<std::string> copy = args;
+  for (auto& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::execv(exe.c_str(), argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  ::wait4(pid, &status, 0, &usage);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, usage.ru_maxrss};
+}
+
+// A dataset several times larger than both caches together renders to the same image as with
+// caches that hold everything (more passes, same rays), and the process stays within the budgets.
+TEST_F(Render, SmallCachesGiveTheSameImageWithinTheirBudgets) {
+  TempDir dir;
+  const std::string blobs = dir / "blobs.vdb", tiny = dir / "tiny.vdb";
+  ASSERT_EQ(test::runFccvdb("synth blobs " + blobs + " --dims 160,160,160 --quiet").status, 0);
+  ASSERT_EQ(test::runFccvdb("synth sphere " + tiny + " --dims 16,16,16 --quiet").status, 0);
+  const double budgetMiB = 1.0;  // each of --gpu-cache and --host-cache
+
+  const io::BrickStore store(blobs);
+  const double decodedMiB = double(store.index().tree().leafCount()) * sizeof(io::BrickValues) / (1 << 20);
+  ASSERT_GT(decodedMiB, 3.0 * 2.0 * budgetMiB) << "the dataset must be several times the budgets";
+
+  render::Camera camera;
+  camera.eye = glm::dvec3(260.0, 200.0, 230.0);
+  camera.lookat = glm::dvec3(80.0);
+  const int w = 64, h = 64;
+  render::RenderOptions unlimited, small;
+  small.gpuCacheBytes = small.hostCacheBytes = std::size_t(budgetMiB * (1 << 20));
+  render::FrameStats bigStats, smallStats;
+  const render::FrameImages reference = renderFile(blobs, camera, w, h, 0.3f, unlimited, &bigStats);
+  const render::FrameImages limited = renderFile(blobs, camera, w, h, 0.3f, small, &smallStats);
+  std::printf("unlimited: %d passes, %llu uploads; 1 MiB caches: %d passes, %llu uploads\n", bigStats.passes,
+              (unsigned long long)bigStats.bricksUploaded, smallStats.passes,
+              (unsigned long long)smallStats.bricksUploaded);
+  ASSERT_GT(smallStats.bricksUploaded, bigStats.bricksUploaded) << "the small pool must have evicted bricks";
+  int hits = 0;
+  for (std::size_t i = 0; i < reference.rgba.size(); ++i) {
+    ASSERT_FLOAT_EQ(reference.rgba[i], limited.rgba[i]) << "rgba component " << i;
+    ASSERT_FLOAT_EQ(reference.normalDepth[i], limited.normalDepth[i]) << "normal/depth component " << i;
+    hits += (i % 4 == 3) && reference.rgba[i] > 0.5f;
+  }
+  EXPECT_GT(hits, w * h / 20);
+
+  // Peak memory: the same budgets on a tiny dataset give the fixed overhead (libraries, GL driver,
+  // images); the large one may add no more than the budgets and a little bookkeeping.
+  const std::string caches = std::to_string(budgetMiB);
+  const std::vector<std::string> flags = {"--res", "64x64", "--iso", "0.3", "--gpu-cache", caches, "--host-cache",
+                                          caches, "--quiet"};
+  auto run = [&](const std::string& file, const std::string& out) {
+    std::vector<std::string> args = {"render", file, "-o", out};
+    args.insert(args.end(), flags.begin(), flags.end());
+    return runMeasured(args);
+  };
+  const ChildRun baseline = run(tiny, dir / "tiny.exr");
+  const ChildRun large = run(blobs, dir / "blobs.exr");
+  ASSERT_EQ(baseline.status, 0);
+  ASSERT_EQ(large.status, 0);
+  // Index topology, one upload batch of staging, allocator slack: well below the 7 MiB of data and
+  // the 28 MiB pool an unbounded run uses, so a cache that ignored its budget would fail this.
+  const double slackMiB = 4.0;
+  const double growthMiB = double(large.peakRssKiB - baseline.peakRssKiB) / 1024.0;
+  std::printf("peak RSS: tiny %ld KiB, blobs %ld KiB (+%.1f MiB; budgets 2 x %.0f MiB, data %.1f MiB)\n",
+              baseline.peakRssKiB, large.peakRssKiB, growthMiB, budgetMiB, decodedMiB);
+  EXPECT_LT(growthMiB, 2.0 * budgetMiB + slackMiB);
+}
+
+}  // namespace
+}  // namespace fcc

@@ -1,0 +1,89 @@
+// The pool bookkeeping (viewer/Residency.h): page entries, node occupancy, eviction order.
+#include <gtest/gtest.h>
+
+#include "viewer/Camera.h"
+#include "sparse/Error.h"
+#include "viewer/Residency.h"
+
+namespace fcc::render {
+namespace {
+
+TEST(Residency, PageEntriesFollowNeedAndResidence) {
+  Residency r(glm::ivec3(-2, 0, 0), glm::ivec3(20, 2, 2), 2);
+  EXPECT_EQ(r.nodeDims(), glm::ivec3(2, 1, 1));
+  const glm::ivec3 a(-2, 0, 0), b(17, 1, 1), c(0, 1, 0);
+  EXPECT_EQ(r.brickAt(r.brickIndex(b)), b);
+  r.setNeeded({a, b});
+  EXPECT_EQ(r.pageEntries()[r.brickIndex(a)], Residency::kMissing);
+  EXPECT_EQ(r.pageEntries()[r.brickIndex(c)], Residency::kSkip);
+  EXPECT_EQ(r.nodeEntries()[0], 1u);
+  EXPECT_EQ(r.nodeEntries()[1], 1u);
+  const auto assigned = r.assign({a, b}, {0, 0});
+  ASSERT_EQ(assigned.size(), 2u);
+  EXPECT_EQ(r.pageEntries()[r.brickIndex(a)], assigned[0].second);
+  EXPECT_EQ(r.pageEntries()[r.brickIndex(b)], assigned[1].second);
+  // A new isovalue that needs only c: a and b stay resident but are skipped; node 1 is empty.
+  r.setNeeded({c});
+  EXPECT_EQ(r.pageEntries()[r.brickIndex(a)], Residency::kSkip);
+  EXPECT_TRUE(r.isResident(a));
+  EXPECT_EQ(r.nodeEntries()[1], 0u);
+}
+
+TEST(Residency, EvictsTheLeastRecentlyUsedAndNeverWhatItJustAssigned) {
+  Residency r(glm::ivec3(0), glm::ivec3(8, 1, 1), 3);
+  std::vector<glm::ivec3> all;
+  for (int x = 0; x < 8; ++x) all.push_back(glm::ivec3(x, 0, 0));
+  r.setNeeded(all);
+  const auto first = r.assign({all[0], all[1], all[2]}, {0, 0, 0});
+  ASSERT_EQ(first.size(), 3u);
+  // Slot of brick 1 used last in pass 9, brick 0 in pass 5, brick 2 in pass 7: brick 0 goes first.
+  std::vector<uint32_t> lastUse(3);
+  lastUse[first[0].second] = 5;
+  lastUse[first[1].second] = 9;
+  lastUse[first[2].second] = 7;
+  const auto second = r.assign({all[3]}, lastUse);
+  ASSERT_EQ(second.size(), 1u);
+  EXPECT_EQ(second[0].second, first[0].second);
+  EXPECT_FALSE(r.isResident(all[0]));
+  EXPECT_EQ(r.pageEntries()[r.brickIndex(all[0])], Residency::kMissing);
+  // More requests than slots: only slotCount() are assigned, each to a different slot.
+  const auto third = r.assign({all[4], all[5], all[6], all[7]}, lastUse);
+  ASSERT_EQ(third.size(), 3u);
+  EXPECT_NE(third[0].second, third[1].second);
+  EXPECT_NE(third[1].second, third[2].second);
+  EXPECT_NE(third[0].second, third[2].second);
+  EXPECT_EQ(r.residentCount(), 3u);
+}
+
+TEST(Camera, PixelRaysAndFraming) {
+  Camera c;
+  c.eye = glm::dvec3(0, 0, 10);
+  c.lookat = glm::dvec3(0);
+  c.fovYDegrees = 90.0;
+  const CameraFrame f = cameraFrame(c, 2.0);
+  // Row 0 is the top: its rays point up; the centre of a 2x1 image's left pixel points left.
+  EXPECT_GT(pixelRay(f, 0, 0, 2, 2).y, 0.0);
+  EXPECT_LT(pixelRay(f, 0, 1, 2, 2).y, 0.0);
+  EXPECT_LT(pixelRay(f, 0, 0, 2, 2).x, 0.0);
+  // A 90 degree vertical field of view: the top edge's ray is 45 degrees up.
+  const glm::dvec3 top = pixelRay(f, 0, 0, 1, 1000000);
+  EXPECT_NEAR(glm::degrees(std::atan2(top.y, -top.z)), 45.0, 1e-3);
+  // Framing puts the whole box inside the view.
+  const Camera framed = frameBox(glm::dvec3(-1, -2, -3), glm::dvec3(4, 5, 6), 40.0, 1.5);
+  const CameraFrame ff = cameraFrame(framed, 1.5);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 p((corner & 1) ? 4 : -1, (corner & 2) ? 5 : -2, (corner & 4) ? 6 : -3);
+    const glm::dvec3 v = p - ff.eye;
+    const double z = glm::dot(v, ff.forward);
+    ASSERT_GT(z, 0.0);
+    const double x = glm::dot(v, glm::normalize(ff.right)) / z, y = glm::dot(v, glm::normalize(ff.up)) / z;
+    EXPECT_LE(std::abs(x), glm::length(ff.right)) << corner;
+    EXPECT_LE(std::abs(y), glm::length(ff.up)) << corner;
+  }
+  Camera bad = c;
+  bad.up = glm::dvec3(0, 0, 1);
+  EXPECT_THROW(cameraFrame(bad, 1.0), fcc::ValueError);
+}
+
+}  // namespace
+}  // namespace fcc::render

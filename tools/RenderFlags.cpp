@@ -1,0 +1,92 @@
+#include "RenderFlags.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+
+#include "Triple.h"
+#include "sparse/Error.h"
+
+namespace fcc::cli {
+namespace {
+
+glm::dvec3 tripleOrThrow(const std::string& text, const char* flag) {
+  glm::dvec3 v;
+  if (!parseTriple(text, v) || !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw ValueError(std::string(flag) + " '" + text + "': expected three finite numbers X,Y,Z");
+  return v;
+}
+
+std::size_t mibToBytes(double mib) { return std::size_t(mib * 1024.0 * 1024.0); }
+
+}  // namespace
+
+void addRenderFlags(CLI::App& app, RenderFlags& flags) {
+  app.add_option("FILE", flags.file, "FCC .vdb file (from fccvdb convert or synth)")->required();
+  app.add_option("--grid", flags.grid, "The FCC grid to render (default: the first)");
+  app.add_option("--iso", flags.iso, "Isovalue (default: midway through the value range)");
+  app.add_option("--res", flags.res, "Image size WxH")->capture_default_str();
+  app.add_option("--eye", flags.eye, "Camera position X,Y,Z in world space (default: frames the data)");
+  app.add_option("--lookat", flags.lookat, "Point looked at X,Y,Z (default: the data's centre)");
+  app.add_option("--up", flags.up, "Up vector X,Y,Z (default: 0,1,0)");
+  app.add_option("--fov", flags.fov, "Vertical field of view in degrees (default: 40)");
+  app.add_option("--gpu-cache", flags.gpuCacheMiB, "GPU brick pool in MiB (default: 1024, or what the driver allows)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--host-cache", flags.hostCacheMiB, "Decoded bricks in host memory, MiB (default: a quarter of RAM)")
+      ->check(CLI::PositiveNumber);
+}
+
+float isoFromFlags(const RenderFlags& flags, const io::BrickStore& store) {
+  if (flags.iso.empty()) return 0.5f * (store.valueMin() + store.valueMax());
+  char* end = nullptr;
+  const double v = std::strtod(flags.iso.c_str(), &end);
+  if (end == flags.iso.c_str() || *end != '\0' || !std::isfinite(v) || !std::isfinite(float(v)))
+    throw ValueError("--iso '" + flags.iso + "': the isovalue must be a finite number");
+  return float(v);
+}
+
+void resolutionFromFlags(const std::string& res, int& width, int& height) {
+  char x = 0;
+  long w = 0, h = 0;
+  char rest = 0;
+  if (std::sscanf(res.c_str(), "%ld%c%ld%c", &w, &x, &h, &rest) != 3 || (x != 'x' && x != 'X'))
+    throw ValueError("--res '" + res + "': expected WIDTHxHEIGHT, e.g. 1024x1024");
+  if (w <= 0 || h <= 0 || w > 16384 || h > 16384)
+    throw ValueError("--res '" + res + "': width and height must be 1 to 16384");
+  width = int(w);
+  height = int(h);
+}
+
+render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect) {
+  double fov = 40.0;
+  if (!flags.fov.empty()) {
+    char* end = nullptr;
+    fov = std::strtod(flags.fov.c_str(), &end);
+    if (end == flags.fov.c_str() || *end != '\0' || !(fov > 0.0 && fov < 180.0))
+      throw ValueError("--fov '" + flags.fov + "': valid is a number of degrees in (0, 180)");
+  }
+  glm::dvec3 lo, hi;
+  store.worldBounds(lo, hi);
+  render::Camera camera = render::frameBox(lo, hi, fov, aspect);
+  if (!flags.lookat.empty()) {
+    const glm::dvec3 lookat = tripleOrThrow(flags.lookat, "--lookat");
+    camera.eye += lookat - camera.lookat;
+    camera.lookat = lookat;
+  }
+  if (!flags.eye.empty()) camera.eye = tripleOrThrow(flags.eye, "--eye");
+  if (!flags.up.empty()) camera.up = tripleOrThrow(flags.up, "--up");
+  render::cameraFrame(camera, aspect);  // validates: throws for a degenerate camera
+  return camera;
+}
+
+render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags) {
+  render::RenderOptions options;
+  const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGESIZE);
+  const std::size_t ram = pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : (std::size_t(4) << 30);
+  options.hostCacheBytes = flags.hostCacheMiB > 0.0 ? mibToBytes(flags.hostCacheMiB) : ram / 4;
+  options.gpuCacheBytes = flags.gpuCacheMiB > 0.0 ? mibToBytes(flags.gpuCacheMiB) : (std::size_t(1) << 30);
+  return options;
+}
+
+}  // namespace fcc::cli

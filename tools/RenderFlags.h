@@ -1,0 +1,31 @@
+// Flags shared by `fccvdb render`, `fccvdb bench render` (and the viewer): the grid, the isovalue,
+// the image size, the camera and the cache budgets, and turning them into renderer settings.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "io/BrickStore.h"
+#include "viewer/Camera.h"
+#include "viewer/Raycaster.h"
+
+namespace fcc::cli {
+
+struct RenderFlags {
+  std::string file, grid, iso, res = "1024x1024", eye, lookat, up, fov;
+  double gpuCacheMiB = 0.0, hostCacheMiB = 0.0;  // 0: the defaults
+};
+
+// Registers FILE, --grid, --iso, --res, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache.
+void addRenderFlags(CLI::App& app, RenderFlags& flags);
+
+// --iso (default: midway through the data's value range); ValueError if not a finite number.
+float isoFromFlags(const RenderFlags& flags, const io::BrickStore& store);
+// --res "WxH"; ValueError for anything else or a zero size.
+void resolutionFromFlags(const std::string& res, int& width, int& height);
+// The camera: frames the data unless --eye/--lookat/--up/--fov say otherwise.
+render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect);
+render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags);
+
+}  // namespace fcc::cli

@@ -1,0 +1,128 @@
+// fccvdb bench render FILE.vdb: frames per second of the raycaster over an orbit of the camera, with
+// and without empty-space skipping, analytic and finite-difference normals; the time to the first
+// complete frame from cold caches and the bricks streamed per second meanwhile.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "Command.h"
+#include "JsonText.h"
+#include "RenderFlags.h"
+#include "viewer/EglContext.h"
+
+namespace fcc::cli {
+namespace {
+
+struct Measurement {
+  std::string variant, normals;
+  bool skip = true;
+  int frames = 0;
+  double seconds = 0.0;
+  uint64_t uploads = 0;
+  int passes = 0;
+};
+
+// The camera turned by `angle` radians about its up axis through the look-at point.
+render::Camera orbit(const render::Camera& c, double angle) {
+  const glm::dvec3 axis = glm::normalize(c.up);
+  const glm::dvec3 v = c.eye - c.lookat;
+  const glm::dvec3 rotated = v * std::cos(angle) + glm::cross(axis, v) * std::sin(angle) +
+                             axis * glm::dot(axis, v) * (1.0 - std::cos(angle));
+  render::Camera out = c;
+  out.eye = c.lookat + rotated;
+  return out;
+}
+
+Measurement measureOrbit(render::Raycaster& raycaster, const render::Camera& camera, int width, int height,
+                         int warmup, int frames) {
+  Measurement m;
+  for (int i = 0; i < warmup; ++i) raycaster.render(orbit(camera, 2.0 * M_PI * i / std::max(warmup, 1)), width, height);
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < frames; ++i) {
+    const render::FrameStats s = raycaster.render(orbit(camera, 2.0 * M_PI * i / frames), width, height);
+    m.uploads += s.bricksUploaded;
+    m.passes += s.passes;
+  }
+  m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  m.frames = frames;
+  return m;
+}
+
+}  // namespace
+
+Command addBenchRenderCommand(CLI::App& bench) {
+  struct Args {
+    RenderFlags flags;
+    int frames = 60, warmup = 5;
+    bool json = false;
+  };
+  auto args = std::make_shared<Args>();
+  args->flags.res = "512x512";
+  CLI::App* app = bench.add_subcommand("render", "Frames per second over a camera orbit (skipping on/off, analytic/finite-difference normals)");
+  addRenderFlags(*app, args->flags);
+  app->add_option("--frames", args->frames, "Timed frames per variant (one orbit)")->capture_default_str()->check(CLI::PositiveNumber);
+  app->add_option("--warmup", args->warmup, "Untimed frames before each variant")->capture_default_str()->check(CLI::NonNegativeNumber);
+  app->add_flag("--json", args->json, "A JSON list of objects: variant, skip, normals, fps, frame_ms, ...");
+  return {app, [args]() {
+            int width = 0, height = 0;
+            resolutionFromFlags(args->flags.res, width, height);
+            const io::BrickStore store(args->flags.file, args->flags.grid);
+            const float iso = isoFromFlags(args->flags, store);
+            const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
+            const EglContext gl;
+            const render::RenderOptions options = renderOptionsFromFlags(args->flags);
+
+            // Cold: a fresh pool and host cache, one complete frame.
+            render::Raycaster raycaster(store, options);
+            raycaster.setIso(iso);
+            const render::FrameStats cold = raycaster.render(camera, width, height);
+
+            std::vector<Measurement> results;
+            for (const bool skip : {true, false})
+              for (const bool fd : {false, true}) {
+                raycaster.setSkipEmpty(skip);
+                raycaster.setFiniteDifferenceNormals(fd);
+                Measurement m = measureOrbit(raycaster, camera, width, height, args->warmup, args->frames);
+                m.skip = skip;
+                m.normals = fd ? "finite-difference" : "analytic";
+                m.variant = std::string(skip ? "skip" : "noskip") + "+" + (fd ? "fd" : "analytic");
+                results.push_back(m);
+              }
+
+            const double poolMiB = double(raycaster.slotCount()) * io::kHaloBlockVoxels * 16 / (1 << 20);
+            if (args->json) {
+              std::printf("[");
+              for (std::size_t i = 0; i < results.size(); ++i) {
+                const Measurement& m = results[i];
+                std::printf("%s\n {\"variant\": %s, \"layout\": \"ssbo-vec4\", \"skip\": %s, \"normals\": %s, "
+                            "\"res\": [%d, %d], \"iso\": %s, \"frames\": %d, \"fps\": %s, \"frame_ms\": %s, "
+                            "\"passes_per_frame\": %s, \"bricks_streamed_per_second\": %s, "
+                            "\"first_frame_seconds\": %s, \"first_frame_bricks\": %llu, \"pool_mib\": %s, "
+                            "\"device\": %s, \"file\": %s}",
+                            i ? "," : "", jsonString(m.variant).c_str(), m.skip ? "true" : "false",
+                            jsonString(m.normals).c_str(), width, height, jsonNumber(iso).c_str(), m.frames,
+                            jsonNumber(m.frames / m.seconds).c_str(), jsonNumber(1e3 * m.seconds / m.frames).c_str(),
+                            jsonNumber(double(m.passes) / m.frames).c_str(), jsonNumber(m.uploads / m.seconds).c_str(),
+                            jsonNumber(cold.seconds).c_str(), (unsigned long long)cold.bricksUploaded,
+                            jsonNumber(poolMiB).c_str(), jsonString(gl.renderer()).c_str(),
+                            jsonString(args->flags.file).c_str());
+              }
+              std::printf("\n]\n");
+              return 0;
+            }
+            std::printf("device: %s\nfile:   %s, iso %g, %dx%d, pool %.0f MiB (%u slots)\n", gl.renderer().c_str(),
+                        args->flags.file.c_str(), double(iso), width, height, poolMiB, raycaster.slotCount());
+            std::printf("first complete frame (cold caches): %.3f s, %llu bricks streamed (%.0f bricks/s), %d passes\n",
+                        cold.seconds, (unsigned long long)cold.bricksUploaded, cold.bricksUploaded / cold.seconds,
+                        cold.passes);
+            std::printf("%-22s %10s %10s %8s %14s\n", "variant", "fps", "frame ms", "passes", "bricks/s");
+            for (const Measurement& m : results)
+              std::printf("%-22s %10.1f %10.3f %8.2f %14.0f\n", m.variant.c_str(), m.frames / m.seconds,
+                          1e3 * m.seconds / m.frames, double(m.passes) / m.frames, m.uploads / m.seconds);
+            return 0;
+          }};
+}
+
+}  // namespace fcc::cli

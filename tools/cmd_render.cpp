@@ -1,0 +1,61 @@
+// fccvdb render FILE.vdb -o OUT.(exr|png): one headless frame of the isosurface.
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "Command.h"
+#include "RenderFlags.h"
+#include "io/ImageOutput.h"
+#include "sparse/Error.h"
+#include "viewer/EglContext.h"
+
+namespace fcc::cli {
+namespace {
+
+// Fails before any rendering if the output cannot be written.
+void checkOutputWritable(const std::string& path) {
+  io::checkImageExtension(path);
+  const auto slash = path.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw OutputError(path + ": cannot write there (directory '" + dir + "' is missing or not writable)");
+}
+
+}  // namespace
+
+Command addRenderCommand(CLI::App& parent) {
+  struct Args {
+    RenderFlags flags;
+    std::string output;
+    bool quiet = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* app = parent.add_subcommand("render", "Render the isosurface headless (EGL) to EXR (R,G,B,A,Z,N.X,N.Y,N.Z) or PNG");
+  addRenderFlags(*app, args->flags);
+  app->add_option("-o,--output", args->output, "Output image, .exr or .png")->required();
+  app->add_flag("--quiet", args->quiet, "No summary on stderr");
+  return {app, [args]() {
+            int width = 0, height = 0;
+            resolutionFromFlags(args->flags.res, width, height);
+            checkOutputWritable(args->output);
+            const io::BrickStore store(args->flags.file, args->flags.grid);
+            const float iso = isoFromFlags(args->flags, store);
+            const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
+            const EglContext gl;
+            render::Raycaster raycaster(store, renderOptionsFromFlags(args->flags));
+            raycaster.setIso(iso);
+            const render::FrameStats stats = raycaster.render(camera, width, height);
+            const render::FrameImages images = raycaster.readImages();
+            io::RenderedImage image{images.width, images.height, &images.rgba, &images.normalDepth};
+            io::writeRenderedImage(args->output, image, glm::vec3(0.08f, 0.09f, 0.11f));
+            if (!args->quiet)
+              std::fprintf(stderr,
+                           "wrote %s: %dx%d, iso %g, %d passes, %llu of %llu needed bricks uploaded, %.3f s on %s\n",
+                           args->output.c_str(), width, height, double(iso), stats.passes,
+                           (unsigned long long)stats.bricksUploaded, (unsigned long long)stats.bricksNeeded,
+                           stats.seconds, gl.renderer().c_str());
+            return 0;
+          }};
+}
+
+}  // namespace fcc::cli
