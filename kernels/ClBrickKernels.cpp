@@ -68,8 +68,21 @@ std::string cellBBRangeSource() {
   return src;
 }
 
+// FCC_HALO_SOURCES: for halo position i = (hz * 10 + hy) * 10 + hx (packed voxel h - 1 relative to
+// the brick's first), its neighbour brick's table index << 9 | its voxel there (VDB leaf order).
+std::string haloSourcesDefine() {
+  std::string list;
+  for (int i = 0; i < 1000; ++i) {
+    const int p[3] = {i % 10 - 1, (i / 10) % 10 - 1, i / 100 - 1};
+    const int neighbour = ((p[0] >> 3) + 1) + 3 * ((p[1] >> 3) + 1) + 9 * ((p[2] >> 3) + 1);
+    const int voxel = ((p[0] & 7) << 6) | ((p[1] & 7) << 3) | (p[2] & 7);
+    list += (i ? "," : "") + std::to_string(neighbour << 9 | voxel);
+  }
+  return "#define FCC_HALO_SOURCES " + list + "\n";
+}
+
 std::string preprocessSource() {
-  std::string source(embedded::kernels("kernels/preprocess.cl"));
+  std::string source = haloSourcesDefine() + std::string(embedded::kernels("kernels/preprocess.cl"));
   const std::string marker = "// FCC_CELL_BB_RANGE (the host replaces this line)";
   const std::size_t at = source.find(marker);
   if (at == std::string::npos) throw Error("internal: kernels/preprocess.cl lacks the marker line '" + marker + "'");
