@@ -4,6 +4,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <unordered_map>
 
@@ -194,16 +195,26 @@ void ClBrickKernels::prefilter(const FccGrid& samples, const std::vector<Coord>&
     const std::size_t count = std::min(kLaunchBricks, bricks.size() - first);
     staged.stage(samples, bricks.data() + first, count);
     cl::Buffer pool = staged.poolBuffer(*runner_), table = runner_->upload(staged.neighbours);
-    cl::Buffer results = runner_->allocate(count * FccLeaf::SIZE * sizeof(cl_float4), CL_MEM_WRITE_ONLY);
+    // The kernel writes into `out` itself where the device can (PoCL); mapping makes it visible.
+    const std::size_t bytes = count * FccLeaf::SIZE * sizeof(cl_float4);
+    openvdb::Vec4f* target = out.data() + first * FccLeaf::SIZE;
+    cl::Buffer results;
+    try {
+      results = cl::Buffer(runner_->context(), CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, bytes, target);
+    } catch (const cl::Error& e) {
+      throwClError(e, "wrapping " + std::to_string(bytes) + " bytes of results for " + runner_->describe());
+    }
     const auto start = std::chrono::steady_clock::now();
     runner_->launchGroups("brick prefilter", prefilterKernel_, count, groupSize_, pool, table, results);
     runner_->finish();
     computeSeconds += secondsSince(start);
     try {
-      runner_->queue().enqueueReadBuffer(results, CL_TRUE, 0, count * FccLeaf::SIZE * sizeof(cl_float4),
-                                         out.data() + first * FccLeaf::SIZE);
+      void* mapped = runner_->queue().enqueueMapBuffer(results, CL_TRUE, CL_MAP_READ, 0, bytes);
+      if (mapped != target) std::memcpy(target, mapped, bytes);  // a device that did not use our memory
+      runner_->queue().enqueueUnmapMemObject(results, mapped);
+      runner_->finish();
     } catch (const cl::Error& e) {
-      throwClError(e, "downloading prefiltered bricks from " + runner_->describe());
+      throwClError(e, "reading prefiltered bricks from " + runner_->describe());
     }
   }
 }
