@@ -8,6 +8,8 @@
 #include <map>
 #include <unordered_map>
 
+#include <tbb/parallel_for.h>
+
 #include "embedded_kernels.h"
 #include "sparse/BBDomainPoints.h"
 #include "sparse/BrickBounds.h"
@@ -112,16 +114,13 @@ struct ClBrickKernels::Staged {
   }
 
   void stage(const FccGrid& grid, const Coord* bricks, std::size_t count) {
-    pool.clear();
     neighbours.clear();
     neighbours.reserve(count * 27);
+    // Slots first (one pass, in order), then the copies into them in parallel.
     std::unordered_map<const FccLeaf*, cl_int> slots;
     std::vector<std::pair<openvdb::Vec4f, cl_int>> constantSlots;
+    std::vector<const FccLeaf*> slotLeaves;  // null for a constant's slot
     auto accessor = grid.getConstAccessor();
-    auto newSlot = [&] {
-      pool.resize(pool.size() + FccLeaf::SIZE);
-      return cl_int(pool.size() / FccLeaf::SIZE - 1);
-    };
     for (std::size_t i = 0; i < count; ++i)
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
@@ -129,23 +128,28 @@ struct ClBrickKernels::Staged {
             const Coord b = bricks[i].offsetBy(dx, dy, dz);
             const Coord packed(b.x() * kBrickPackedDim, b.y() * kBrickPackedDim, b.z() * kBrickPackedDim);
             if (const FccLeaf* leaf = accessor.probeConstLeaf(packed)) {
-              auto [it, added] = slots.try_emplace(leaf, 0);
-              if (added) {
-                it->second = newSlot();
-                std::copy(leaf->buffer().data(), leaf->buffer().data() + FccLeaf::SIZE, pool.end() - FccLeaf::SIZE);
-              }
+              auto [it, added] = slots.try_emplace(leaf, cl_int(slotLeaves.size()));
+              if (added) slotLeaves.push_back(leaf);
               neighbours.push_back(it->second);
             } else {
               const openvdb::Vec4f& v = accessor.getValue(packed);
               auto found = std::find_if(constantSlots.begin(), constantSlots.end(), [&](const auto& c) { return c.first == v; });
               if (found == constantSlots.end()) {
-                constantSlots.emplace_back(v, newSlot());
-                std::fill(pool.end() - FccLeaf::SIZE, pool.end(), v);
+                constantSlots.emplace_back(v, cl_int(slotLeaves.size()));
+                slotLeaves.push_back(nullptr);
                 found = constantSlots.end() - 1;
               }
               neighbours.push_back(found->second);
             }
           }
+    pool.resize(slotLeaves.size() * FccLeaf::SIZE);
+    for (const auto& [value, slot] : constantSlots)
+      std::fill(pool.begin() + std::ptrdiff_t(slot) * FccLeaf::SIZE, pool.begin() + std::ptrdiff_t(slot + 1) * FccLeaf::SIZE, value);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, slotLeaves.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t slot = r.begin(); slot != r.end(); ++slot)
+        if (const FccLeaf* leaf = slotLeaves[slot])
+          std::copy(leaf->buffer().data(), leaf->buffer().data() + FccLeaf::SIZE, pool.begin() + std::ptrdiff_t(slot) * FccLeaf::SIZE);
+    });
   }
 };
 
