@@ -4,8 +4,11 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <unordered_map>
+
+#include <tbb/parallel_for.h>
 
 #include "embedded_kernels.h"
 #include "sparse/BBDomainPoints.h"
@@ -68,8 +71,21 @@ std::string cellBBRangeSource() {
   return src;
 }
 
+// FCC_HALO_SOURCES: for halo position i = (hz * 10 + hy) * 10 + hx (packed voxel h - 1 relative to
+// the brick's first), its neighbour brick's table index << 9 | its voxel there (VDB leaf order).
+std::string haloSourcesDefine() {
+  std::string list;
+  for (int i = 0; i < 1000; ++i) {
+    const int p[3] = {i % 10 - 1, (i / 10) % 10 - 1, i / 100 - 1};
+    const int neighbour = ((p[0] >> 3) + 1) + 3 * ((p[1] >> 3) + 1) + 9 * ((p[2] >> 3) + 1);
+    const int voxel = ((p[0] & 7) << 6) | ((p[1] & 7) << 3) | (p[2] & 7);
+    list += (i ? "," : "") + std::to_string(neighbour << 9 | voxel);
+  }
+  return "#define FCC_HALO_SOURCES " + list + "\n";
+}
+
 std::string preprocessSource() {
-  std::string source(embedded::kernels("kernels/preprocess.cl"));
+  std::string source = haloSourcesDefine() + std::string(embedded::kernels("kernels/preprocess.cl"));
   const std::string marker = "// FCC_CELL_BB_RANGE (the host replaces this line)";
   const std::size_t at = source.find(marker);
   if (at == std::string::npos) throw Error("internal: kernels/preprocess.cl lacks the marker line '" + marker + "'");
@@ -98,16 +114,13 @@ struct ClBrickKernels::Staged {
   }
 
   void stage(const FccGrid& grid, const Coord* bricks, std::size_t count) {
-    pool.clear();
     neighbours.clear();
     neighbours.reserve(count * 27);
+    // Slots first (one pass, in order), then the copies into them in parallel.
     std::unordered_map<const FccLeaf*, cl_int> slots;
     std::vector<std::pair<openvdb::Vec4f, cl_int>> constantSlots;
+    std::vector<const FccLeaf*> slotLeaves;  // null for a constant's slot
     auto accessor = grid.getConstAccessor();
-    auto newSlot = [&] {
-      pool.resize(pool.size() + FccLeaf::SIZE);
-      return cl_int(pool.size() / FccLeaf::SIZE - 1);
-    };
     for (std::size_t i = 0; i < count; ++i)
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
@@ -115,23 +128,28 @@ struct ClBrickKernels::Staged {
             const Coord b = bricks[i].offsetBy(dx, dy, dz);
             const Coord packed(b.x() * kBrickPackedDim, b.y() * kBrickPackedDim, b.z() * kBrickPackedDim);
             if (const FccLeaf* leaf = accessor.probeConstLeaf(packed)) {
-              auto [it, added] = slots.try_emplace(leaf, 0);
-              if (added) {
-                it->second = newSlot();
-                std::copy(leaf->buffer().data(), leaf->buffer().data() + FccLeaf::SIZE, pool.end() - FccLeaf::SIZE);
-              }
+              auto [it, added] = slots.try_emplace(leaf, cl_int(slotLeaves.size()));
+              if (added) slotLeaves.push_back(leaf);
               neighbours.push_back(it->second);
             } else {
               const openvdb::Vec4f& v = accessor.getValue(packed);
               auto found = std::find_if(constantSlots.begin(), constantSlots.end(), [&](const auto& c) { return c.first == v; });
               if (found == constantSlots.end()) {
-                constantSlots.emplace_back(v, newSlot());
-                std::fill(pool.end() - FccLeaf::SIZE, pool.end(), v);
+                constantSlots.emplace_back(v, cl_int(slotLeaves.size()));
+                slotLeaves.push_back(nullptr);
                 found = constantSlots.end() - 1;
               }
               neighbours.push_back(found->second);
             }
           }
+    pool.resize(slotLeaves.size() * FccLeaf::SIZE);
+    for (const auto& [value, slot] : constantSlots)
+      std::fill(pool.begin() + std::ptrdiff_t(slot) * FccLeaf::SIZE, pool.begin() + std::ptrdiff_t(slot + 1) * FccLeaf::SIZE, value);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, slotLeaves.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t slot = r.begin(); slot != r.end(); ++slot)
+        if (const FccLeaf* leaf = slotLeaves[slot])
+          std::copy(leaf->buffer().data(), leaf->buffer().data() + FccLeaf::SIZE, pool.begin() + std::ptrdiff_t(slot) * FccLeaf::SIZE);
+    });
   }
 };
 
@@ -181,16 +199,26 @@ void ClBrickKernels::prefilter(const FccGrid& samples, const std::vector<Coord>&
     const std::size_t count = std::min(kLaunchBricks, bricks.size() - first);
     staged.stage(samples, bricks.data() + first, count);
     cl::Buffer pool = staged.poolBuffer(*runner_), table = runner_->upload(staged.neighbours);
-    cl::Buffer results = runner_->allocate(count * FccLeaf::SIZE * sizeof(cl_float4), CL_MEM_WRITE_ONLY);
+    // The kernel writes into `out` itself where the device can (PoCL); mapping makes it visible.
+    const std::size_t bytes = count * FccLeaf::SIZE * sizeof(cl_float4);
+    openvdb::Vec4f* target = out.data() + first * FccLeaf::SIZE;
+    cl::Buffer results;
+    try {
+      results = cl::Buffer(runner_->context(), CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, bytes, target);
+    } catch (const cl::Error& e) {
+      throwClError(e, "wrapping " + std::to_string(bytes) + " bytes of results for " + runner_->describe());
+    }
     const auto start = std::chrono::steady_clock::now();
     runner_->launchGroups("brick prefilter", prefilterKernel_, count, groupSize_, pool, table, results);
     runner_->finish();
     computeSeconds += secondsSince(start);
     try {
-      runner_->queue().enqueueReadBuffer(results, CL_TRUE, 0, count * FccLeaf::SIZE * sizeof(cl_float4),
-                                         out.data() + first * FccLeaf::SIZE);
+      void* mapped = runner_->queue().enqueueMapBuffer(results, CL_TRUE, CL_MAP_READ, 0, bytes);
+      if (mapped != target) std::memcpy(target, mapped, bytes);  // a device that did not use our memory
+      runner_->queue().enqueueUnmapMemObject(results, mapped);
+      runner_->finish();
     } catch (const cl::Error& e) {
-      throwClError(e, "downloading prefiltered bricks from " + runner_->describe());
+      throwClError(e, "reading prefiltered bricks from " + runner_->describe());
     }
   }
 }

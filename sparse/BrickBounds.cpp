@@ -211,6 +211,7 @@ BoundsGrid::Ptr computeBrickBounds(const FccGrid& coefficients, BrickKernels* ke
   for (size_t first = 0; first < exact.size(); first += kBatchBricks) {
     const std::vector<Coord> batch(exact.begin() + first, exact.begin() + std::min(exact.size(), first + kBatchBricks));
     kernels.bounds(coefficients, batch, results);
+    kernels.bricksDone += batch.size();
     for (size_t i = 0; i < batch.size(); ++i) set(batch[i], results[i]);
   }
   openvdb::tools::prune(tree);
@@ -254,6 +255,7 @@ FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernelsOrNull) 
   for (size_t first = 0; first < work.size(); first += kBatchBricks) {
     const std::vector<Coord> batch(work.begin() + first, work.begin() + std::min(work.size(), first + kBatchBricks));
     kernels.prefilter(samples, batch, results);
+    kernels.bricksDone += batch.size();
     // Leaves are built in parallel, then added to the tree (which is not thread-safe) in order.
     std::vector<FccLeaf*> leaves(batch.size(), nullptr);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, batch.size(), 16), [&](const tbb::blocked_range<size_t>& r) {

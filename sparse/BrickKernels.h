@@ -10,6 +10,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,6 +39,8 @@ class BrickKernels {
   // Seconds spent in the compute step proper (kernels, without staging and transfers) since the last
   // reset; the reference path counts all of its time.
   double computeSeconds = 0.0;
+  // Bricks the drivers (sparse/BrickBounds.h) handed to this object since the last reset.
+  uint64_t bricksDone = 0;
 };
 
 // The C++/TBB reference: spline::cubeBounds and spline::prefilterAt over a gathered halo block.

@@ -4,8 +4,6 @@
 
 #include <mutex>
 
-#include "BrickBounds.h"
-
 namespace fcc {
 
 void initializeVdb() {

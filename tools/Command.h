@@ -24,12 +24,11 @@ Command addConvertCommand(CLI::App& parent);
 Command addInfoCommand(CLI::App& parent);
 Command addProbeCommand(CLI::App& parent);
 Command addRenderCommand(CLI::App& parent);
-Command addBenchCommand(CLI::App& parent);
-Command addBenchRenderCommand(CLI::App& bench);  // under `bench`
 Command addSynthCommand(CLI::App& parent);
 // `bench` is a parent command; each benchmark registers itself on it from its own file.
 Command addBenchCommand(CLI::App& parent);
-Command addBenchPreprocessCommand(CLI::App& bench);
+Command addBenchRenderCommand(CLI::App& bench);      // under `bench`
+Command addBenchPreprocessCommand(CLI::App& bench);  // under `bench`
 
 // Validators shared by several subcommands.
 CLI::Validator tripleValidator(const std::string& what);  // "X,Y,Z"

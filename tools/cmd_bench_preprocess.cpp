@@ -5,7 +5,8 @@
 // choosing the bricks, staging leaves and neighbour tables, transfers, the kernels, assembling the VDB
 // grid) -> `seconds`; and the compute step alone (the kernel launches up to their completion; for the
 // reference path its per-brick work) -> `kernel_seconds`. Medians over the repetitions. Samples are
-// 4 x the active packed voxels of the stage's input grid.
+// 4 x the active packed voxels of the stage's input grid; `bricks` is how many bricks the stage
+// computed (leaves, their neighbours, tile borders) in one repetition.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -25,7 +26,7 @@ namespace {
 
 struct Measurement {
   std::string stage, device;
-  uint64_t samples = 0;
+  uint64_t samples = 0, bricks = 0;
   double seconds = 0.0, kernelSeconds = 0.0;
   int repetitions = 0;
 };
@@ -42,12 +43,13 @@ Measurement measure(const std::string& stageName, BrickKernels& kernels, uint64_
   std::vector<double> seconds, kernelSeconds;
   for (int i = 0; i < repetitions; ++i) {
     kernels.computeSeconds = 0.0;
+    kernels.bricksDone = 0;
     const auto start = std::chrono::steady_clock::now();
     stage();
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     kernelSeconds.push_back(kernels.computeSeconds);
   }
-  return {stageName, kernels.describe(), samples, median(seconds), median(kernelSeconds), repetitions};
+  return {stageName, kernels.describe(), samples, kernels.bricksDone, median(seconds), median(kernelSeconds), repetitions};
 }
 
 std::string jsonString(const std::string& s) {
@@ -76,7 +78,7 @@ Command addBenchPreprocessCommand(CLI::App& bench) {
   addDeviceOption(*app, args->device)->description(std::string("Only this device (default: every OpenCL device, then the reference path): ") + kDeviceSelectorHelp);
   app->add_option("--repetitions", args->repetitions, "Timed runs per stage and device (the median is reported)")->check(CLI::Range(1, 1000))->capture_default_str();
   app->add_option("--warmup", args->warmup, "Untimed runs first")->check(CLI::Range(0, 100))->capture_default_str();
-  app->add_flag("--json", args->json, "A JSON list of {stage, device, samples, seconds, samples_per_second, kernel_seconds, kernel_only_samples_per_second, repetitions}");
+  app->add_flag("--json", args->json, "A JSON list of {stage, device, samples, bricks, seconds, samples_per_second, kernel_seconds, kernel_only_samples_per_second, repetitions}");
   return {app, [args]() {
             const FccGrid::Ptr grid = io::readFccGrid(args->file, args->grid);
             std::vector<std::unique_ptr<BrickKernels>> devices;
@@ -111,9 +113,9 @@ Command addBenchPreprocessCommand(CLI::App& bench) {
               if (!args->json)
                 for (size_t i = results.size() - 2; i < results.size(); ++i) {
                   const Measurement& m = results[i];
-                  std::printf("%-9s %-60s %10.2f M samples/s (%.4f s; compute only %.2f M samples/s)\n", m.stage.c_str(),
-                              m.device.c_str(), rate(m.samples, m.seconds) / 1e6, m.seconds,
-                              rate(m.samples, m.kernelSeconds) / 1e6);
+                  std::printf("%-9s %-60s %8.2f M samples/s (%.4f s for %llu bricks; compute only %.2f M samples/s)\n",
+                              m.stage.c_str(), m.device.c_str(), rate(m.samples, m.seconds) / 1e6, m.seconds,
+                              (unsigned long long)m.bricks, rate(m.samples, m.kernelSeconds) / 1e6);
                   std::fflush(stdout);
                 }
             }
@@ -121,11 +123,11 @@ Command addBenchPreprocessCommand(CLI::App& bench) {
               std::printf("[");
               for (size_t i = 0; i < results.size(); ++i) {
                 const Measurement& m = results[i];
-                std::printf("%s\n  {\"stage\": %s, \"device\": %s, \"samples\": %llu, \"seconds\": %.6g, "
+                std::printf("%s\n  {\"stage\": %s, \"device\": %s, \"samples\": %llu, \"bricks\": %llu, \"seconds\": %.6g, "
                             "\"samples_per_second\": %.6g, \"kernel_seconds\": %.6g, \"kernel_only_samples_per_second\": %.6g, "
                             "\"repetitions\": %d}",
                             i ? "," : "", jsonString(m.stage).c_str(), jsonString(m.device).c_str(),
-                            (unsigned long long)m.samples, m.seconds, rate(m.samples, m.seconds), m.kernelSeconds,
+                            (unsigned long long)m.samples, (unsigned long long)m.bricks, m.seconds, rate(m.samples, m.seconds), m.kernelSeconds,
                             rate(m.samples, m.kernelSeconds), m.repetitions);
               }
               std::printf("\n]\n");
