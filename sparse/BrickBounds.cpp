@@ -3,6 +3,7 @@
 // work; see sparse/BrickKernels.h.
 #include "BrickBounds.h"
 
+#include <openvdb/math/Half.h>
 #include <openvdb/tools/Prune.h>
 #include <tbb/parallel_for.h>
 
@@ -281,6 +282,17 @@ FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernelsOrNull) 
   }
   openvdb::tools::prune(out);
   return grid;
+}
+
+FccGrid::ConstPtr valuesAsStored(const FccGrid::ConstPtr& grid) {
+  if (!grid->saveFloatAsHalf()) return grid;
+  FccGrid::Ptr rounded = grid->deepCopy();
+  const Vec4f background = rounded->background();
+  for (auto it = rounded->tree().beginValueAll(); it; ++it) {
+    const Vec4f v = *it;
+    if (v != background) it.setValue(Vec4f(openvdb::math::Vec4<openvdb::math::half>(v)));
+  }
+  return rounded;
 }
 
 FccGrid::ConstPtr coefficientsOf(const FccGrid::ConstPtr& grid, BrickKernels* kernels) {
