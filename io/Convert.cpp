@@ -214,7 +214,8 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   openvdb::GridCPtrVec grids{built.grid};
   if (options.bounds) {
     // Bounds of the spline the renderer evaluates: of the prefiltered coefficients for a samples grid.
-    BoundsGrid::Ptr bounds = computeBrickBounds(*coefficientsOf(built.grid, options.preprocess), options.preprocess);
+    BoundsGrid::Ptr bounds =
+        computeBrickBounds(*coefficientsOf(valuesAsStored(built.grid), options.preprocess), options.preprocess);
     summary.boundsBricks = bounds->activeVoxelCount();
     grids.push_back(bounds);
   }

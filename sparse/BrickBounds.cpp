@@ -3,6 +3,7 @@
 // work; see sparse/BrickKernels.h.
 #include "BrickBounds.h"
 
+#include <openvdb/math/Half.h>
 #include <openvdb/tools/Prune.h>
 #include <tbb/parallel_for.h>
 
@@ -104,6 +105,19 @@ struct HaloBlock {
           for (int c = 0; c < 4; ++c) out[c] = v[c];
         }
   }
+  // Whether every value the unit cube at `corner` reads (sites [corner - 1, corner + 2]^3) is zero:
+  // then all its BB-coefficients are exactly +0, which the reference can say without computing them
+  // (air in scans; the result is bit-identical).
+  bool cubeReadsOnlyZeros(const glm::ivec3& corner) const {
+    const glm::ivec3 lo = packedVoxelOfSite(corner - 1) - packedOrigin, hi = packedVoxelOfSite(corner + 2) - packedOrigin;
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+          const float* v = values + ((z * kHaloSide + y) * kHaloSide + x) * 4;
+          if (v[0] != 0.0f || v[1] != 0.0f || v[2] != 0.0f || v[3] != 0.0f) return false;
+        }
+    return true;
+  }
   // The value at FCC site ijk (which must lie in the block).
   float at(const glm::ivec3& ijk) const {
     const glm::ivec3 p = packedVoxelOfSite(ijk) - packedOrigin;
@@ -129,7 +143,13 @@ class ReferenceBrickKernels : public BrickKernels {
         for (int z = 0; z < kBrickSites; ++z)
           for (int y = 0; y < kBrickSites; ++y)
             for (int x = 0; x < kBrickSites; ++x) {
-              const spline::FccRange b = spline::cubeBounds(siteOrigin + glm::ivec3(x, y, z), coefficientAt);
+              const glm::ivec3 corner = siteOrigin + glm::ivec3(x, y, z);
+              if (block->cubeReadsOnlyZeros(corner)) {
+                lo = std::min(lo, 0.0f);
+                hi = std::max(hi, 0.0f);
+                continue;
+              }
+              const spline::FccRange b = spline::cubeBounds(corner, coefficientAt);
               lo = std::min(lo, b.lo);
               hi = std::max(hi, b.hi);
             }
@@ -281,6 +301,17 @@ FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernelsOrNull) 
   }
   openvdb::tools::prune(out);
   return grid;
+}
+
+FccGrid::ConstPtr valuesAsStored(const FccGrid::ConstPtr& grid) {
+  if (!grid->saveFloatAsHalf()) return grid;
+  FccGrid::Ptr rounded = grid->deepCopy();
+  const Vec4f background = rounded->background();
+  for (auto it = rounded->tree().beginValueAll(); it; ++it) {
+    const Vec4f v = *it;
+    if (v != background) it.setValue(Vec4f(openvdb::math::Vec4<openvdb::math::half>(v)));
+  }
+  return rounded;
 }
 
 FccGrid::ConstPtr coefficientsOf(const FccGrid::ConstPtr& grid, BrickKernels* kernels) {

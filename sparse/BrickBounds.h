@@ -50,6 +50,11 @@ BoundsGrid::Ptr computeBrickBounds(const FccGrid& coefficients, BrickKernels* ke
 // fcc_values = coefficients.
 FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernels = nullptr);
 
+// The grid's values as a reader of its file will see them: rounded through half floats where the
+// grid is saved as half (Grid::saveFloatAsHalf; the background, stored exactly, stays), else the grid
+// itself. Bounds must be those of the stored values.
+FccGrid::ConstPtr valuesAsStored(const FccGrid::ConstPtr& grid);
+
 // The coefficients to compute bounds of: the grid itself, or its prefiltered copy when it stores
 // samples.
 FccGrid::ConstPtr coefficientsOf(const FccGrid::ConstPtr& grid, BrickKernels* kernels = nullptr);

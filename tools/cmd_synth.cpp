@@ -58,7 +58,7 @@ Command addSynthCommand(CLI::App& parent) {
             setFccMetadata(*built.grid, p);
             built.grid->setSaveFloatAsHalf(args->half);
             // Bounds of the spline the renderer evaluates: of the prefiltered coefficients for samples.
-            const BoundsGrid::Ptr bounds = computeBrickBounds(*coefficientsOf(built.grid, kernels.get()), kernels.get());
+            const BoundsGrid::Ptr bounds = computeBrickBounds(*coefficientsOf(valuesAsStored(built.grid), kernels.get()), kernels.get());
             io::writeVdbAtomically(args->output, openvdb::GridCPtrVec{built.grid, bounds}, args->force);
             if (!args->quiet)
               std::fprintf(stderr, "wrote %s: %s, %llu active samples in %llu bricks; bounds: %llu varying bricks (%s)\n",

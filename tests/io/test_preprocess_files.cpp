@@ -121,6 +121,24 @@ TEST(PreprocessFiles, BoundsAreStoredBesideTheGridAndFound) {
   EXPECT_FALSE(readFccGridWithBounds(dir / "without.vdb").bounds);
 }
 
+TEST(PreprocessFiles, HalfStoredBoundsAreThoseOfTheStoredValues) {
+  // Bounds of the float values would not bound the half-rounded spline a reader evaluates.
+  TempDir dir;
+  ConvertOptions o;
+  o.raw.emplace();
+  const std::string raw = writeSparseRaw(dir, *o.raw);
+  o.half = true;
+  convertToFcc(raw, dir / "half.vdb", o);
+  const FccWithBounds file = readFccGridWithBounds(dir / "half.vdb");
+  ASSERT_TRUE(file.bounds);
+  const BoundsGrid::Ptr recomputed = computeBrickBounds(*file.grid);
+  EXPECT_EQ(recomputed->activeVoxelCount(), file.bounds->activeVoxelCount());
+  auto acc = recomputed->getConstAccessor();
+  int differ = 0;
+  for (auto it = file.bounds->cbeginValueOn(); it; ++it) differ += acc.getValue(it.getCoord()) != *it;
+  EXPECT_EQ(differ, 0) << "bricks whose stored bounds are not those of the stored values";
+}
+
 // Whether the spline takes values on both sides of `iso` in brick b: sampled at the points of spacing
 // 1/2 in the brick's closed box, from the brick's halo of coefficients.
 bool brickHoldsSurface(FccGrid::ConstAccessor& accessor, const Coord& b, float iso) {

@@ -13,9 +13,9 @@ namespace fcc::test {
 
 constexpr float kBrickTestBackground = 0.125f;
 
-inline FccGrid::Ptr randomBrickGrid(uint32_t seed, float activeFraction = 0.8f) {
+inline FccGrid::Ptr randomBrickGrid(uint32_t seed, float activeFraction = 0.8f, float background = kBrickTestBackground) {
   initializeVdb();
-  auto grid = FccGrid::create(openvdb::Vec4f(kBrickTestBackground));
+  auto grid = FccGrid::create(openvdb::Vec4f(background));
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> value(-1.0f, 1.0f), unit(0.0f, 1.0f);
   auto& tree = grid->tree();

@@ -62,10 +62,13 @@ TEST(BrickBounds, ConservativeAtAMillionPoints) {
 }
 
 TEST(BrickBounds, EqualReducedCubeBounds) {
-  const FccGrid::Ptr grid = test::randomBrickGrid(8);
+  // Also with a zero background and sparse leaves: the reference skips cubes that read only zeros.
+  for (const float background : {test::kBrickTestBackground, 0.0f}) {
+  const FccGrid::Ptr grid = test::randomBrickGrid(8, background == 0.0f ? 0.3f : 0.8f, background);
   const FccSampler sampler(*grid, false);
   auto coefficientAt = [&](const glm::ivec3& ijk) { return sampler.coefficient(ijk); };
-  const std::vector<Coord> bricks = {Coord(0, 0, 0), Coord(3, 0, 0), Coord(-1, 5, -3), Coord(-8, 4, 1), Coord(7, 2, 1)};
+  const std::vector<Coord> bricks = {Coord(0, 0, 0), Coord(3, 0, 0), Coord(-1, 5, -3), Coord(-8, 4, 1), Coord(7, 2, 1),
+                                     Coord(6, 1, 0), Coord(5, 1, 0)};
   std::vector<Vec2f> out;
   makeReferenceBrickKernels()->bounds(*grid, bricks, out);
   for (size_t i = 0; i < bricks.size(); ++i) {
@@ -78,8 +81,9 @@ TEST(BrickBounds, EqualReducedCubeBounds) {
           lo = std::min(lo, r.lo);
           hi = std::max(hi, r.hi);
         }
-    EXPECT_EQ(out[i][0], lo) << bricks[i];
-    EXPECT_EQ(out[i][1], hi) << bricks[i];
+    EXPECT_EQ(out[i][0], lo) << bricks[i] << " background " << background;
+    EXPECT_EQ(out[i][1], hi) << bricks[i] << " background " << background;
+  }
   }
 }
 
