@@ -138,7 +138,8 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
       }
     }
     if (tExit >= tb) break;
-    tCell = tExit;
+    // Never backwards: a start cell clamped into the brick can have a face behind the ray.
+    tCell = max(tCell, tExit);
     if (tMax.x <= tMax.y && tMax.x <= tMax.z) {
       cell.x += stepDir.x;
       tMax.x += tDelta.x;
