@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "Command.h"
+#include "JsonText.h"
 #include "io/VdbFile.h"
 #include "kernels/ClBrickKernels.h"
 #include "sparse/BrickBounds.h"
@@ -50,15 +51,6 @@ Measurement measure(const std::string& stageName, BrickKernels& kernels, uint64_
     kernelSeconds.push_back(kernels.computeSeconds);
   }
   return {stageName, kernels.describe(), samples, kernels.bricksDone, median(seconds), median(kernelSeconds), repetitions};
-}
-
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) >= 0x20) out += c;
-  }
-  return out + "\"";
 }
 
 double rate(uint64_t samples, double seconds) { return seconds > 0.0 ? double(samples) / seconds : 0.0; }

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "Command.h"
+#include "JsonText.h"
 #include "io/VdbFile.h"
 #include "sparse/BoundsHierarchy.h"
 #include "sparse/Error.h"
@@ -12,28 +13,6 @@
 
 namespace fcc::cli {
 namespace {
-
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
-
-std::string jsonNumber(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
 
 // What the bounds hierarchy says, for an isovalue or none.
 struct BoundsSummary {

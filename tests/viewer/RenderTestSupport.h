@@ -1,5 +1,4 @@
-// Shared by the renderer tests: a headless GL context per test suite, writing an FCC file from a
-// sample field, and rendering a file through the library (as `fccvdb render` does).
+// Shared by the renderer tests: writing an FCC file from a sample field, and rendering a file through the library (as `fccvdb render` does).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -12,36 +11,10 @@
 #include "io/VdbFile.h"
 #include "sparse/FccBuilder.h"
 #include "sparse/SampleField.h"
-#include "viewer/EglContext.h"
+#include "tests/viewer/GlTestSuite.h"
 #include "viewer/Raycaster.h"
 
 namespace fcc::test {
-
-// Holds one EGL context for a whole test suite; tests skip without one, or fail when CI is set.
-class GlSuite : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    try {
-      context() = std::make_unique<EglContext>();
-    } catch (const Error& e) {
-      unavailable() = e.what();
-    }
-  }
-  static void TearDownTestSuite() { context().reset(); }
-  void SetUp() override {
-    if (context()) return;
-    if (std::getenv("CI")) FAIL() << "EGL/OpenGL 4.5 is required when CI is set: " << unavailable();
-    GTEST_SKIP() << "no EGL/OpenGL 4.5: " << unavailable();
-  }
-  static std::unique_ptr<EglContext>& context() {
-    static std::unique_ptr<EglContext> c;
-    return c;
-  }
-  static std::string& unavailable() {
-    static std::string s;
-    return s;
-  }
-};
 
 // Builds the FCC grid of `field` (prefiltered), gives it worldFromIndex = translate(origin) *
 // scale(scale), and writes it to `path`.

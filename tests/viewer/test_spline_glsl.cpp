@@ -24,7 +24,7 @@ using fcc::test::kPoints;
 using fcc::test::kValueTol;
 using fcc::test::randomPoints;
 using fcc::test::str;
-#include "viewer/EglContext.h"
+#include "tests/viewer/GlTestSuite.h"
 #include "viewer/GlProgram.h"
 
 namespace fcc {
@@ -32,23 +32,11 @@ namespace {
 
 constexpr const char* kShaderPath = "shaders/spline_eval.comp";
 
-class Glsl : public ::testing::Test {
+class Glsl : public test::GlSuite {
  protected:
-  static void SetUpTestSuite() {
-    try {
-      context = std::make_unique<EglContext>();
-    } catch (const Error& e) {
-      unavailable = e.what();
-    }
-  }
   static void TearDownTestSuite() {
     program.reset();  // before its context
-    context.reset();
-  }
-  void SetUp() override {
-    if (context) return;
-    if (std::getenv("CI")) FAIL() << "EGL/OpenGL 4.5 is required when CI is set: " << unavailable;
-    GTEST_SKIP() << unavailable;
+    GlSuite::TearDownTestSuite();
   }
 
   // The spline shader, compiled once per test binary.
@@ -75,7 +63,7 @@ class Glsl : public ::testing::Test {
     resultBuffer.read(results);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     std::printf("[   INFO   ] %zu points on %s: %.1f ms (upload, dispatch, read back)\n", points.size(),
-                context->describe().c_str(), ms);
+                context()->describe().c_str(), ms);
     return results;
   }
 
@@ -83,9 +71,7 @@ class Glsl : public ::testing::Test {
     test::expectMatchesCpp("GLSL", block, points, evaluateOnDevice(block, points));
   }
 
-  static inline std::unique_ptr<EglContext> context;
   static inline std::optional<GlProgram> program;
-  static inline std::string unavailable;
 };
 
 TEST(GlslEmbedding, VersionLineStaysFirst) {
@@ -97,9 +83,9 @@ TEST(GlslEmbedding, VersionLineStaysFirst) {
 }
 
 TEST_F(Glsl, ContextIsOpenGL45Core) {
-  std::printf("[   INFO   ] %s\n", context->describe().c_str());
-  if (!context->fallbacks().empty()) std::printf("[   INFO   ] not used: %s\n", context->fallbacks().c_str());
-  EXPECT_FALSE(context->renderer().empty());
+  std::printf("[   INFO   ] %s\n", context()->describe().c_str());
+  if (!context()->fallbacks().empty()) std::printf("[   INFO   ] not used: %s\n", context()->fallbacks().c_str());
+  EXPECT_FALSE(context()->renderer().empty());
   GLint major = 0, minor = 0, profile = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   glGetIntegerv(GL_MINOR_VERSION, &minor);
