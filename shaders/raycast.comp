@@ -218,7 +218,11 @@ void main() {
     }
     t = max(tExitBrick, t + 1e-5 * abs(t) + 1e-6);
   }
-  if (stopped && !found) return;  // resumes next pass
+  if (stopped && !found) {  // resumes next pass; meanwhile the pixel shows the background
+    imageStore(uColor, pixel, vec4(0.0));
+    imageStore(uNormalDepth, pixel, vec4(0.0, 0.0, 0.0, 1.0 / 0.0));
+    return;
+  }
 
   imageStore(uResume, pixel, vec4(-1.0));
   if (!found) {

@@ -72,11 +72,11 @@ Command addBenchRenderCommand(CLI::App& bench) {
             const float iso = isoFromFlags(args->flags, store);
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;
-            const render::RenderOptions options = renderOptionsFromFlags(args->flags);
+            render::RenderOptions options = renderOptionsFromFlags(args->flags);
+            options.iso = iso;
 
             // Cold: a fresh pool and host cache, one complete frame.
             render::Raycaster raycaster(store, options);
-            raycaster.setIso(iso);
             const render::FrameStats cold = raycaster.render(camera, width, height);
 
             std::vector<Measurement> results;

@@ -42,8 +42,9 @@ Command addRenderCommand(CLI::App& parent) {
             const float iso = isoFromFlags(args->flags, store);
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;
-            render::Raycaster raycaster(store, renderOptionsFromFlags(args->flags));
-            raycaster.setIso(iso);
+            render::RenderOptions options = renderOptionsFromFlags(args->flags);
+            options.iso = iso;
+            render::Raycaster raycaster(store, options);
             const render::FrameStats stats = raycaster.render(camera, width, height);
             const render::FrameImages images = raycaster.readImages();
             io::RenderedImage image{images.width, images.height, &images.rgba, &images.normalDepth};

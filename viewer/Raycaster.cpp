@@ -1,7 +1,5 @@
 #include "Raycaster.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,7 +16,8 @@ constexpr std::size_t kSlotBytes = std::size_t(io::kHaloBlockVoxels) * 4 * sizeo
 constexpr std::size_t kSlotVoxels = 512;  // per-voxel cell bounds of a slot (shaders/pool.glsl)
 constexpr std::size_t kSlotBoundsBytes = kSlotVoxels * 2 * sizeof(float);
 constexpr int kLocalSize = 8;             // shaders/raycast.comp's local_size_x and _y
-constexpr std::size_t kUploadBatch = 256; // bricks assembled per staging batch (4 MB)
+constexpr std::size_t kUploadBatch = 256; // bricks the loader holds ready, and render()'s upload batch (4 MB)
+constexpr std::size_t kStepUploadBatch = 32;  // step()'s upload batch, checked against its time budget
 constexpr int kMaxPasses = 1 << 20;       // a frame that needs more has a bug, not a small pool
 
 glm::ivec3 toGlm(const openvdb::Coord& c) { return {c.x(), c.y(), c.z()}; }
@@ -62,14 +61,19 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options) 
   requestBits_ = std::make_unique<GlBuffer>((bricksInBox / 32 + 1) * sizeof(uint32_t));
   slotUse_ = std::make_unique<GlBuffer>(slots * sizeof(uint32_t));
   slotUse_->clear();
-  setIso(0.5f * (store.valueMin() + store.valueMax()));
+  loader_ = std::make_unique<BrickLoader>(store, *hostCache_, kUploadBatch);
+  setIso(std::isnan(options.iso) ? 0.5f * (store.valueMin() + store.valueMax()) : options.iso);
 }
 
 Raycaster::~Raycaster() = default;
 
+std::size_t Raycaster::poolBytes() const { return std::size_t(residency_->slotCount()) * (kSlotBytes + kSlotBoundsBytes); }
+
 void Raycaster::setIso(float iso) {
   if (!std::isfinite(iso)) throw ValueError("isovalue " + std::to_string(iso) + " is not finite");
   iso_ = iso;
+  options_.iso = iso;
+  ++settings_;
   std::vector<glm::ivec3> needed;
   for (auto it = store_.bounds().cbeginValueOn(); it; ++it) {
     const openvdb::Vec2f range = *it;
@@ -83,6 +87,21 @@ void Raycaster::setIso(float iso) {
 void Raycaster::setSkipEmpty(bool skip) {
   options_.skipEmpty = skip;
   setIso(iso_);
+}
+
+void Raycaster::setFiniteDifferenceNormals(bool on) {
+  options_.finiteDifferenceNormals = on;
+  ++settings_;
+}
+
+void Raycaster::setSurfaceColor(const glm::vec3& rgb) {
+  options_.surfaceColor = rgb;
+  ++settings_;
+}
+
+void Raycaster::setLightInCamera(const glm::vec3& direction) {
+  options_.lightInCamera = direction;
+  ++settings_;
 }
 
 void Raycaster::computeSlotBounds(const std::vector<uint32_t>& slots) {
@@ -106,7 +125,7 @@ void Raycaster::uploadPageTable() {
   }
 }
 
-void Raycaster::prepareImages(int width, int height) {
+void Raycaster::restartRays(int width, int height) {
   if (color_.width() != width || color_.height() != height) {
     color_ = GlTexture2D(GL_RGBA32F, width, height);
     normalDepth_ = GlTexture2D(GL_RGBA32F, width, height);
@@ -125,8 +144,10 @@ uint32_t Raycaster::dispatchPass(const CameraFrame& frame, int width, int height
   const glm::dmat4 indexFromWorld = glm::inverse(store_.worldFromIndex());
   const glm::mat4 indexFromWorldF(indexFromWorld);
   const glm::mat3 normalFromIndex = glm::transpose(glm::mat3(indexFromWorldF));
-  const glm::vec3 lightDir = glm::normalize(glm::vec3(-frame.forward) + 0.6f * glm::vec3(glm::normalize(frame.up)) +
-                                            0.3f * glm::vec3(glm::normalize(frame.right)));
+  const glm::vec3 l = options_.lightInCamera;
+  const glm::vec3 lightSum = l.x * glm::vec3(glm::normalize(frame.right)) + l.y * glm::vec3(glm::normalize(frame.up)) -
+                             l.z * glm::vec3(frame.forward);
+  const glm::vec3 lightDir = glm::length(lightSum) > 0.0f ? glm::normalize(lightSum) : -glm::vec3(frame.forward);
   glProgramUniform2i(p, program_.uniformLocation("uResolution"), width, height);
   const glm::vec3 eye(frame.eye), forward(frame.forward), right(frame.right), up(frame.up);
   glProgramUniform3fv(p, program_.uniformLocation("uEye"), 1, &eye.x);
@@ -168,7 +189,7 @@ uint32_t Raycaster::dispatchPass(const CameraFrame& frame, int width, int height
   return count;
 }
 
-uint64_t Raycaster::loadRequested(uint32_t requestCount) {
+std::vector<glm::ivec3> Raycaster::requestedBricks(uint32_t requestCount) const {
   const uint32_t n = std::min(requestCount, requestCapacity_);
   std::vector<uint32_t> raw(n);
   requests_->read(raw.data(), n * sizeof(uint32_t), sizeof(uint32_t));
@@ -179,31 +200,35 @@ uint64_t Raycaster::loadRequested(uint32_t requestCount) {
     if (!(r & 0x80000000u)) bricks.push_back(residency_->brickAt(r));
   for (uint32_t r : raw)
     if (r & 0x80000000u) bricks.push_back(residency_->brickAt(r & 0x7FFFFFFFu));
+  return bricks;
+}
 
+std::vector<uint32_t> Raycaster::readSlotUse() const {
   std::vector<uint32_t> slotUse(residency_->slotCount());
   slotUse_->read(slotUse);
-  const auto assigned = residency_->assign(bricks, slotUse);
-  if (assigned.empty()) throw Error("renderer: rays requested bricks but none could be given a pool slot");
+  return slotUse;
+}
 
-  std::vector<float> staging(std::min(kUploadBatch, assigned.size()) * io::kHaloBlockVoxels * 4);
-  for (std::size_t begin = 0; begin < assigned.size(); begin += kUploadBatch) {
-    const std::size_t end = std::min(assigned.size(), begin + kUploadBatch);
-    tbb::parallel_for(begin, end, [&](std::size_t i) {
-      io::assembleHaloBlock(store_, *hostCache_, assigned[i].first,
-                            staging.data() + (i - begin) * io::kHaloBlockVoxels * 4);
-    });
-    std::vector<uint32_t> slots;
-    for (std::size_t i = begin; i < end; ++i) {
-      pool_->write(staging.data() + (i - begin) * io::kHaloBlockVoxels * 4, kSlotBytes,
-                   std::size_t(assigned[i].second) * kSlotBytes);
-      // Freshly loaded slots count as used now, so the next assignment does not evict them first.
-      slotUse_->write(&pass_, sizeof pass_, std::size_t(assigned[i].second) * sizeof(uint32_t));
-      slots.push_back(assigned[i].second);
-    }
-    computeSlotBounds(slots);
+uint32_t Raycaster::upload(const std::vector<LoadedBrick>& loaded, std::vector<uint32_t>& slotLastUse) {
+  std::vector<glm::ivec3> bricks;
+  bricks.reserve(loaded.size());
+  for (const LoadedBrick& b : loaded) bricks.push_back(b.brick);
+  const auto assigned = residency_->assign(bricks, slotLastUse);  // skips bricks resident meanwhile
+  if (assigned.empty()) return 0;
+  std::vector<uint32_t> slots;
+  std::size_t next = 0;
+  for (const auto& [brick, slot] : assigned) {
+    while (loaded[next].brick != brick) ++next;  // assign() keeps the order
+    pool_->write(loaded[next].halo.data(), kSlotBytes, std::size_t(slot) * kSlotBytes);
+    // Freshly loaded slots count as used now, so the next assignment does not evict them first; on
+    // the host they are pinned until the next pass reports real use.
+    slotUse_->write(&pass_, sizeof pass_, std::size_t(slot) * sizeof(uint32_t));
+    slotLastUse[slot] = std::numeric_limits<uint32_t>::max();
+    slots.push_back(slot);
   }
-  uploadPageTable();
-  return assigned.size();
+  computeSlotBounds(slots);
+  bricksUploaded_ += assigned.size();
+  return uint32_t(assigned.size());
 }
 
 FrameStats Raycaster::render(const Camera& camera, int width, int height) {
@@ -211,7 +236,8 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
     throw ValueError("image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   const auto start = std::chrono::steady_clock::now();
   const CameraFrame frame = cameraFrame(camera, double(width) / double(height));
-  prepareImages(width, height);
+  restartRays(width, height);
+  stepKey_ = StepKey{};  // a later step() starts over
   FrameStats stats;
   stats.bricksNeeded = residency_->neededCount();
   for (;;) {
@@ -219,10 +245,69 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
     const uint32_t requested = dispatchPass(frame, width, height);
     if (requested == 0) break;
     if (stats.passes >= kMaxPasses) throw Error("renderer: the frame did not complete in " + std::to_string(kMaxPasses) + " passes");
-    stats.bricksUploaded += loadRequested(requested);
+    std::vector<glm::ivec3> bricks = requestedBricks(requested);
+    // No more than the pool holds: every brick loaded in a pass keeps its slot through the pass.
+    if (bricks.size() > residency_->slotCount()) bricks.resize(residency_->slotCount());
+    loader_->request(bricks);
+    std::vector<uint32_t> slotUse = readSlotUse();
+    uint64_t uploaded = 0;
+    for (;;) {
+      const std::vector<LoadedBrick> loaded = loader_->take(kUploadBatch, true);
+      if (loaded.empty()) break;
+      uploaded += upload(loaded, slotUse);
+    }
+    if (uploaded == 0) throw Error("renderer: rays requested bricks but none could be given a pool slot");
+    uploadPageTable();
+    stats.bricksUploaded += uploaded;
   }
   glFinish();
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+StepStats Raycaster::step(const Camera& camera, int width, int height, double uploadSeconds) {
+  if (width <= 0 || height <= 0)
+    throw ValueError("image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+  const CameraFrame frame = cameraFrame(camera, double(width) / double(height));
+  StepStats stats;
+  const StepKey key{frame, width, height, settings_};
+  const auto same = [](const glm::dvec3& a, const glm::dvec3& b) { return a == b; };
+  if (!(same(key.frame.eye, stepKey_.frame.eye) && same(key.frame.forward, stepKey_.frame.forward) &&
+        same(key.frame.right, stepKey_.frame.right) && same(key.frame.up, stepKey_.frame.up) &&
+        key.width == stepKey_.width && key.height == stepKey_.height && key.settings == stepKey_.settings)) {
+    stepKey_ = key;
+    restartRays(width, height);
+    loader_->cancelQueued();  // requests of the old view; what still arrives is uploaded all the same
+    stepComplete_ = false;
+    stats.restarted = true;
+  }
+  if (stepComplete_) {
+    stats.complete = true;
+    stats.streaming = loader_->pending();
+    return stats;
+  }
+  // Uploads first, so this step's pass already sees them.
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<uint32_t> slotUse;
+  do {
+    const std::vector<LoadedBrick> loaded = loader_->take(kStepUploadBatch, false);
+    if (loaded.empty()) break;
+    if (slotUse.empty()) slotUse = readSlotUse();
+    stats.uploaded += upload(loaded, slotUse);
+  } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < uploadSeconds);
+  if (stats.uploaded) uploadPageTable();
+
+  stats.dispatched = true;
+  stats.requested = dispatchPass(frame, width, height);
+  if (stats.requested == 0) {
+    stepComplete_ = true;
+    stats.complete = true;
+  } else {
+    std::vector<glm::ivec3> bricks = requestedBricks(stats.requested);
+    if (bricks.size() > residency_->slotCount()) bricks.resize(residency_->slotCount());
+    loader_->request(bricks);
+  }
+  stats.streaming = loader_->pending();
   return stats;
 }
 

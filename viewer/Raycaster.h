@@ -1,7 +1,10 @@
 // The brick-paged FCC isosurface raycaster (shaders/raycast.comp) and its streaming: bricks the rays
-// request are decoded through the host cache, uploaded into pool slots (least recently used ones are
-// evicted), and the frame continues where each ray stopped. A frame completes in as many passes as
-// the pool size requires, so the image does not depend on the cache budgets.
+// request are decoded through the host cache on the loader thread (viewer/BrickLoader.h), uploaded
+// into pool slots (least recently used ones are evicted), and the frame continues where each ray
+// stopped. A frame completes in as many passes as the pool size requires, so the image does not
+// depend on the cache budgets. Two ways to drive it: render() completes a frame before it returns
+// (`fccvdb render`, benchmarks); step() runs one pass per call and never waits for the file (the
+// interactive viewer, which shows the image refining while bricks arrive).
 // Needs a current OpenGL 4.5 context (fcc::EglContext, or the viewer's window).
 #pragma once
 
@@ -9,9 +12,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
+#include "BrickLoader.h"
 #include "Camera.h"
 #include "GlProgram.h"
 #include "Residency.h"
@@ -21,12 +26,15 @@
 namespace fcc::render {
 
 struct RenderOptions {
+  float iso = std::numeric_limits<float>::quiet_NaN();  // NaN: midway through the data's value range
   std::size_t gpuCacheBytes = std::size_t(512) << 20;   // the brick pool
   std::size_t hostCacheBytes = std::size_t(512) << 20;  // decoded bricks in host memory
   bool skipEmpty = true;   // skip nodes and bricks whose bounds exclude the isovalue
   int lookahead = 2;       // bricks a stopped ray requests beyond its first missing one
   bool finiteDifferenceNormals = false;  // central differences instead of the analytic gradient
   glm::vec3 surfaceColor{0.85f, 0.72f, 0.52f};
+  // Direction towards the light in camera space: x right, y up, z towards the viewer.
+  glm::vec3 lightInCamera{0.3f, 0.6f, 1.0f};
 };
 
 // The output of a frame, row 0 at the top.
@@ -43,6 +51,16 @@ struct FrameStats {
   double seconds = 0.0;
 };
 
+// What one step() of a progressive frame did.
+struct StepStats {
+  bool restarted = false;      // the view or a setting changed: every ray started over
+  bool complete = false;       // every ray has finished: the image is final for this view
+  bool dispatched = false;     // a pass ran (a complete frame needs none)
+  uint32_t requested = 0;      // bricks the pass's rays asked for
+  uint32_t uploaded = 0;       // bricks uploaded into the pool this step
+  std::size_t streaming = 0;   // bricks queued or decoding on the loader thread
+};
+
 class Raycaster {
  public:
   Raycaster(const io::BrickStore& store, const RenderOptions& options);
@@ -54,20 +72,35 @@ class Raycaster {
 
   // Renders a complete frame, passes and uploads until no ray waits for a brick.
   FrameStats render(const Camera& camera, int width, int height);
+  // One step of a progressive frame: starts the rays over when the camera, the size, the isovalue
+  // or an option changed since the last step; uploads bricks the loader has finished, for at most
+  // `uploadSeconds` (at least one batch); runs one pass continuing every waiting ray unless the frame
+  // is complete; queues the bricks the rays asked for. Pixels of rays still waiting show the
+  // background. Never waits for the file.
+  StepStats step(const Camera& camera, int width, int height, double uploadSeconds);
   FrameImages readImages() const;
+  // The colour image (RGBA32F, premultiplied, row 0 at the top) for drawing on screen.
+  const GlTexture2D& colorTexture() const { return color_; }
 
   uint32_t slotCount() const { return residency_->slotCount(); }
   const io::BrickCache& hostCache() const { return *hostCache_; }
   uint32_t residentCount() const { return residency_->residentCount(); }
+  std::size_t poolBytes() const;
+  uint64_t bricksUploaded() const { return bricksUploaded_; }  // since construction
+  uint64_t bricksDecoded() const { return loader_->loadedCount(); }
   const RenderOptions& options() const { return options_; }
-  // Switches skipping or the normals without reloading anything (for benchmarks and the viewer).
+  // Settings that change without reloading anything (benchmarks and the viewer).
   void setSkipEmpty(bool skip);
-  void setFiniteDifferenceNormals(bool on) { options_.finiteDifferenceNormals = on; }
+  void setFiniteDifferenceNormals(bool on);
+  void setSurfaceColor(const glm::vec3& rgb);
+  void setLightInCamera(const glm::vec3& direction);
 
  private:
-  void prepareImages(int width, int height);
+  void restartRays(int width, int height);
   uint32_t dispatchPass(const CameraFrame& frame, int width, int height);
-  uint64_t loadRequested(uint32_t requestCount);
+  std::vector<glm::ivec3> requestedBricks(uint32_t requestCount) const;
+  uint32_t upload(const std::vector<LoadedBrick>& loaded, std::vector<uint32_t>& slotLastUse);
+  std::vector<uint32_t> readSlotUse() const;
   void uploadPageTable();
   void computeSlotBounds(const std::vector<uint32_t>& slots);
 
@@ -76,8 +109,18 @@ class Raycaster {
   float iso_ = 0.0f;
   uint32_t pass_ = 0;
   uint32_t requestCapacity_ = 0;
+  uint64_t bricksUploaded_ = 0;
   std::unique_ptr<Residency> residency_;
   std::unique_ptr<io::BrickCache> hostCache_;
+  std::unique_ptr<BrickLoader> loader_;
+  // What the progressive frame was started for; a difference restarts it.
+  struct StepKey {
+    CameraFrame frame;
+    int width = 0, height = 0;
+    uint64_t settings = 0;
+  } stepKey_;
+  uint64_t settings_ = 1;  // bumped by every change of the isovalue or an option
+  bool stepComplete_ = false;
   GlProgram program_, slotBoundsProgram_;
   std::unique_ptr<GlBuffer> pool_, slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;
   GlTexture2D color_, normalDepth_, resume_;

@@ -38,8 +38,9 @@ inline render::FrameImages renderFile(const std::string& path, const render::Cam
                                       float iso, const render::RenderOptions& options = {},
                                       render::FrameStats* stats = nullptr) {
   const io::BrickStore store(path);
-  render::Raycaster raycaster(store, options);
-  raycaster.setIso(iso);
+  render::RenderOptions withIso = options;
+  withIso.iso = iso;
+  render::Raycaster raycaster(store, withIso);
   const render::FrameStats s = raycaster.render(camera, width, height);
   if (stats) *stats = s;
   return raycaster.readImages();

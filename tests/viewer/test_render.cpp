@@ -230,5 +230,61 @@ TEST_F(Render, SmallCachesGiveTheSameImageWithinTheirBudgets) {
   EXPECT_LT(growthMiB, 2.0 * budgetMiB + slackMiB);
 }
 
+// The viewer's progressive frames: step() with no upload time budget (one batch a step) reaches the
+// same image as render() with a pool that must evict, restarts when the camera moves, and does no
+// work once the frame is complete.
+TEST_F(Render, ProgressiveStepsReachTheBlockingImage) {
+  TempDir dir;
+  const std::string blobs = dir / "blobs.vdb";
+  ASSERT_EQ(test::runFccvdb("synth blobs " + blobs + " --dims 96,96,96 --quiet").status, 0);
+  render::Camera camera;
+  camera.eye = glm::dvec3(160.0, 120.0, 140.0);
+  camera.lookat = glm::dvec3(48.0);
+  const int w = 48, h = 40;
+  render::RenderOptions options;
+  options.iso = 0.3f;
+  options.gpuCacheBytes = std::size_t(1) << 20;  // 51 slots: the frame needs several passes
+  const render::FrameImages reference = renderFile(blobs, camera, w, h, options.iso, options);
+
+  const io::BrickStore store(blobs);
+  render::Raycaster raycaster(store, options);
+  const auto runToCompletion = [&](const render::Camera& cam, int& steps) {
+    render::StepStats s;
+    for (steps = 1; steps <= 100000; ++steps) {
+      s = raycaster.step(cam, w, h, 0.0);
+      if (steps == 1) EXPECT_TRUE(s.restarted) << "a new view starts the rays over";
+      else EXPECT_FALSE(s.restarted) << "step " << steps;
+      if (s.complete) break;
+    }
+    return s;
+  };
+  int steps = 0;
+  render::StepStats last = runToCompletion(camera, steps);
+  ASSERT_TRUE(last.complete) << "no complete frame after " << steps << " steps";
+  std::printf("complete after %d steps, %llu bricks uploaded\n", steps, (unsigned long long)raycaster.bricksUploaded());
+  EXPECT_GT(steps, 2) << "a pool this small needs several steps";
+  const render::FrameImages progressive = raycaster.readImages();
+  int hits = 0;
+  for (std::size_t i = 0; i < reference.rgba.size(); ++i) {
+    ASSERT_FLOAT_EQ(reference.rgba[i], progressive.rgba[i]) << "rgba component " << i;
+    ASSERT_FLOAT_EQ(reference.normalDepth[i], progressive.normalDepth[i]) << "normal/depth component " << i;
+    hits += (i % 4 == 3) && reference.rgba[i] > 0.5f;
+  }
+  EXPECT_GT(hits, w * h / 20);
+
+  const render::StepStats idle = raycaster.step(camera, w, h, 0.0);
+  EXPECT_TRUE(idle.complete);
+  EXPECT_FALSE(idle.dispatched) << "a complete frame needs no pass";
+
+  render::Camera moved = camera;
+  moved.eye.x += 30.0;
+  last = runToCompletion(moved, steps);
+  ASSERT_TRUE(last.complete);
+  const render::FrameImages other = renderFile(blobs, moved, w, h, options.iso, options);
+  const render::FrameImages afterMove = raycaster.readImages();
+  for (std::size_t i = 0; i < other.rgba.size(); ++i)
+    ASSERT_FLOAT_EQ(other.rgba[i], afterMove.rgba[i]) << "rgba component " << i << " after the camera moved";
+}
+
 }  // namespace
 }  // namespace fcc

@@ -1,0 +1,68 @@
+// The renderer's loader thread: decodes requested bricks into pool-slot halo blocks (through the
+// host cache) away from the frame loop, so neither the viewer's UI nor a frame's GPU work waits on
+// the file. The frame loop queues bricks with request() and collects finished ones with take();
+// bricks already queued, being decoded or waiting to be taken are not queued twice. At most
+// `maxReady` finished blocks wait to be taken (the thread pauses meanwhile), which bounds the host
+// memory the loader adds to the host cache's budget.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <unordered_set>
+#include <vector>
+
+#include "io/BrickCache.h"
+
+namespace fcc::render {
+
+struct LoadedBrick {
+  glm::ivec3 brick;
+  std::vector<float> halo;  // io::kHaloBlockVoxels packed voxels, four floats each: one pool slot
+};
+
+class BrickLoader {
+ public:
+  BrickLoader(const io::BrickStore& store, io::BrickCache& cache, std::size_t maxReady);
+  ~BrickLoader();  // stops after the batch in progress; queued requests are dropped
+  BrickLoader(const BrickLoader&) = delete;
+  BrickLoader& operator=(const BrickLoader&) = delete;
+
+  // Queues bricks, in order, skipping ones the loader already holds in any state.
+  void request(const std::vector<glm::ivec3>& bricks);
+  // Drops the queued requests not yet started (the view changed; what is decoding still arrives).
+  void cancelQueued();
+  // Up to `max` finished bricks, oldest first. With `wait`, blocks until at least one is finished or
+  // nothing is left to decode. Rethrows what decoding threw (a file that fails to read).
+  std::vector<LoadedBrick> take(std::size_t max, bool wait);
+  // Bricks queued, decoding or waiting to be taken.
+  std::size_t pending() const;
+  uint64_t loadedCount() const;  // bricks decoded into blocks since construction
+
+ private:
+  void run();
+  static uint64_t key(const glm::ivec3& b);
+
+  const io::BrickStore& store_;
+  io::BrickCache& cache_;
+  const std::size_t maxReady_;
+  mutable std::mutex mutex_;
+  std::condition_variable work_;   // requests queued, room in ready_, or stopping
+  std::condition_variable done_;   // a batch finished
+  std::deque<glm::ivec3> queued_;
+  std::size_t decoding_ = 0;
+  std::deque<LoadedBrick> ready_;
+  std::unordered_set<uint64_t> held_;  // keys of queued, decoding and ready bricks
+  uint64_t loaded_ = 0;
+  std::exception_ptr error_;  // the first decoding failure, for take() to rethrow
+  bool stop_ = false;
+  std::thread thread_;  // last: starts once the members above exist
+};
+
+}  // namespace fcc::render
