@@ -56,12 +56,13 @@ void checkGl(std::string_view doing) {
   if (!names.empty()) throw GlError(std::string(doing) + ": " + names);
 }
 
-GlProgram GlProgram::compute(std::string_view source, std::string_view name) {
-  GlProgram p;
-  p.name_ = std::string(name);
-  if (source.empty()) throw GlError("compute shader '" + p.name_ + "' has no source text");
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  if (shader == 0) throw GlError("glCreateShader(GL_COMPUTE_SHADER) failed for '" + p.name_ + "'");
+namespace {
+
+// Compiles one stage; throws GlError "compiling <kind> shader '<name>' failed:\n<log>".
+GLuint compileStage(GLenum stage, const char* kind, std::string_view source, const std::string& name) {
+  if (source.empty()) throw GlError(std::string(kind) + " shader '" + name + "' has no source text");
+  const GLuint shader = glCreateShader(stage);
+  if (shader == 0) throw GlError("glCreateShader failed for the " + std::string(kind) + " shader '" + name + "'");
   const GLchar* text = source.data();
   const GLint length = GLint(source.size());
   glShaderSource(shader, 1, &text, &length);
@@ -71,16 +72,52 @@ GlProgram GlProgram::compute(std::string_view source, std::string_view name) {
   if (ok != GL_TRUE) {
     const std::string log = shaderLog(shader);
     glDeleteShader(shader);
-    throw GlError("compiling compute shader '" + p.name_ + "' failed:\n" + log);
+    throw GlError("compiling " + std::string(kind) + " shader '" + name + "' failed:\n" + log);
   }
-  p.id_ = glCreateProgram();
-  glAttachShader(p.id_, shader);
-  glLinkProgram(p.id_);
-  glDetachShader(p.id_, shader);
-  glDeleteShader(shader);
-  glGetProgramiv(p.id_, GL_LINK_STATUS, &ok);
-  if (ok != GL_TRUE) throw GlError("linking compute shader '" + p.name_ + "' failed:\n" + programLog(p.id_));
-  checkGl("building compute shader '" + p.name_ + "'");
+  return shader;
+}
+
+// Links the stages into a program (and frees them); throws GlError naming `what`.
+GLuint linkStages(const std::vector<GLuint>& shaders, const std::string& what) {
+  const GLuint id = glCreateProgram();
+  for (GLuint shader : shaders) glAttachShader(id, shader);
+  glLinkProgram(id);
+  for (GLuint shader : shaders) {
+    glDetachShader(id, shader);
+    glDeleteShader(shader);
+  }
+  GLint ok = GL_FALSE;
+  glGetProgramiv(id, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    const std::string log = programLog(id);
+    glDeleteProgram(id);
+    throw GlError("linking " + what + " failed:\n" + log);
+  }
+  checkGl("building " + what);
+  return id;
+}
+
+}  // namespace
+
+GlProgram GlProgram::compute(std::string_view source, std::string_view name) {
+  GlProgram p;
+  p.name_ = std::string(name);
+  p.id_ = linkStages({compileStage(GL_COMPUTE_SHADER, "compute", source, p.name_)}, "compute shader '" + p.name_ + "'");
+  return p;
+}
+
+GlProgram GlProgram::graphics(std::string_view vertexSource, std::string_view fragmentSource, std::string_view name) {
+  GlProgram p;
+  p.name_ = std::string(name);
+  const GLuint vertex = compileStage(GL_VERTEX_SHADER, "vertex", vertexSource, p.name_);
+  GLuint fragment = 0;
+  try {
+    fragment = compileStage(GL_FRAGMENT_SHADER, "fragment", fragmentSource, p.name_);
+  } catch (...) {
+    glDeleteShader(vertex);
+    throw;
+  }
+  p.id_ = linkStages({vertex, fragment}, "program '" + p.name_ + "'");
   return p;
 }
 
