@@ -46,17 +46,7 @@ void writeExr(const std::string& path, const RenderedImage& image) {
   file.writePixels(h);
 }
 
-void writePng(const std::string& path, const RenderedImage& image, const glm::vec3& background) {
-  const int w = image.width, h = image.height;
-  std::vector<unsigned char> pixels(std::size_t(w) * h * 3);
-  for (std::size_t i = 0; i < std::size_t(w) * h; ++i) {
-    const float* p = image.rgba->data() + 4 * i;
-    for (int c = 0; c < 3; ++c) {
-      const float v = p[c] + (1.0f - p[3]) * background[c];  // premultiplied over the background
-      const float srgb = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(std::max(v, 0.0f), 1.0f / 2.4f) - 0.055f;
-      pixels[3 * i + c] = (unsigned char)std::lround(std::clamp(srgb, 0.0f, 1.0f) * 255.0f);
-    }
-  }
+void writePngRgb8(const std::string& path, int w, int h, const std::vector<unsigned char>& pixels) {
   FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) throw OutputError(path + ": cannot write the PNG");
   std::unique_ptr<FILE, int (*)(FILE*)> closer(f, std::fclose);
@@ -77,6 +67,34 @@ void writePng(const std::string& path, const RenderedImage& image, const glm::ve
   if (std::fflush(f) != 0) throw OutputError(path + ": writing the PNG failed");
 }
 
+void writePng(const std::string& path, const RenderedImage& image, const glm::vec3& background) {
+  const int w = image.width, h = image.height;
+  std::vector<unsigned char> pixels(std::size_t(w) * h * 3);
+  for (std::size_t i = 0; i < std::size_t(w) * h; ++i) {
+    const float* p = image.rgba->data() + 4 * i;
+    for (int c = 0; c < 3; ++c) {
+      const float v = p[c] + (1.0f - p[3]) * background[c];  // premultiplied over the background
+      const float srgb = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(std::max(v, 0.0f), 1.0f / 2.4f) - 0.055f;
+      pixels[3 * i + c] = (unsigned char)std::lround(std::clamp(srgb, 0.0f, 1.0f) * 255.0f);
+    }
+  }
+  writePngRgb8(path, w, h, pixels);
+}
+
+// Runs `write(tempPath)` and renames the result into place; failures name `path`.
+template <class Write>
+void writeAtomically(const std::string& path, Write&& write) {
+  AtomicOutput out(path, /*overwrite=*/true);
+  try {
+    write(out.tempPath());
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw OutputError(path + ": writing the image failed: " + e.what());
+  }
+  out.commit();
+}
+
 }  // namespace
 
 void checkImageExtension(const std::string& path) {
@@ -87,16 +105,17 @@ void checkImageExtension(const std::string& path) {
 
 void writeRenderedImage(const std::string& path, const RenderedImage& image, const glm::vec3& background) {
   checkImageExtension(path);
-  AtomicOutput out(path, /*overwrite=*/true);
-  try {
-    if (lowerExtension(path) == ".exr") writeExr(out.tempPath(), image);
-    else writePng(out.tempPath(), image, background);
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw OutputError(path + ": writing the image failed: " + e.what());
-  }
-  out.commit();
+  writeAtomically(path, [&](const std::string& temp) {
+    if (lowerExtension(path) == ".exr") writeExr(temp, image);
+    else writePng(temp, image, background);
+  });
+}
+
+void writeScreenPng(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {
+  if (rgb.size() != std::size_t(width) * height * 3)
+    throw ValueError(path + ": screen image of " + std::to_string(rgb.size()) + " bytes is not " +
+                     std::to_string(width) + "x" + std::to_string(height) + " RGB");
+  writeAtomically(path, [&](const std::string& temp) { writePngRgb8(temp, width, height, rgb); });
 }
 
 }  // namespace fcc::io

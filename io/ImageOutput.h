@@ -19,6 +19,9 @@ struct RenderedImage {
 // By extension: ".exr" or ".png" (case-insensitive); anything else is a ValueError listing both.
 void writeRenderedImage(const std::string& path, const RenderedImage& image, const glm::vec3& background);
 
+// An 8-bit sRGB RGB image as shown on screen (the viewer's window), row 0 at the top, to PNG.
+void writeScreenPng(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb);
+
 // Throws ValueError unless `path` ends in .exr or .png.
 void checkImageExtension(const std::string& path);
 

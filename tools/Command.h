@@ -25,6 +25,7 @@ Command addInfoCommand(CLI::App& parent);
 Command addProbeCommand(CLI::App& parent);
 Command addRenderCommand(CLI::App& parent);
 Command addSynthCommand(CLI::App& parent);
+Command addViewCommand(CLI::App& parent);
 // `bench` is a parent command; each benchmark registers itself on it from its own file.
 Command addBenchCommand(CLI::App& parent);
 Command addBenchRenderCommand(CLI::App& bench);      // under `bench`

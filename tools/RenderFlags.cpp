@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "Triple.h"
+#include "io/ImageOutput.h"
 #include "sparse/Error.h"
 
 namespace fcc::cli {
@@ -87,6 +88,14 @@ render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags) {
   options.hostCacheBytes = flags.hostCacheMiB > 0.0 ? mibToBytes(flags.hostCacheMiB) : ram / 4;
   options.gpuCacheBytes = flags.gpuCacheMiB > 0.0 ? mibToBytes(flags.gpuCacheMiB) : (std::size_t(1) << 30);
   return options;
+}
+
+void checkOutputWritable(const std::string& path) {
+  io::checkImageExtension(path);
+  const auto slash = path.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw OutputError(path + ": cannot write there (directory '" + dir + "' is missing or not writable)");
 }
 
 }  // namespace fcc::cli

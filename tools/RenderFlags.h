@@ -28,4 +28,8 @@ void resolutionFromFlags(const std::string& res, int& width, int& height);
 render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect);
 render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags);
 
+// Fails before any rendering if `path` cannot be written: not .exr/.png, or its directory missing
+// or read-only (OutputError).
+void checkOutputWritable(const std::string& path);
+
 }  // namespace fcc::cli

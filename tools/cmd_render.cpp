@@ -1,6 +1,4 @@
 // fccvdb render FILE.vdb -o OUT.(exr|png): one headless frame of the isosurface.
-#include <unistd.h>
-
 #include <cstdio>
 
 #include "Command.h"
@@ -10,18 +8,6 @@
 #include "viewer/EglContext.h"
 
 namespace fcc::cli {
-namespace {
-
-// Fails before any rendering if the output cannot be written.
-void checkOutputWritable(const std::string& path) {
-  io::checkImageExtension(path);
-  const auto slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-  if (::access(dir.c_str(), W_OK) != 0)
-    throw OutputError(path + ": cannot write there (directory '" + dir + "' is missing or not writable)");
-}
-
-}  // namespace
 
 Command addRenderCommand(CLI::App& parent) {
   struct Args {

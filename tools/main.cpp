@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
       fcc::cli::addProbeCommand(app),
       fcc::cli::addRenderCommand(app),
       fcc::cli::addSynthCommand(app),
+      fcc::cli::addViewCommand(app),
   };
   try {
     app.parse(argc, argv);

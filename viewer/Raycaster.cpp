@@ -67,7 +67,9 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options) 
 
 Raycaster::~Raycaster() = default;
 
-std::size_t Raycaster::poolBytes() const { return std::size_t(residency_->slotCount()) * (kSlotBytes + kSlotBoundsBytes); }
+std::size_t Raycaster::slotBytes() { return kSlotBytes + kSlotBoundsBytes; }
+
+std::size_t Raycaster::poolBytes() const { return std::size_t(residency_->slotCount()) * slotBytes(); }
 
 void Raycaster::setIso(float iso) {
   if (!std::isfinite(iso)) throw ValueError("isovalue " + std::to_string(iso) + " is not finite");

@@ -85,7 +85,10 @@ class Raycaster {
   uint32_t slotCount() const { return residency_->slotCount(); }
   const io::BrickCache& hostCache() const { return *hostCache_; }
   uint32_t residentCount() const { return residency_->residentCount(); }
-  std::size_t poolBytes() const;
+  std::size_t neededCount() const { return residency_->neededCount(); }
+  std::size_t missingCount() const { return residency_->missingCount(); }
+  static std::size_t slotBytes();  // GPU bytes one resident brick costs (data and cell bounds)
+  std::size_t poolBytes() const;  // slotCount() * slotBytes()
   uint64_t bricksUploaded() const { return bricksUploaded_; }  // since construction
   uint64_t bricksDecoded() const { return loader_->loadedCount(); }
   const RenderOptions& options() const { return options_; }

@@ -50,6 +50,12 @@ void Residency::setNeeded(const std::vector<glm::ivec3>& bricks) {
   }
 }
 
+std::size_t Residency::missingCount() const {
+  std::size_t residentNeeded = 0;
+  for (const auto& [index, slot] : brickSlot_) residentNeeded += needed_[index];
+  return neededCount_ - residentNeeded;
+}
+
 bool Residency::isResident(const glm::ivec3& brick) const { return brickSlot_.count(brickIndex(brick)) != 0; }
 
 std::vector<std::pair<glm::ivec3, uint32_t>> Residency::assign(const std::vector<glm::ivec3>& bricks,

@@ -42,6 +42,8 @@ class Residency {
 
   bool isResident(const glm::ivec3& brick) const;
   uint32_t residentCount() const { return uint32_t(brickSlot_.size()); }
+  // Needed bricks not resident (what the current isovalue may still have to stream).
+  std::size_t missingCount() const;
 
   const std::vector<uint32_t>& pageEntries() const { return pageEntries_; }
   const std::vector<uint32_t>& nodeEntries() const { return nodeEntries_; }

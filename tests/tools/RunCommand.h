@@ -23,13 +23,13 @@ inline std::string readText(const std::filesystem::path& p) {
   return s.str();
 }
 
-// `args` is appended to the executable's path as shell words; `stdinText` is fed on standard input.
-inline CommandResult runFccvdb(const std::string& args, const std::string& stdinText = {}) {
+// Runs a shell command line; `stdinText` is fed on standard input.
+inline CommandResult runShell(const std::string& commandLine, const std::string& stdinText = {}) {
   const auto dir = std::filesystem::temp_directory_path();
   const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(std::rand());
   const auto in = dir / ("fcc_in_" + tag), out = dir / ("fcc_out_" + tag), err = dir / ("fcc_err_" + tag);
   std::ofstream(in) << stdinText;
-  const std::string cmd = std::string(FCC_FCCVDB_EXE) + " " + args + " <" + in.string() + " >" + out.string() + " 2>" + err.string();
+  const std::string cmd = commandLine + " <" + in.string() + " >" + out.string() + " 2>" + err.string();
   const int raw = std::system(cmd.c_str());
   CommandResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
@@ -39,6 +39,11 @@ inline CommandResult runFccvdb(const std::string& args, const std::string& stdin
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
+}
+
+// `args` is appended to the executable's path as shell words.
+inline CommandResult runFccvdb(const std::string& args, const std::string& stdinText = {}) {
+  return runShell(std::string(FCC_FCCVDB_EXE) + " " + args, stdinText);
 }
 
 // A render that failed because this machine has no EGL/OpenGL 4.5: outside CI the test has nothing to

@@ -1,0 +1,115 @@
+// `fccvdb view` under Xvfb (Debian's xvfb-run): the automation screenshot shows the panel and the
+// surface, and its 3D area matches `fccvdb render` of the same camera; a missing display and a
+// Cartesian input each give one clear line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include "PngRead.h"
+#include "RunCommand.h"
+
+namespace fcc {
+namespace {
+
+using test::CommandResult;
+using test::lineCount;
+using test::readPng;
+using test::Rgb8;
+using test::runFccvdb;
+using test::runShell;
+using test::TempDir;
+
+// 8-bit levels the viewer's GPU sRGB encoding may differ from `render`'s CPU one by (float
+// rounding before the conversion to 8 bits), and the share of 3D-area pixels allowed beyond it.
+constexpr int kLevelTolerance = 1;
+constexpr double kOutlierFraction = 0.001;
+
+bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+
+CommandResult runView(const std::string& args) {
+  return runShell("xvfb-run -a -s '-screen 0 1280x1024x24' " + std::string(FCC_FCCVDB_EXE) + " view " + args);
+}
+
+TEST(CliView, ScreenshotShowsThePanelAndMatchesRenderOutsideIt) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
+  TempDir dir;
+  const std::string vdb = dir / "blobs.vdb", shot = dir / "view.png", ref = dir / "render.png";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 96,96,96 --quiet").status, 0);
+  const std::string common = vdb + " --res 800x450 --iso 0.4";
+  const CommandResult view = runView(common + " --screenshot " + shot + " --frames 30");
+  ASSERT_EQ(view.status, 0) << view.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(view.out, m, std::regex("panel (\\d+) px wide"))) << view.out;
+  const int panel = std::stoi(m[1]);
+  ASSERT_EQ(runFccvdb("render " + common + " -o " + ref + " --quiet").status, 0);
+
+  Rgb8 a, b;
+  ASSERT_TRUE(readPng(shot, a));
+  ASSERT_TRUE(readPng(ref, b));
+  ASSERT_EQ(a.width, 800);
+  ASSERT_EQ(a.height, 450);
+  ASSERT_EQ(b.width, a.width);
+  ASSERT_EQ(b.height, a.height);
+  ASSERT_GT(panel, 100);
+  ASSERT_LT(panel, a.width / 2);
+
+  long compared = 0, outliers = 0, surface = 0, panelDiffers = 0;
+  int worst = 0;
+  const unsigned char* bg = b.pixels.data();  // render's corner pixel: the background
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const std::size_t i = (std::size_t(y) * a.width + x) * 3;
+      int diff = 0;
+      for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(int(a.pixels[i + c]) - int(b.pixels[i + c])));
+      if (x < panel) {
+        panelDiffers += diff > 8;
+        continue;
+      }
+      ++compared;
+      worst = std::max(worst, diff);
+      outliers += diff > kLevelTolerance;
+      surface += !std::equal(bg, bg + 3, b.pixels.data() + i);
+    }
+  std::printf("3D area: %ld pixels, %ld of them surface, %ld beyond %d levels (worst %d); panel: %ld pixels differ\n",
+              compared, surface, outliers, kLevelTolerance, worst, panelDiffers);
+  EXPECT_GT(surface, compared / 50) << "the surface must show";
+  EXPECT_LE(double(outliers), kOutlierFraction * double(compared));
+  EXPECT_GT(panelDiffers, long(panel) * a.height / 4) << "the panel must show";
+}
+
+TEST(CliView, NoDisplayGivesOneLineAndStatus1) {
+  TempDir dir;
+  const std::string vdb = dir / "s.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 16,16,16 --quiet").status, 0);
+  const CommandResult r =
+      runShell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(FCC_FCCVDB_EXE) + " view " + vdb);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("no display: use `fccvdb render` for headless images"), std::string::npos) << r.err;
+}
+
+TEST(CliView, CartesianInputSaysToConvertAndConvertsIntoATemporaryFile) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
+  TempDir dir;
+  const std::string source = dir / "sphere.vdb";
+  std::filesystem::copy_file(std::string(FCC_SOURCE_DIR) + "/../shared/data/sphere.vdb", source);
+  const CommandResult refused = runView(source + " --res 320x240");
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_EQ(lineCount(refused.err), 1) << refused.err;
+  EXPECT_NE(refused.err.find("fccvdb convert"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--convert"), std::string::npos) << refused.err;
+
+  const std::string shot = dir / "shot.png";
+  const CommandResult converted = runView(source + " --convert --iso 0 --res 320x240 --screenshot " + shot + " --frames 3");
+  ASSERT_EQ(converted.status, 0) << converted.err;
+  Rgb8 image;
+  EXPECT_TRUE(readPng(shot, image));
+  EXPECT_EQ(dir.fileCount(), 2) << "nothing but the input and the screenshot beside the input";
+}
+
+}  // namespace
+}  // namespace fcc

@@ -1,0 +1,166 @@
+// The viewer's ImGui panel, help window and streaming line (the drawing half of ViewerSession).
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cfloat>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "ViewerSession.h"
+
+namespace fcc::render {
+namespace {
+
+constexpr float kPanelWidth = 330.0f;  // before the font scale
+
+std::string mib(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MiB", bytes / double(1 << 20));
+  return text;
+}
+
+std::string count(uint64_t n) {
+  char text[32];
+  if (n >= 10'000'000) std::snprintf(text, sizeof text, "%.1f M", double(n) / 1e6);
+  else if (n >= 10'000) std::snprintf(text, sizeof text, "%.1f k", double(n) / 1e3);
+  else std::snprintf(text, sizeof text, "%llu", (unsigned long long)n);
+  return text;
+}
+
+// A label and a value in two columns.
+void row(const char* label, const std::string& value) {
+  ImGui::TextUnformatted(label);
+  ImGui::SameLine(ImGui::GetFontSize() * 8.0f);
+  ImGui::TextUnformatted(value.c_str());
+}
+
+void usageBar(const char* label, double used, double budget) {
+  char overlay[64];
+  std::snprintf(overlay, sizeof overlay, "%s / %s", mib(used).c_str(), mib(budget).c_str());
+  ImGui::TextUnformatted(label);
+  ImGui::SameLine(ImGui::GetFontSize() * 8.0f);
+  ImGui::ProgressBar(budget > 0.0 ? float(std::min(used / budget, 1.0)) : 0.0f, ImVec2(-1.0f, 0.0f), overlay);
+}
+
+}  // namespace
+
+void ViewerSession::drawPanel(int windowWidth, int windowHeight) {
+  (void)windowWidth;
+  if (!settings_.showPanel) return;
+  const float scale = ImGui::GetIO().FontGlobalScale;
+  panelWidth_ = kPanelWidth * scale;
+  ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
+  ImGui::SetNextWindowSize(ImVec2(panelWidth_, float(windowHeight)));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("fccvdb", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoSavedSettings);
+  ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);  // room for the labels
+
+  if (ImGui::CollapsingHeader("Isosurface", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::SetNextItemWidth(-1.0f);
+    // Instant: the bounds do not depend on the isovalue, only which bricks are needed does.
+    ImGui::SliderFloat("##iso", &settings_.iso, summary_.valueMin, summary_.valueMax, "iso %.4g");
+    const auto& h = summary_.histogram;
+    if (!h.empty()) {
+      // Logarithmic counts: a large background bin would flatten everything else.
+      std::vector<float> logCounts(h.size());
+      std::transform(h.begin(), h.end(), logCounts.begin(), [](float c) { return std::log1p(c); });
+      ImGui::PlotHistogram("##histogram", logCounts.data(), int(logCounts.size()), 0, "values (log count)", 0.0f,
+                           FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 56.0f * scale));
+      // The isovalue's place under the histogram.
+      const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+      const float span = summary_.valueMax - summary_.valueMin;
+      const float t = span > 0.0f ? std::clamp((settings_.iso - summary_.valueMin) / span, 0.0f, 1.0f) : 0.5f;
+      const float x = lo.x + t * (hi.x - lo.x);
+      ImGui::GetWindowDrawList()->AddLine(ImVec2(x, lo.y), ImVec2(x, hi.y), IM_COL32(255, 90, 60, 255), 2.0f);
+    }
+  }
+  if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // Light direction in camera space as azimuth (from the view axis towards the right) and
+    // elevation; written back only when moved, so the default light stays bit-exact.
+    const glm::vec3 l = glm::normalize(settings_.lightInCamera);
+    float azimuth = glm::degrees(std::atan2(l.x, l.z)), elevation = glm::degrees(std::asin(std::clamp(l.y, -1.0f, 1.0f)));
+    bool lightMoved = ImGui::SliderFloat("light azimuth", &azimuth, -180.0f, 180.0f, "%.0f deg");
+    lightMoved |= ImGui::SliderFloat("light elevation", &elevation, -89.0f, 89.0f, "%.0f deg");
+    if (lightMoved) {
+      const float a = glm::radians(azimuth), e = glm::radians(elevation);
+      settings_.lightInCamera = glm::vec3(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
+    }
+    ImGui::ColorEdit3("surface", &settings_.surfaceColor.x, ImGuiColorEditFlags_Float);
+    ImGui::ColorEdit3("background", &settings_.background.x, ImGuiColorEditFlags_Float);
+  }
+  if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Checkbox("empty-space skipping", &settings_.skipEmpty);
+    ImGui::Checkbox("finite-difference normals", &settings_.finiteDifferenceNormals);
+    row("brick layout", "SSBO, 4 channels");
+  }
+  if (ImGui::CollapsingHeader("Dataset", ImGuiTreeNodeFlags_DefaultOpen)) {
+    row("file", summary_.file);
+    row("grid", summary_.grid);
+    row("lattice", "FCC");
+    row("samples", count(summary_.samples));
+    row("bricks", count(summary_.bricks));
+    row("memory", mib(double(summary_.bytes)) + " decoded");
+    char range[64];
+    std::snprintf(range, sizeof range, "%.4g .. %.4g", double(summary_.valueMin), double(summary_.valueMax));
+    row("values", range);
+  }
+  if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
+    char frame[64];
+    std::snprintf(frame, sizeof frame, "%.2f ms (%.0f fps)", stats_.frameMs, stats_.fps);
+    row("frame", frame);
+    row("resident", count(stats_.resident) + " bricks");
+    row("needed", count(stats_.needed) + " bricks");
+    row("missing", count(stats_.missing) + " bricks");
+    row("requested", count(stats_.requested) + " (last pass)");
+    row("streaming", count(stats_.streaming) + " bricks");
+    usageBar("GPU cache", double(stats_.resident) * double(Raycaster::slotBytes()), double(raycaster_.poolBytes()));
+    usageBar("host cache", double(raycaster_.hostCache().bytesUsed()), double(raycaster_.hostCache().budgetBytes()));
+    char rate[32];
+    std::snprintf(rate, sizeof rate, "%.1f MiB/s", stats_.uploadMiBPerSecond);
+    row("uploads", rate);
+  }
+  ImGui::TextDisabled("H or F1: help");
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+void ViewerSession::drawHelp() {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::Begin("Help", &settings_.showHelp,
+               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
+  static const char* const kKeys[][2] = {
+      {"left drag", "orbit about the look-at point"},
+      {"middle drag, shift + left drag", "pan"},
+      {"wheel", "zoom"},
+      {"R", "reset the camera (frame the data)"},
+      {"S, F12", "screenshot: PNG of the window and EXR of the image, in the current directory"},
+      {"P", "show or hide the panel"},
+      {"H, F1", "show or hide this help"},
+      {"Esc", "quit"},
+  };
+  for (const auto& k : kKeys) {
+    ImGui::TextUnformatted(k[0]);
+    ImGui::SameLine(ImGui::GetFontSize() * 15.0f);
+    ImGui::TextUnformatted(k[1]);
+  }
+  ImGui::End();
+}
+
+void ViewerSession::drawStreamingLine(int windowWidth, int windowHeight) {
+  (void)windowWidth;
+  if (stats_.complete && stats_.streaming == 0) return;
+  char text[96];
+  if (stats_.streaming > 0)
+    std::snprintf(text, sizeof text, "streaming %zu bricks (%zu missing)", stats_.streaming, stats_.missing);
+  else
+    std::snprintf(text, sizeof text, "refining (%u bricks requested)", stats_.requested);
+  const ImVec2 at(panelWidth() + 10.0f, float(windowHeight) - ImGui::GetFontSize() - 10.0f);
+  ImGui::GetForegroundDrawList()->AddText(at, IM_COL32(255, 255, 255, 220), text);
+}
+
+}  // namespace fcc::render

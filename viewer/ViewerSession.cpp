@@ -1,0 +1,110 @@
+#include "ViewerSession.h"
+
+#define GLFW_INCLUDE_NONE  // key codes only; GL comes from libepoxy
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+
+#include "OrbitControls.h"
+#include "io/ImageOutput.h"
+
+namespace fcc::render {
+namespace {
+constexpr double kRateWindowSeconds = 0.5;
+}  // namespace
+
+ViewerSession::ViewerSession(const io::BrickStore& store, const RenderOptions& options, const Camera& initialCamera,
+                             DatasetSummary summary)
+    : store_(store),
+      raycaster_(store, options),
+      camera_(initialCamera),
+      initialCamera_(initialCamera),
+      summary_(std::move(summary)) {
+  settings_.iso = raycaster_.iso();
+  settings_.lightInCamera = options.lightInCamera;
+  settings_.surfaceColor = options.surfaceColor;
+  settings_.skipEmpty = options.skipEmpty;
+  settings_.finiteDifferenceNormals = options.finiteDifferenceNormals;
+}
+
+bool ViewerSession::takeScreenshotRequest() { return std::exchange(screenshotRequested_, false); }
+
+void ViewerSession::writeExr(const std::string& path) const {
+  const FrameImages images = raycaster_.readImages();
+  const io::RenderedImage image{images.width, images.height, &images.rgba, &images.normalDepth};
+  io::writeRenderedImage(path, image, settings_.background);
+}
+
+void ViewerSession::handleInput(int windowHeight) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureMouse) {
+    const double dx = io.MouseDelta.x, dy = io.MouseDelta.y;
+    const bool moved = (dx != 0.0 || dy != 0.0) && io.MousePos.x > -1e30f;
+    const bool panning = io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
+    if (moved && panning) camera_ = pan(camera_, dx, dy, windowHeight);
+    else if (moved && io.MouseDown[0]) camera_ = orbit(camera_, dx, dy);
+    if (io.MouseWheel != 0.0f) camera_ = zoom(camera_, io.MouseWheel);
+  }
+  if (!io.WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) camera_ = initialCamera_;
+    if (ImGui::IsKeyPressed(GLFW_KEY_H, false) || ImGui::IsKeyPressed(GLFW_KEY_F1, false))
+      settings_.showHelp = !settings_.showHelp;
+    if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) settings_.showPanel = !settings_.showPanel;
+    if (ImGui::IsKeyPressed(GLFW_KEY_S, false) || ImGui::IsKeyPressed(GLFW_KEY_F12, false))
+      screenshotRequested_ = true;
+  }
+}
+
+// The raycaster's setters restart the progressive frame, so only what changed is passed on.
+void ViewerSession::applySettings() {
+  const RenderOptions& o = raycaster_.options();
+  if (settings_.iso != raycaster_.iso()) raycaster_.setIso(settings_.iso);
+  if (settings_.skipEmpty != o.skipEmpty) raycaster_.setSkipEmpty(settings_.skipEmpty);
+  if (settings_.finiteDifferenceNormals != o.finiteDifferenceNormals)
+    raycaster_.setFiniteDifferenceNormals(settings_.finiteDifferenceNormals);
+  if (settings_.surfaceColor != o.surfaceColor) raycaster_.setSurfaceColor(settings_.surfaceColor);
+  if (settings_.lightInCamera != o.lightInCamera) raycaster_.setLightInCamera(settings_.lightInCamera);
+}
+
+void ViewerSession::updateStats(const StepStats& step) {
+  // Frame time and upload rate over windows of about kRateWindowSeconds: steady numbers to read,
+  // and a slow first frame (shader compilation) does not linger in them.
+  const auto now = std::chrono::steady_clock::now();
+  if (firstFrame_) {
+    rateWindowStart_ = now;
+    uploadedAtWindowStart_ = raycaster_.bricksUploaded();
+    firstFrame_ = false;
+  } else {
+    ++framesInWindow_;
+  }
+  const double window = std::chrono::duration<double>(now - rateWindowStart_).count();
+  if (window >= kRateWindowSeconds && framesInWindow_ > 0) {
+    stats_.frameMs = 1000.0 * window / framesInWindow_;
+    stats_.fps = framesInWindow_ / window;
+    const uint64_t uploaded = raycaster_.bricksUploaded() - uploadedAtWindowStart_;
+    stats_.uploadMiBPerSecond = double(uploaded) * double(Raycaster::slotBytes()) / double(1 << 20) / window;
+    uploadedAtWindowStart_ = raycaster_.bricksUploaded();
+    rateWindowStart_ = now;
+    framesInWindow_ = 0;
+  }
+  stats_.resident = raycaster_.residentCount();
+  stats_.needed = raycaster_.neededCount();
+  stats_.missing = raycaster_.missingCount();
+  if (step.dispatched) stats_.requested = step.requested;
+  stats_.streaming = step.streaming;
+  stats_.complete = step.complete;
+}
+
+void ViewerSession::frame(int fbWidth, int fbHeight, int windowWidth, int windowHeight) {
+  handleInput(windowHeight);
+  drawPanel(windowWidth, windowHeight);
+  if (settings_.showHelp) drawHelp();
+  applySettings();
+  const StepStats step = raycaster_.step(camera_, fbWidth, fbHeight, kUploadSecondsPerFrame);
+  updateStats(step);
+  drawStreamingLine(windowWidth, windowHeight);
+  presenter_.draw(raycaster_.colorTexture(), settings_.background, 0, 0, fbWidth, fbHeight);
+}
+
+}  // namespace fcc::render

@@ -1,0 +1,99 @@
+// One dataset open in the interactive viewer: the camera and the panel's settings, the progressive
+// raycaster, and what is drawn each frame. Window-system free: the window (viewer/ViewerWindow.h)
+// or an offscreen target (`fccvdb bench view`) calls frame() between ImGui::NewFrame() and
+// ImGui::Render(), with the target framebuffer bound.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "Camera.h"
+#include "DatasetSummary.h"
+#include "Presenter.h"
+#include "Raycaster.h"
+
+namespace fcc::render {
+
+// What the panel edits.
+struct ViewerSettings {
+  float iso = 0.0f;
+  glm::vec3 lightInCamera{0.3f, 0.6f, 1.0f};   // as RenderOptions
+  glm::vec3 surfaceColor{0.85f, 0.72f, 0.52f};  // linear
+  glm::vec3 background{0.08f, 0.09f, 0.11f};    // linear, as `fccvdb render`'s PNG
+  bool skipEmpty = true;
+  bool finiteDifferenceNormals = false;
+  bool showPanel = true;
+  bool showHelp = false;
+};
+
+// Live figures for the statistics section, updated every frame.
+struct ViewerStats {
+  double frameMs = 0.0;          // wall time per frame, averaged over the last half second
+  double fps = 0.0;
+  uint32_t resident = 0;         // bricks in the GPU pool
+  std::size_t needed = 0;        // bricks whose bounds hold the isovalue
+  std::size_t missing = 0;       // needed, not resident
+  uint32_t requested = 0;        // bricks the last pass's rays asked for
+  std::size_t streaming = 0;     // queued or decoding on the loader thread
+  bool complete = false;         // the image is final for this view
+  double uploadMiBPerSecond = 0.0;
+};
+
+class ViewerSession {
+ public:
+  // Needs a current OpenGL 4.5 context and an ImGui context with its OpenGL backend.
+  ViewerSession(const io::BrickStore& store, const RenderOptions& options, const Camera& initialCamera,
+                DatasetSummary summary);
+
+  // One frame into the bound framebuffer of fbWidth x fbHeight pixels; the window is windowWidth x
+  // windowHeight in ImGui's coordinates (they differ on high-DPI screens). Reads this frame's mouse
+  // and keys from ImGui (where the panel does not take them), builds the panel, steps the
+  // raycaster within the upload budget and draws its image.
+  void frame(int fbWidth, int fbHeight, int windowWidth, int windowHeight);
+
+  // True once the frame is complete and no brick is streaming (screenshots wait for it).
+  bool settled() const { return stats_.complete && stats_.streaming == 0; }
+  // Set by the screenshot key (S, F12); cleared by takeScreenshotRequest().
+  bool takeScreenshotRequest();
+  // Writes the last frame's raycaster images as EXR (channels as `fccvdb render`).
+  void writeExr(const std::string& path) const;
+
+  const Camera& camera() const { return camera_; }
+  void setCamera(const Camera& camera) { camera_ = camera; }
+  const ViewerSettings& settings() const { return settings_; }
+  ViewerSettings& settings() { return settings_; }
+  const ViewerStats& stats() const { return stats_; }
+  const DatasetSummary& summary() const { return summary_; }
+  // The panel's width in window coordinates (0 while hidden), where the image is covered.
+  float panelWidth() const { return settings_.showPanel ? panelWidth_ : 0.0f; }
+  // The upload time budget per frame (seconds), so a frame's uploads do not stall the UI.
+  static constexpr double kUploadSecondsPerFrame = 0.004;
+
+ private:
+  void handleInput(int windowHeight);
+  void applySettings();
+  void updateStats(const StepStats& step);
+  void drawPanel(int windowWidth, int windowHeight);  // viewer/ViewerPanel.cpp
+  void drawHelp();
+  void drawStreamingLine(int windowWidth, int windowHeight);
+
+  const io::BrickStore& store_;
+  Raycaster raycaster_;
+  Presenter presenter_;
+  Camera camera_, initialCamera_;
+  ViewerSettings settings_;
+  ViewerStats stats_;
+  DatasetSummary summary_;
+  float panelWidth_ = 0.0f;
+  bool screenshotRequested_ = false;
+  std::chrono::steady_clock::time_point rateWindowStart_;
+  int framesInWindow_ = 0;
+  uint64_t uploadedAtWindowStart_ = 0;
+  bool firstFrame_ = true;
+};
+
+}  // namespace fcc::render

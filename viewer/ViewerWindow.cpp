@@ -1,0 +1,162 @@
+#include "ViewerWindow.h"
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE  // GL comes from libepoxy
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+#include <vector>
+
+#include "io/ImageOutput.h"
+#include "sparse/Error.h"
+
+namespace fcc::render {
+namespace {
+
+std::string glfwLastError;  // GLFW reports errors through a callback; the last one explains a failure
+
+void onGlfwError(int, const char* description) { glfwLastError = description ? description : "unknown error"; }
+
+bool exists(const std::string& path) {
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+// "fccvdb-20261121-153012" in the current directory, with "-2", "-3", ... when taken.
+std::string timestampedStem() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char stem[64];
+  std::strftime(stem, sizeof stem, "fccvdb-%Y%m%d-%H%M%S", &local);
+  std::string candidate = stem;
+  for (int n = 2; exists(candidate + ".png") || exists(candidate + ".exr"); ++n)
+    candidate = std::string(stem) + "-" + std::to_string(n);
+  return candidate;
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  return std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(),
+                    [](char a, char b) { return std::tolower((unsigned char)a) == std::tolower((unsigned char)b); });
+}
+
+}  // namespace
+
+ViewerWindow::ViewerWindow(const WindowOptions& options) : options_(options) {
+  glfwSetErrorCallback(onGlfwError);
+  if (!glfwInit()) throw Error("no display: use `fccvdb render` for headless images (GLFW: " + glfwLastError + ")");
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);  // a high-DPI screen gets a window of the same apparent size
+  window_ = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+  if (!window_) {
+    glfwTerminate();
+    throw Error("cannot open an OpenGL 4.5 window (GLFW: " + glfwLastError +
+                "); use `fccvdb render` for headless images");
+  }
+  glfwMakeContextCurrent(window_);
+  // Automation renders as fast as it can; interactively, frames follow the display.
+  glfwSwapInterval(options.screenshot.empty() ? 1 : 0);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // never write imgui.ini into the user's directory
+  float scaleX = 1.0f, scaleY = 1.0f;
+  glfwGetWindowContentScale(window_, &scaleX, &scaleY);
+  const float scale = std::max(1.0f, std::max(scaleX, scaleY));
+  io.FontGlobalScale = scale;
+  ImGui::StyleColorsDark();
+  ImGui::GetStyle().ScaleAllSizes(scale);
+  ImGui_ImplGlfw_InitForOpenGL(window_, true);
+  ImGui_ImplOpenGL3_Init("#version 450");
+  imguiReady_ = true;
+}
+
+ViewerWindow::~ViewerWindow() {
+  if (imguiReady_) {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  if (window_) glfwDestroyWindow(window_);
+  glfwTerminate();
+}
+
+double ViewerWindow::aspect() const {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  return w > 0 && h > 0 ? double(w) / double(h) : double(options_.width) / double(options_.height);
+}
+
+void ViewerWindow::writeScreenshots(ViewerSession& session, const std::string& pngPath, const std::string& exrPath,
+                                    const std::function<void(const std::string&)>& report) {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  if (!pngPath.empty()) {
+    // The back buffer as drawn this frame (image and panel), rows flipped to put row 0 at the top.
+    std::vector<unsigned char> bottomUp(std::size_t(w) * h * 3), rgb(bottomUp.size());
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, bottomUp.data());
+    checkGl("reading the window for a screenshot");
+    for (int y = 0; y < h; ++y)
+      std::copy_n(bottomUp.data() + std::size_t(h - 1 - y) * w * 3, std::size_t(w) * 3, rgb.data() + std::size_t(y) * w * 3);
+    io::writeScreenPng(pngPath, w, h, rgb);
+    report("wrote " + pngPath + " (" + std::to_string(w) + "x" + std::to_string(h) + " window, panel " +
+           std::to_string(int(std::lround(session.panelWidth() * w / std::max(1, options_.width)))) + " px wide)");
+  }
+  if (!exrPath.empty()) {
+    session.writeExr(exrPath);
+    report("wrote " + exrPath + " (R,G,B,A,Z,N.X,N.Y,N.Z)");
+  }
+}
+
+void ViewerWindow::run(ViewerSession& session, const std::function<void(const std::string&)>& report) {
+  const bool automated = !options_.screenshot.empty();
+  int frames = 0;
+  while (!glfwWindowShouldClose(window_)) {
+    // Idle and complete: wait for input instead of redrawing the same image.
+    if (!automated && session.settled()) glfwWaitEventsTimeout(0.25);
+    else glfwPollEvents();
+    int fbWidth = 0, fbHeight = 0, winWidth = 0, winHeight = 0;
+    glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
+    glfwGetWindowSize(window_, &winWidth, &winHeight);
+    if (fbWidth <= 0 || fbHeight <= 0) {  // minimised
+      glfwWaitEvents();
+      continue;
+    }
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (!ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false))
+      glfwSetWindowShouldClose(window_, GLFW_TRUE);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    session.frame(fbWidth, fbHeight, winWidth, winHeight);
+    ImGui::Render();
+    glViewport(0, 0, fbWidth, fbHeight);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    ++frames;
+    if (session.takeScreenshotRequest()) {
+      const std::string stem = timestampedStem();
+      writeScreenshots(session, stem + ".png", stem + ".exr", report);
+    }
+    if (automated && frames >= options_.frames && session.settled()) {
+      const bool exr = endsWith(options_.screenshot, ".exr");
+      writeScreenshots(session, exr ? "" : options_.screenshot, exr ? options_.screenshot : "", report);
+      return;
+    }
+    glfwSwapBuffers(window_);
+  }
+}
+
+}  // namespace fcc::render

@@ -1,0 +1,49 @@
+// The viewer's window: GLFW (OpenGL 4.5 core), Dear ImGui's GLFW and OpenGL 3 backends, and the
+// frame loop around a ViewerSession: events, the panel, screenshots, and the automation mode that
+// writes one screenshot once streaming has settled and exits.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "ViewerSession.h"
+
+struct GLFWwindow;
+
+namespace fcc::render {
+
+struct WindowOptions {
+  int width = 1280, height = 800;  // window size in screen coordinates
+  std::string title = "fccvdb";
+  // Automation: after `frames` frames and once streaming has settled, write `screenshot` (.png: the
+  // window as shown, panel included; .exr: the rendered image's channels) and close.
+  std::string screenshot;
+  int frames = 30;
+};
+
+class ViewerWindow {
+ public:
+  // Opens the window and makes its context current. Throws fcc::Error "no display: use `fccvdb
+  // render` for headless images" when there is no display, or a line naming what GLFW said.
+  explicit ViewerWindow(const WindowOptions& options);
+  ~ViewerWindow();
+  ViewerWindow(const ViewerWindow&) = delete;
+  ViewerWindow& operator=(const ViewerWindow&) = delete;
+
+  // The framebuffer's aspect ratio (for framing the camera before the session exists).
+  double aspect() const;
+  // Runs until the window closes (or the automation screenshot is written). `report` gets one line
+  // per screenshot written.
+  void run(ViewerSession& session, const std::function<void(const std::string&)>& report);
+
+ private:
+  void writeScreenshots(ViewerSession& session, const std::string& pngPath, const std::string& exrPath,
+                        const std::function<void(const std::string&)>& report);
+
+  WindowOptions options_;
+  GLFWwindow* window_ = nullptr;
+  bool imguiReady_ = false;
+};
+
+}  // namespace fcc::render
