@@ -30,6 +30,7 @@ Command addViewCommand(CLI::App& parent);
 Command addBenchCommand(CLI::App& parent);
 Command addBenchRenderCommand(CLI::App& bench);      // under `bench`
 Command addBenchPreprocessCommand(CLI::App& bench);  // under `bench`
+Command addBenchViewCommand(CLI::App& bench);        // under `bench`
 
 // Validators shared by several subcommands.
 CLI::Validator tripleValidator(const std::string& what);  // "X,Y,Z"

@@ -10,6 +10,7 @@ Command addBenchCommand(CLI::App& parent) {
   auto benchmarks = std::make_shared<std::vector<Command>>();
   benchmarks->push_back(addBenchPreprocessCommand(*app));
   benchmarks->push_back(addBenchRenderCommand(*app));
+  benchmarks->push_back(addBenchViewCommand(*app));
   return {app, [benchmarks]() {
             for (const Command& c : *benchmarks)
               if (c.app->parsed()) return c.run();

@@ -1,0 +1,160 @@
+// fccvdb bench view FILE.vdb: the viewer's frame time (raycaster step, image, ImGui panel) over a
+// camera orbit, drawn offscreen through EGL, against the raycaster's own complete frames (as `bench
+// render` times them) on the same orbit: the "within 10% of bench render" figure, on a GPU
+// machine without a display.
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include "Command.h"
+#include "JsonText.h"
+#include "RenderFlags.h"
+#include "sparse/Error.h"
+#include "viewer/DatasetSummary.h"
+#include "viewer/EglContext.h"
+#include "viewer/OrbitControls.h"
+#include "viewer/ViewerSession.h"
+
+namespace fcc::cli {
+namespace {
+
+// An offscreen RGBA8 framebuffer standing in for the window.
+class OffscreenTarget {
+ public:
+  OffscreenTarget(int width, int height) {
+    glCreateRenderbuffers(1, &color_);
+    glNamedRenderbufferStorage(color_, GL_RGBA8, width, height);
+    glCreateFramebuffers(1, &framebuffer_);
+    glNamedFramebufferRenderbuffer(framebuffer_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
+    if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw GlError("bench view: the offscreen framebuffer is incomplete");
+  }
+  ~OffscreenTarget() {
+    glDeleteFramebuffers(1, &framebuffer_);
+    glDeleteRenderbuffers(1, &color_);
+  }
+  void bind() const { glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_); }
+
+ private:
+  GLuint framebuffer_ = 0, color_ = 0;
+};
+
+// ImGui with its OpenGL 3 backend and no platform backend: display size and time are set by hand.
+class HeadlessImGui {
+ public:
+  HeadlessImGui(int width, int height) {
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(float(width), float(height));
+    if (!ImGui_ImplOpenGL3_Init("#version 450")) {
+      ImGui::DestroyContext();
+      throw GlError("bench view: Dear ImGui's OpenGL 3 backend did not initialise (its loader needs libGL.so.1)");
+    }
+  }
+  ~HeadlessImGui() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui::DestroyContext();
+  }
+};
+
+render::Camera orbitStep(const render::Camera& start, int frame, int frames) {
+  return render::orbit(start, 360.0 / render::kOrbitDegreesPerPixel * frame / frames, 0.0);
+}
+
+struct ViewTiming {
+  double ms = 0.0;
+  int completeFrames = 0;
+};
+
+ViewTiming timeViewer(render::ViewerSession& session, const OffscreenTarget& target, const render::Camera& camera,
+                      int width, int height, int frames) {
+  ViewTiming t;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < frames; ++i) {
+    session.setCamera(orbitStep(camera, i, frames));
+    ImGui::GetIO().DeltaTime = 1.0f / 60.0f;
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui::NewFrame();
+    target.bind();
+    session.frame(width, height, width, height);
+    ImGui::Render();
+    glViewport(0, 0, width, height);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    glFinish();  // the frame is on screen: what a swap with vsync off waits for
+    t.completeFrames += session.stats().complete;
+  }
+  t.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
+  return t;
+}
+
+double timeRender(render::Raycaster& raycaster, const render::Camera& camera, int width, int height, int frames) {
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < frames; ++i) raycaster.render(orbitStep(camera, i, frames), width, height);
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
+}
+
+}  // namespace
+
+Command addBenchViewCommand(CLI::App& bench) {
+  struct Args {
+    RenderFlags flags;
+    int frames = 120;
+    bool json = false;
+  };
+  auto args = std::make_shared<Args>();
+  args->flags.res = "1920x1080";
+  CLI::App* app = bench.add_subcommand(
+      "view", "The viewer's frame time with and without its panel against complete raycaster frames (offscreen)");
+  addRenderFlags(*app, args->flags);
+  app->add_option("--frames", args->frames, "Timed frames per variant (one orbit)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app->add_flag("--json", args->json, "One JSON object: render_ms, view_panel_ms, view_no_panel_ms, ratio, ...");
+  return {app, [args]() {
+            int width = 0, height = 0;
+            resolutionFromFlags(args->flags.res, width, height);
+            const io::BrickStore store(args->flags.file, args->flags.grid);
+            render::RenderOptions options = renderOptionsFromFlags(args->flags);
+            options.iso = isoFromFlags(args->flags, store);
+            const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
+            const EglContext gl;
+            const OffscreenTarget target(width, height);
+            const HeadlessImGui imgui(width, height);
+
+            // Warm caches first (one orbit each), then the same orbit timed three ways.
+            render::Raycaster raycaster(store, options);
+            timeRender(raycaster, camera, width, height, args->frames);
+            const double renderMs = timeRender(raycaster, camera, width, height, args->frames);
+
+            render::ViewerSession session(store, options, camera, render::summarizeDataset(store));
+            timeViewer(session, target, camera, width, height, args->frames);
+            const ViewTiming withPanel = timeViewer(session, target, camera, width, height, args->frames);
+            session.settings().showPanel = false;
+            const ViewTiming noPanel = timeViewer(session, target, camera, width, height, args->frames);
+
+            const double ratio = withPanel.ms / renderMs;
+            if (args->json) {
+              std::printf("{\"device\": %s, \"file\": %s, \"res\": [%d, %d], \"frames\": %d, \"render_ms\": %s, "
+                          "\"view_panel_ms\": %s, \"view_no_panel_ms\": %s, \"ratio\": %s, "
+                          "\"complete_frames_panel\": %d, \"complete_frames_no_panel\": %d}\n",
+                          jsonString(gl.renderer()).c_str(), jsonString(args->flags.file).c_str(), width, height,
+                          args->frames, jsonNumber(renderMs).c_str(), jsonNumber(withPanel.ms).c_str(),
+                          jsonNumber(noPanel.ms).c_str(), jsonNumber(ratio).c_str(), withPanel.completeFrames,
+                          noPanel.completeFrames);
+              return 0;
+            }
+            std::printf("device: %s\nfile:   %s, %dx%d, %d frames per orbit\n", gl.renderer().c_str(),
+                        args->flags.file.c_str(), width, height, args->frames);
+            std::printf("render (complete frames):  %8.3f ms\n", renderMs);
+            std::printf("viewer with panel:         %8.3f ms (%d of %d frames complete), %.3f x render\n",
+                        withPanel.ms, withPanel.completeFrames, args->frames, ratio);
+            std::printf("viewer without panel:      %8.3f ms (%d of %d frames complete)\n", noPanel.ms,
+                        noPanel.completeFrames, args->frames);
+            return 0;
+          }};
+}
+
+}  // namespace fcc::cli
