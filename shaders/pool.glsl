@@ -1,30 +1,75 @@
-// The brick pool as the raycaster and the slot-bounds pass read it: slot s holds packed voxels
-// [8b - 1, 8b + 9)^3 of its brick b (the brick and the one-voxel halo its cells' stencils reach),
-// x fastest, kSlotTexels vec4 per slot (viewer/Raycaster.cpp uploads io::assembleHaloBlock's layout).
+// The brick pool as the raycaster and the slot-bounds pass read it. Slot s holds the packed voxels
+// [8b - 1, 8b + 9)^3 of its brick b (the brick and the one-voxel halo its cells' stencils reach), in
+// one of four layouts chosen by FCC_POOL_LAYOUT (viewer/BrickPool.h defines it, and for the texture
+// layouts FCC_POOL_GRID_X/_Y, the slots per row and per layer of the 3D texture):
+//   0 ssbo-vec4       SSBO of vec4, 10^3 per slot, x fastest; the site's channel selected by parity
+//   1 ssbo-scalar     SSBO of float, the one-channel embedding: 20^3 sites [16b - 2, 16b + 18)^3 per
+//                     slot (non-FCC sites unused), read at the site itself, no channel selection
+//   2 texture-vec4    RGBA32F 3D texture, a 10^3 block per slot, texelFetch, channel by parity
+//   3 texture-scalar  R32F 3D texture, a 20^3 block of sites per slot, texelFetch
 // Per slot and packed voxel, slotBounds holds the min and max BB-coefficient of the 8 unit cells of
 // that voxel (40 pieces), computed on upload by shaders/slot_bounds.comp.
-layout(std430, binding = 0) readonly buffer Pool { vec4 poolTexels[]; };
+#ifndef FCC_POOL_LAYOUT
+#define FCC_POOL_LAYOUT 0
+#endif
 
-const int kSlotDim = 10;
+#if FCC_POOL_LAYOUT == 1 || FCC_POOL_LAYOUT == 3
+const int kSlotDim = 20;   // sites per side
+#define FCC_POOL_SCALAR 1
+#else
+const int kSlotDim = 10;   // packed voxels per side
+#endif
 const int kSlotTexels = kSlotDim * kSlotDim * kSlotDim;
 const int kSlotVoxels = 512;  // packed voxels of a brick: one bounds entry each
 
-// The slot and brick that coefficientAt reads: set before gathering.
-uint gSlotBase;
-ivec3 gSlotPackedOrigin;
+#if FCC_POOL_LAYOUT == 0
+layout(std430, binding = 0) readonly buffer Pool { vec4 poolTexels[]; };
+#elif FCC_POOL_LAYOUT == 1
+layout(std430, binding = 0) readonly buffer Pool { float poolSites[]; };
+#else
+layout(binding = 3) uniform sampler3D uPoolTexture;
+#endif
+
+// The slot that coefficientAt reads, and the lattice site at its first element: set before gathering.
+uint gSlotBase;      // SSBO layouts: index of the slot's first element
+ivec3 gSlotTexel;    // texture layouts: texel of the slot's first element
+ivec3 gSlotOrigin;   // the packed voxel (vec4 layouts) or site (scalar layouts) of the first element
 
 void selectSlot(uint slot, ivec3 brick) {
   gSlotBase = slot * uint(kSlotTexels);
-  gSlotPackedOrigin = brick * 8 - 1;
+#if FCC_POOL_LAYOUT >= 2
+  int s = int(slot);
+  gSlotTexel = ivec3(s % FCC_POOL_GRID_X, (s / FCC_POOL_GRID_X) % FCC_POOL_GRID_Y,
+                     s / (FCC_POOL_GRID_X * FCC_POOL_GRID_Y)) * kSlotDim;
+#endif
+#if defined(FCC_POOL_SCALAR)
+  gSlotOrigin = brick * 16 - 2;
+#else
+  gSlotOrigin = brick * 8 - 1;
+#endif
 }
 
-float coefficientAt(ivec3 ijk) {
-  ivec3 local = (ijk >> 1) - gSlotPackedOrigin;
-  vec4 t = poolTexels[gSlotBase + uint((local.z * kSlotDim + local.y) * kSlotDim + local.x)];
-  // Select the channel ((x & 1) << 1) | (y & 1) without a dynamic vector index (which some
-  // compilers spill to local memory).
+#if !defined(FCC_POOL_SCALAR)
+// Select the channel ((x & 1) << 1) | (y & 1) without a dynamic vector index (which some compilers
+// spill to local memory).
+float channelOf(vec4 t, ivec3 ijk) {
   vec2 xy = (ijk.x & 1) != 0 ? t.zw : t.xy;
   return (ijk.y & 1) != 0 ? xy.y : xy.x;
+}
+#endif
+
+float coefficientAt(ivec3 ijk) {
+#if FCC_POOL_LAYOUT == 0
+  ivec3 local = (ijk >> 1) - gSlotOrigin;
+  return channelOf(poolTexels[gSlotBase + uint((local.z * kSlotDim + local.y) * kSlotDim + local.x)], ijk);
+#elif FCC_POOL_LAYOUT == 1
+  ivec3 local = ijk - gSlotOrigin;
+  return poolSites[gSlotBase + uint((local.z * kSlotDim + local.y) * kSlotDim + local.x)];
+#elif FCC_POOL_LAYOUT == 2
+  return channelOf(texelFetch(uPoolTexture, gSlotTexel + (ijk >> 1) - gSlotOrigin, 0), ijk);
+#else
+  return texelFetch(uPoolTexture, gSlotTexel + ijk - gSlotOrigin, 0).r;
+#endif
 }
 
 FccSamples gatherStencil(FccFrame frame) {

@@ -43,19 +43,17 @@ void main() {
   uint voxel = gl_GlobalInvocationID.x;
   if (voxel >= uint(kSlotVoxels)) return;
   uint slot = uploadedSlots[gl_WorkGroupID.y];
-  uint base = slot * uint(kSlotTexels);
-  // Slot texel (1, 1, 1) is the brick's first packed voxel (pool.glsl).
-  ivec3 v = ivec3(int(voxel) & 7, (int(voxel) >> 3) & 7, int(voxel) >> 6) + 1;
-  vec4 lo = vec4(1.0 / 0.0), hi = vec4(-1.0 / 0.0);
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        ivec3 t = v + ivec3(dx, dy, dz);
-        vec4 c = poolTexels[base + uint((t.z * kSlotDim + t.y) * kSlotDim + t.x)];
+  selectSlot(slot, ivec3(0));  // as above: the brick taken at the origin
+  ivec3 v = ivec3(int(voxel) & 7, (int(voxel) >> 3) & 7, int(voxel) >> 6);
+  // The FCC sites of packed voxels v - 1 .. v + 1: sites [2v - 2, 2v + 4)^3 with an even coordinate sum.
+  float lo = 1.0 / 0.0, hi = -1.0 / 0.0;
+  for (int z = 2 * v.z - 2; z < 2 * v.z + 4; ++z)
+    for (int y = 2 * v.y - 2; y < 2 * v.y + 4; ++y)
+      for (int x = 2 * v.x - 2 + ((y + z) & 1); x < 2 * v.x + 4; x += 2) {
+        float c = coefficientAt(ivec3(x, y, z));
         lo = min(lo, c);
         hi = max(hi, c);
       }
-  slotBounds[slot * uint(kSlotVoxels) + voxel] =
-      vec2(min(min(lo.x, lo.y), min(lo.z, lo.w)), max(max(hi.x, hi.y), max(hi.z, hi.w)));
+  slotBounds[slot * uint(kSlotVoxels) + voxel] = vec2(lo, hi);
 }
 #endif

@@ -15,9 +15,10 @@ namespace fcc::cli {
 struct RenderFlags {
   std::string file, grid, iso, res = "1024x1024", eye, lookat, up, fov;
   double gpuCacheMiB = 0.0, hostCacheMiB = 0.0;  // 0: the defaults
+  std::string layout = "ssbo-vec4";              // render::BrickLayout by name
 };
 
-// Registers FILE, --grid, --iso, --res, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache.
+// Registers FILE, --grid, --iso, --res, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache, --layout.
 void addRenderFlags(CLI::App& app, RenderFlags& flags);
 
 // --iso (default: midway through the data's value range); ValueError if not a finite number.

@@ -16,7 +16,7 @@ namespace fcc::cli {
 namespace {
 
 struct Measurement {
-  std::string variant, normals;
+  std::string layout, variant, normals;
   bool skip = true;
   int frames = 0;
   double seconds = 0.0;
@@ -64,6 +64,8 @@ Command addBenchRenderCommand(CLI::App& bench) {
   addRenderFlags(*app, args->flags);
   app->add_option("--frames", args->frames, "Timed frames per variant (one orbit)")->capture_default_str()->check(CLI::PositiveNumber);
   app->add_option("--warmup", args->warmup, "Untimed frames before each variant")->capture_default_str()->check(CLI::NonNegativeNumber);
+  args->flags.layout = "all";
+  app->get_option("--layout")->description("Brick layout to time, or all (the default)");
   app->add_flag("--json", args->json, "A JSON list of objects: variant, skip, normals, fps, frame_ms, ...");
   return {app, [args]() {
             int width = 0, height = 0;
@@ -72,36 +74,51 @@ Command addBenchRenderCommand(CLI::App& bench) {
             const float iso = isoFromFlags(args->flags, store);
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;
-            render::RenderOptions options = renderOptionsFromFlags(args->flags);
+            // --layout all: every layout in turn, each with fresh caches.
+            std::vector<render::BrickLayout> layouts = render::allBrickLayouts();
+            RenderFlags flags = args->flags;
+            if (flags.layout == "all") flags.layout = render::brickLayoutName(layouts.front());
+            else layouts = {render::parseBrickLayout(flags.layout)};
+            render::RenderOptions options = renderOptionsFromFlags(flags);
             options.iso = iso;
 
-            // Cold: a fresh pool and host cache, one complete frame.
-            render::Raycaster raycaster(store, options);
-            const render::FrameStats cold = raycaster.render(camera, width, height);
-
             std::vector<Measurement> results;
-            for (const bool skip : {true, false})
-              for (const bool fd : {false, true}) {
-                raycaster.setSkipEmpty(skip);
-                raycaster.setFiniteDifferenceNormals(fd);
-                Measurement m = measureOrbit(raycaster, camera, width, height, args->warmup, args->frames);
-                m.skip = skip;
-                m.normals = fd ? "finite-difference" : "analytic";
-                m.variant = std::string(skip ? "skip" : "noskip") + "+" + (fd ? "fd" : "analytic");
-                results.push_back(m);
+            render::FrameStats cold;
+            double poolMiB = 0.0;
+            uint32_t slotCount = 0;
+            for (const render::BrickLayout layout : layouts) {
+              options.layout = layout;
+              // Cold: a fresh pool and host cache, one complete frame (reported for the first layout).
+              render::Raycaster raycaster(store, options);
+              const render::FrameStats c = raycaster.render(camera, width, height);
+              if (layout == layouts.front()) {
+                cold = c;
+                poolMiB = double(raycaster.poolBytes()) / (1 << 20);
+                slotCount = raycaster.slotCount();
               }
+              for (const bool skip : {true, false})
+                for (const bool fd : {false, true}) {
+                  raycaster.setSkipEmpty(skip);
+                  raycaster.setFiniteDifferenceNormals(fd);
+                  Measurement m = measureOrbit(raycaster, camera, width, height, args->warmup, args->frames);
+                  m.layout = render::brickLayoutName(layout);
+                  m.skip = skip;
+                  m.normals = fd ? "finite-difference" : "analytic";
+                  m.variant = std::string(skip ? "skip" : "noskip") + "+" + (fd ? "fd" : "analytic");
+                  results.push_back(m);
+                }
+            }
 
-            const double poolMiB = double(raycaster.slotCount()) * io::kHaloBlockVoxels * 16 / (1 << 20);
             if (args->json) {
               std::printf("[");
               for (std::size_t i = 0; i < results.size(); ++i) {
                 const Measurement& m = results[i];
-                std::printf("%s\n {\"variant\": %s, \"layout\": \"ssbo-vec4\", \"skip\": %s, \"normals\": %s, "
+                std::printf("%s\n {\"variant\": %s, \"layout\": %s, \"skip\": %s, \"normals\": %s, "
                             "\"res\": [%d, %d], \"iso\": %s, \"frames\": %d, \"fps\": %s, \"frame_ms\": %s, "
                             "\"passes_per_frame\": %s, \"bricks_streamed_per_second\": %s, "
                             "\"first_frame_seconds\": %s, \"first_frame_bricks\": %llu, \"pool_mib\": %s, "
                             "\"device\": %s, \"file\": %s}",
-                            i ? "," : "", jsonString(m.variant).c_str(), m.skip ? "true" : "false",
+                            i ? "," : "", jsonString(m.variant).c_str(), jsonString(m.layout).c_str(), m.skip ? "true" : "false",
                             jsonString(m.normals).c_str(), width, height, jsonNumber(iso).c_str(), m.frames,
                             jsonNumber(m.frames / m.seconds).c_str(), jsonNumber(1e3 * m.seconds / m.frames).c_str(),
                             jsonNumber(double(m.passes) / m.frames).c_str(), jsonNumber(m.uploads / m.seconds).c_str(),
@@ -113,13 +130,13 @@ Command addBenchRenderCommand(CLI::App& bench) {
               return 0;
             }
             std::printf("device: %s\nfile:   %s, iso %g, %dx%d, pool %.0f MiB (%u slots)\n", gl.renderer().c_str(),
-                        args->flags.file.c_str(), double(iso), width, height, poolMiB, raycaster.slotCount());
-            std::printf("first complete frame (cold caches): %.3f s, %llu bricks streamed (%.0f bricks/s), %d passes\n",
-                        cold.seconds, (unsigned long long)cold.bricksUploaded, cold.bricksUploaded / cold.seconds,
+                        args->flags.file.c_str(), double(iso), width, height, poolMiB, slotCount);
+            std::printf("first complete frame (cold caches, %s): %.3f s, %llu bricks streamed (%.0f bricks/s), %d passes\n",
+                        render::brickLayoutName(layouts.front()).c_str(), cold.seconds, (unsigned long long)cold.bricksUploaded, cold.bricksUploaded / cold.seconds,
                         cold.passes);
-            std::printf("%-22s %10s %10s %8s %14s\n", "variant", "fps", "frame ms", "passes", "bricks/s");
+            std::printf("%-16s %-18s %10s %10s %8s %14s\n", "layout", "variant", "fps", "frame ms", "passes", "bricks/s");
             for (const Measurement& m : results)
-              std::printf("%-22s %10.1f %10.3f %8.2f %14.0f\n", m.variant.c_str(), m.frames / m.seconds,
+              std::printf("%-16s %-18s %10.1f %10.3f %8.2f %14.0f\n", m.layout.c_str(), m.variant.c_str(), m.frames / m.seconds,
                           1e3 * m.seconds / m.frames, double(m.passes) / m.frames, m.uploads / m.seconds);
             return 0;
           }};

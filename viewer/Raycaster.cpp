@@ -12,7 +12,6 @@
 namespace fcc::render {
 namespace {
 
-constexpr std::size_t kSlotBytes = std::size_t(io::kHaloBlockVoxels) * 4 * sizeof(float);
 constexpr std::size_t kSlotVoxels = 512;  // per-voxel cell bounds of a slot (shaders/pool.glsl)
 constexpr std::size_t kSlotBoundsBytes = kSlotVoxels * 2 * sizeof(float);
 constexpr int kLocalSize = 8;             // shaders/raycast.comp's local_size_x and _y
@@ -22,37 +21,41 @@ constexpr int kMaxPasses = 1 << 20;       // a frame that needs more has a bug, 
 
 glm::ivec3 toGlm(const openvdb::Coord& c) { return {c.x(), c.y(), c.z()}; }
 
+// `source` with `defines` inserted after its #version line (which must stay first).
+std::string withDefines(std::string_view source, const std::string& defines) {
+  std::string s(source);
+  const auto eol = s.find('\n');
+  s.insert(eol == std::string::npos ? s.size() : eol + 1, defines);
+  return s;
+}
+
 }  // namespace
 
 Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options) : store_(store), options_(options) {
-  program_ = GlProgram::compute(embedded::shaders("shaders/raycast.comp"), "shaders/raycast.comp");
-  // A CPU rasteriser gets the cheap coefficient-hull cell bounds, a GPU the BB-coefficient ones
-  // (both conservative; the image is the same, only the work skipped differs).
-  std::string slotBounds(embedded::shaders("shaders/slot_bounds.comp"));
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  if (!(renderer && std::string(renderer).find("llvmpipe") != std::string::npos)) {
-    const auto eol = slotBounds.find('\n');  // after #version, which must stay first
-    slotBounds.insert(eol + 1, "#define FCC_SLOT_BOUNDS_BB 1\n");
-  }
-  slotBoundsProgram_ = GlProgram::compute(slotBounds, "shaders/slot_bounds.comp");
-
   const openvdb::CoordBBox box = store.activeBrickBox();
   const glm::ivec3 brickMin = box.empty() ? glm::ivec3(0) : toGlm(box.min());
   const glm::ivec3 brickDims = box.empty() ? glm::ivec3(1) : toGlm(box.dim());
   const std::size_t bricksInBox = std::size_t(brickDims.x) * brickDims.y * brickDims.z;
 
-  GLint64 maxBlock = 0;
-  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
   // The GPU budget pays for a slot's data and its cell bounds.
-  std::size_t slots = options.gpuCacheBytes / (kSlotBytes + kSlotBoundsBytes);
-  slots = std::min(slots, std::size_t(maxBlock) / kSlotBytes);
-  slots = std::min(slots, bricksInBox);
+  std::size_t slots = options.gpuCacheBytes / (BrickPool::slotBytes(options.layout) + kSlotBoundsBytes);
+  slots = std::min({slots, BrickPool::maxSlots(options.layout), bricksInBox});
   slots = std::max<std::size_t>(slots, 1);
+  pool_ = std::make_unique<BrickPool>(options.layout, slots);
+
+  std::string defines = pool_->glslDefines();
+  program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines), "shaders/raycast.comp");
+  // A CPU rasteriser gets the cheap coefficient-hull cell bounds, a GPU the BB-coefficient ones
+  // (both conservative; the image is the same, only the work skipped differs).
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (!(renderer && std::string(renderer).find("llvmpipe") != std::string::npos)) defines += "#define FCC_SLOT_BOUNDS_BB 1\n";
+  slotBoundsProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/slot_bounds.comp"), defines),
+                                          "shaders/slot_bounds.comp");
+
   residency_ = std::make_unique<Residency>(brickMin, brickDims, uint32_t(slots));
   hostCache_ = std::make_unique<io::BrickCache>(store, options.hostCacheBytes);
 
   requestCapacity_ = uint32_t(std::min<std::size_t>(bricksInBox, 1 << 16));
-  pool_ = std::make_unique<GlBuffer>(slots * kSlotBytes);
   slotBounds_ = std::make_unique<GlBuffer>(slots * kSlotBoundsBytes);
   uploadedSlots_ = std::make_unique<GlBuffer>(kUploadBatch * sizeof(uint32_t));
   pageTable_ = std::make_unique<GlBuffer>(bricksInBox * sizeof(uint32_t));
@@ -67,7 +70,7 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options) 
 
 Raycaster::~Raycaster() = default;
 
-std::size_t Raycaster::slotBytes() { return kSlotBytes + kSlotBoundsBytes; }
+std::size_t Raycaster::slotBytes() const { return BrickPool::slotBytes(options_.layout) + kSlotBoundsBytes; }
 
 std::size_t Raycaster::poolBytes() const { return std::size_t(residency_->slotCount()) * slotBytes(); }
 
@@ -108,7 +111,7 @@ void Raycaster::setLightInCamera(const glm::vec3& direction) {
 
 void Raycaster::computeSlotBounds(const std::vector<uint32_t>& slots) {
   uploadedSlots_->write(slots);
-  pool_->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  pool_->bind();
   slotBounds_->bindBase(GL_SHADER_STORAGE_BUFFER, 6);
   uploadedSlots_->bindBase(GL_SHADER_STORAGE_BUFFER, 7);
   slotBoundsProgram_.use();
@@ -170,7 +173,7 @@ uint32_t Raycaster::dispatchPass(const CameraFrame& frame, int width, int height
   glProgramUniform3fv(p, program_.uniformLocation("uSurfaceColor"), 1, &options_.surfaceColor.x);
   glProgramUniform3fv(p, program_.uniformLocation("uLightDir"), 1, &lightDir.x);
 
-  pool_->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  pool_->bind();
   pageTable_->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
   nodeTable_->bindBase(GL_SHADER_STORAGE_BUFFER, 2);
   requests_->bindBase(GL_SHADER_STORAGE_BUFFER, 3);
@@ -221,7 +224,7 @@ uint32_t Raycaster::upload(const std::vector<LoadedBrick>& loaded, std::vector<u
   std::size_t next = 0;
   for (const auto& [brick, slot] : assigned) {
     while (loaded[next].brick != brick) ++next;  // assign() keeps the order
-    pool_->write(loaded[next].halo.data(), kSlotBytes, std::size_t(slot) * kSlotBytes);
+    pool_->upload(slot, loaded[next].halo.data());
     // Freshly loaded slots count as used now, so the next assignment does not evict them first; on
     // the host they are pinned until the next pass reports real use.
     slotUse_->write(&pass_, sizeof pass_, std::size_t(slot) * sizeof(uint32_t));

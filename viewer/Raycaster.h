@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "BrickLoader.h"
+#include "BrickPool.h"
 #include "Camera.h"
 #include "GlProgram.h"
 #include "Residency.h"
@@ -29,6 +30,7 @@ struct RenderOptions {
   float iso = std::numeric_limits<float>::quiet_NaN();  // NaN: midway through the data's value range
   std::size_t gpuCacheBytes = std::size_t(512) << 20;   // the brick pool
   std::size_t hostCacheBytes = std::size_t(512) << 20;  // decoded bricks in host memory
+  BrickLayout layout = BrickLayout::SsboVec4;  // how the pool stores bricks (viewer/BrickPool.h)
   bool skipEmpty = true;   // skip nodes and bricks whose bounds exclude the isovalue
   int lookahead = 2;       // bricks a stopped ray requests beyond its first missing one
   bool finiteDifferenceNormals = false;  // central differences instead of the analytic gradient
@@ -87,7 +89,7 @@ class Raycaster {
   uint32_t residentCount() const { return residency_->residentCount(); }
   std::size_t neededCount() const { return residency_->neededCount(); }
   std::size_t missingCount() const { return residency_->missingCount(); }
-  static std::size_t slotBytes();  // GPU bytes one resident brick costs (data and cell bounds)
+  std::size_t slotBytes() const;  // GPU bytes one resident brick costs (data and cell bounds)
   std::size_t poolBytes() const;  // slotCount() * slotBytes()
   uint64_t bricksUploaded() const { return bricksUploaded_; }  // since construction
   uint64_t bricksDecoded() const { return loader_->loadedCount(); }
@@ -125,7 +127,8 @@ class Raycaster {
   uint64_t settings_ = 1;  // bumped by every change of the isovalue or an option
   bool stepComplete_ = false;
   GlProgram program_, slotBoundsProgram_;
-  std::unique_ptr<GlBuffer> pool_, slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;
+  std::unique_ptr<BrickPool> pool_;
+  std::unique_ptr<GlBuffer> slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;
   GlTexture2D color_, normalDepth_, resume_;
 };
 

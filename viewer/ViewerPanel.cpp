@@ -117,7 +117,7 @@ void ViewerSession::drawPanel(int windowWidth, int windowHeight) {
     row("missing", count(stats_.missing) + " bricks");
     row("requested", count(stats_.requested) + " (last pass)");
     row("streaming", count(stats_.streaming) + " bricks");
-    usageBar("GPU cache", double(stats_.resident) * double(Raycaster::slotBytes()), double(raycaster_.poolBytes()));
+    usageBar("GPU cache", double(stats_.resident) * double(raycaster_.slotBytes()), double(raycaster_.poolBytes()));
     usageBar("host cache", double(raycaster_.hostCache().bytesUsed()), double(raycaster_.hostCache().budgetBytes()));
     char rate[32];
     std::snprintf(rate, sizeof rate, "%.1f MiB/s", stats_.uploadMiBPerSecond);

@@ -83,7 +83,7 @@ void ViewerSession::updateStats(const StepStats& step) {
     stats_.frameMs = 1000.0 * window / framesInWindow_;
     stats_.fps = framesInWindow_ / window;
     const uint64_t uploaded = raycaster_.bricksUploaded() - uploadedAtWindowStart_;
-    stats_.uploadMiBPerSecond = double(uploaded) * double(Raycaster::slotBytes()) / double(1 << 20) / window;
+    stats_.uploadMiBPerSecond = double(uploaded) * double(raycaster_.slotBytes()) / double(1 << 20) / window;
     uploadedAtWindowStart_ = raycaster_.bricksUploaded();
     rateWindowStart_ = now;
     framesInWindow_ = 0;

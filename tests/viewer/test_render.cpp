@@ -286,5 +286,36 @@ TEST_F(Render, ProgressiveStepsReachTheBlockingImage) {
     ASSERT_FLOAT_EQ(other.rgba[i], afterMove.rgba[i]) << "rgba component " << i << " after the camera moved";
 }
 
+// Every brick layout of the pool (viewer/BrickPool.h) reads the same coefficients, so the images
+// are bit-identical, also when a small pool makes bricks move between slots.
+TEST_F(Render, EveryBrickLayoutGivesTheSameImage) {
+  TempDir dir;
+  const std::string blobs = dir / "blobs.vdb";
+  ASSERT_EQ(test::runFccvdb("synth blobs " + blobs + " --dims 96,96,96 --quiet").status, 0);
+  render::Camera camera;
+  camera.eye = glm::dvec3(150.0, 110.0, 150.0);
+  camera.lookat = glm::dvec3(48.0);
+  const int w = 40, h = 32;
+  render::RenderOptions options;
+  options.gpuCacheBytes = std::size_t(1) << 20;  // a few dozen slots: bricks are evicted and reloaded
+  render::FrameStats stats;
+  const render::FrameImages reference = renderFile(blobs, camera, w, h, 0.3f, options, &stats);
+  int hits = 0;
+  for (std::size_t i = 3; i < reference.rgba.size(); i += 4) hits += reference.rgba[i] > 0.5f;
+  ASSERT_GT(hits, w * h / 20);
+  for (const render::BrickLayout layout : render::allBrickLayouts()) {
+    options.layout = layout;
+    render::FrameStats s;
+    const render::FrameImages image = renderFile(blobs, camera, w, h, 0.3f, options, &s);
+    std::printf("%s: %d passes, %llu uploads\n", render::brickLayoutName(layout).c_str(), s.passes,
+                (unsigned long long)s.bricksUploaded);
+    for (std::size_t i = 0; i < reference.rgba.size(); ++i) {
+      ASSERT_EQ(reference.rgba[i], image.rgba[i]) << render::brickLayoutName(layout) << ", rgba component " << i;
+      ASSERT_EQ(reference.normalDepth[i], image.normalDepth[i]) << render::brickLayoutName(layout) << ", component " << i;
+    }
+  }
+  EXPECT_THROW(render::parseBrickLayout("one-channel"), ValueError);
+}
+
 }  // namespace
 }  // namespace fcc

@@ -1,0 +1,138 @@
+#include "BrickPool.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "io/BrickCache.h"
+#include "sparse/Error.h"
+
+namespace fcc::render {
+namespace {
+
+constexpr int kPackedDim = io::kHaloBlockDim;  // 10: packed voxels per slot side
+constexpr int kSiteDim = 2 * kPackedDim;       // 20: lattice sites per slot side (one-channel embedding)
+
+bool isScalar(BrickLayout l) { return l == BrickLayout::SsboScalar || l == BrickLayout::TextureScalar; }
+bool isTexture(BrickLayout l) { return l == BrickLayout::TextureVec4 || l == BrickLayout::TextureScalar; }
+int slotDim(BrickLayout l) { return isScalar(l) ? kSiteDim : kPackedDim; }
+
+// Slots per axis of a 3D texture holding `slots` blocks of dim^3 texels, close to a cube.
+glm::ivec3 textureGrid(std::size_t slots, int dim) {
+  GLint max3d = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
+  const int perAxis = std::max(1, max3d / dim);
+  const int x = std::clamp(int(std::ceil(std::cbrt(double(slots)))), 1, perAxis);
+  const int y = std::clamp(int(std::ceil(std::sqrt(double(slots) / x))), 1, perAxis);
+  const int z = int((slots + std::size_t(x) * y - 1) / (std::size_t(x) * y));
+  if (z > perAxis)
+    throw GlError("brick pool: " + std::to_string(slots) + " slots do not fit a 3D texture (GL_MAX_3D_TEXTURE_SIZE " +
+                  std::to_string(max3d) + ")");
+  return {x, y, z};
+}
+
+}  // namespace
+
+const std::vector<BrickLayout>& allBrickLayouts() {
+  static const std::vector<BrickLayout> all = {BrickLayout::SsboVec4, BrickLayout::SsboScalar, BrickLayout::TextureVec4,
+                                               BrickLayout::TextureScalar};
+  return all;
+}
+
+std::string brickLayoutName(BrickLayout layout) {
+  switch (layout) {
+    case BrickLayout::SsboVec4: return "ssbo-vec4";
+    case BrickLayout::SsboScalar: return "ssbo-scalar";
+    case BrickLayout::TextureVec4: return "texture-vec4";
+    case BrickLayout::TextureScalar: return "texture-scalar";
+  }
+  return "?";
+}
+
+BrickLayout parseBrickLayout(const std::string& name) {
+  std::string valid;
+  for (BrickLayout l : allBrickLayouts()) {
+    if (brickLayoutName(l) == name) return l;
+    valid += (valid.empty() ? "" : ", ") + brickLayoutName(l);
+  }
+  throw ValueError("brick layout '" + name + "': valid layouts are " + valid);
+}
+
+std::size_t BrickPool::slotBytes(BrickLayout layout) {
+  const std::size_t dim = std::size_t(slotDim(layout));
+  return dim * dim * dim * (isScalar(layout) ? 1 : 4) * sizeof(float);
+}
+
+std::size_t BrickPool::maxSlots(BrickLayout layout) {
+  if (isTexture(layout)) {
+    GLint max3d = 0;
+    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
+    const std::size_t perAxis = std::size_t(std::max(1, max3d / slotDim(layout)));
+    return perAxis * perAxis * perAxis;
+  }
+  GLint64 maxBlock = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+  return std::size_t(maxBlock) / slotBytes(layout);
+}
+
+BrickPool::BrickPool(BrickLayout layout, std::size_t slots) : layout_(layout), slots_(std::max<std::size_t>(slots, 1)) {
+  if (isScalar(layout)) scratch_.assign(std::size_t(kSiteDim) * kSiteDim * kSiteDim, 0.0f);
+  if (!isTexture(layout)) {
+    buffer_ = std::make_unique<GlBuffer>(slots_ * slotBytes(layout));
+    return;
+  }
+  const int dim = slotDim(layout);
+  grid_ = textureGrid(slots_, dim);
+  glCreateTextures(GL_TEXTURE_3D, 1, &texture_);
+  glTextureStorage3D(texture_, 1, isScalar(layout) ? GL_R32F : GL_RGBA32F, grid_.x * dim, grid_.y * dim, grid_.z * dim);
+  glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  checkGl("creating the " + brickLayoutName(layout) + " brick pool of " + std::to_string(slots_) + " slots");
+}
+
+BrickPool::~BrickPool() {
+  if (texture_) glDeleteTextures(1, &texture_);
+}
+
+std::string BrickPool::glslDefines() const {
+  std::string d = "#define FCC_POOL_LAYOUT " + std::to_string(int(layout_)) + "\n";
+  if (isTexture(layout_))
+    d += "#define FCC_POOL_GRID_X " + std::to_string(grid_.x) + "\n#define FCC_POOL_GRID_Y " + std::to_string(grid_.y) + "\n";
+  return d;
+}
+
+void BrickPool::upload(uint32_t slot, const float* haloBlock) {
+  const float* data = haloBlock;
+  if (isScalar(layout_)) {
+    // Site l of the slot (global 16b - 2 + l, an even offset) is packed voxel l >> 1 of the block,
+    // channel ((l.x & 1) << 1) | (l.y & 1); sites with an odd coordinate sum are not FCC sites.
+    for (int z = 0; z < kSiteDim; ++z)
+      for (int y = 0; y < kSiteDim; ++y)
+        for (int x = 0; x < kSiteDim; ++x) {
+          const std::size_t site = (std::size_t(z) * kSiteDim + y) * kSiteDim + x;
+          if ((x + y + z) & 1) {
+            scratch_[site] = 0.0f;
+            continue;
+          }
+          const std::size_t packed = (std::size_t(z >> 1) * kPackedDim + (y >> 1)) * kPackedDim + (x >> 1);
+          scratch_[site] = haloBlock[packed * 4 + std::size_t(((x & 1) << 1) | (y & 1))];
+        }
+    data = scratch_.data();
+  }
+  if (buffer_) {
+    buffer_->write(data, slotBytes(layout_), std::size_t(slot) * slotBytes(layout_));
+    return;
+  }
+  const int dim = slotDim(layout_);
+  const int s = int(slot);
+  const glm::ivec3 texel = glm::ivec3(s % grid_.x, (s / grid_.x) % grid_.y, s / (grid_.x * grid_.y)) * dim;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTextureSubImage3D(texture_, 0, texel.x, texel.y, texel.z, dim, dim, dim, isScalar(layout_) ? GL_RED : GL_RGBA,
+                      GL_FLOAT, data);
+}
+
+void BrickPool::bind() const {
+  if (buffer_) buffer_->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  else glBindTextureUnit(3, texture_);
+}
+
+}  // namespace fcc::render

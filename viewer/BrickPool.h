@@ -1,0 +1,56 @@
+// The GPU pool of resident bricks in one of four layouts (shaders/pool.glsl describes them), so the
+// layouts can be compared by measurement (`fccvdb bench render --layout all`). A slot is filled from
+// io::assembleHaloBlock's 10^3 packed voxels; the scalar layouts spread them over the 20^3 lattice
+// sites of the one-channel embedding.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "GlProgram.h"
+
+namespace fcc::render {
+
+enum class BrickLayout { SsboVec4 = 0, SsboScalar = 1, TextureVec4 = 2, TextureScalar = 3 };
+
+const std::vector<BrickLayout>& allBrickLayouts();
+std::string brickLayoutName(BrickLayout layout);  // "ssbo-vec4", "ssbo-scalar", "texture-vec4", "texture-scalar"
+// ValueError listing the valid names.
+BrickLayout parseBrickLayout(const std::string& name);
+
+class BrickPool {
+ public:
+  // GPU bytes of one slot's values in `layout`.
+  static std::size_t slotBytes(BrickLayout layout);
+  // The most slots this GL implementation can hold in `layout` (SSBO size or 3D texture limits).
+  static std::size_t maxSlots(BrickLayout layout);
+
+  BrickPool(BrickLayout layout, std::size_t slots);  // needs a current OpenGL 4.5 context
+  ~BrickPool();
+  BrickPool(const BrickPool&) = delete;
+  BrickPool& operator=(const BrickPool&) = delete;
+
+  BrickLayout layout() const { return layout_; }
+  std::size_t slots() const { return slots_; }
+  // "#define FCC_POOL_LAYOUT n" (and the texture grid) for shaders that include pool.glsl.
+  std::string glslDefines() const;
+  // Fills `slot` from a halo block (io::kHaloBlockVoxels packed voxels, 4 floats each, x fastest).
+  void upload(uint32_t slot, const float* haloBlock);
+  // Binds the pool where pool.glsl reads it (SSBO binding 0, or texture unit 3).
+  void bind() const;
+
+ private:
+  BrickLayout layout_;
+  std::size_t slots_;
+  glm::ivec3 grid_{1};                 // texture layouts: slots per axis
+  std::unique_ptr<GlBuffer> buffer_;   // SSBO layouts
+  GLuint texture_ = 0;                 // texture layouts
+  std::vector<float> scratch_;         // scalar layouts: one slot of sites
+};
+
+}  // namespace fcc::render
