@@ -30,7 +30,9 @@ struct RenderOptions {
   float iso = std::numeric_limits<float>::quiet_NaN();  // NaN: midway through the data's value range
   std::size_t gpuCacheBytes = std::size_t(512) << 20;   // the brick pool
   std::size_t hostCacheBytes = std::size_t(512) << 20;  // decoded bricks in host memory
-  BrickLayout layout = BrickLayout::SsboVec4;  // how the pool stores bricks (viewer/BrickPool.h)
+  // How the pool stores bricks (viewer/BrickPool.h). The one-channel embedding measured fastest on
+  // the H200 (docs/BENCHMARKS.md: +20-25% over vec4) at twice the GPU bytes per brick.
+  BrickLayout layout = BrickLayout::SsboScalar;
   bool skipEmpty = true;   // skip nodes and bricks whose bounds exclude the isovalue
   int lookahead = 2;       // bricks a stopped ray requests beyond its first missing one
   bool finiteDifferenceNormals = false;  // central differences instead of the analytic gradient
