@@ -230,20 +230,34 @@ TEST_F(Render, SmallCachesGiveTheSameImageWithinTheirBudgets) {
   EXPECT_LT(growthMiB, 2.0 * budgetMiB + slackMiB);
 }
 
+// Sparse blobs of 96^3 (307 bricks), a camera that sees most of them, and a pool of a few dozen
+// slots (by layout), so a frame needs several passes and bricks are evicted and reloaded.
+constexpr std::size_t kSmallPoolBytes = std::size_t(1) << 20;
+
+std::string writeSmallBlobs(const TempDir& dir) {
+  const std::string path = dir / "blobs.vdb";
+  EXPECT_EQ(test::runFccvdb("synth blobs " + path + " --dims 96,96,96 --quiet").status, 0);
+  return path;
+}
+
+render::Camera smallBlobsCamera() {
+  render::Camera camera;
+  camera.eye = glm::dvec3(160.0, 120.0, 140.0);
+  camera.lookat = glm::dvec3(48.0);
+  return camera;
+}
+
 // The viewer's progressive frames: step() with no upload time budget (one batch a step) reaches the
 // same image as render() with a pool that must evict, restarts when the camera moves, and does no
 // work once the frame is complete.
 TEST_F(Render, ProgressiveStepsReachTheBlockingImage) {
   TempDir dir;
-  const std::string blobs = dir / "blobs.vdb";
-  ASSERT_EQ(test::runFccvdb("synth blobs " + blobs + " --dims 96,96,96 --quiet").status, 0);
-  render::Camera camera;
-  camera.eye = glm::dvec3(160.0, 120.0, 140.0);
-  camera.lookat = glm::dvec3(48.0);
+  const std::string blobs = writeSmallBlobs(dir);
+  const render::Camera camera = smallBlobsCamera();
   const int w = 48, h = 40;
   render::RenderOptions options;
   options.iso = 0.3f;
-  options.gpuCacheBytes = std::size_t(1) << 20;  // 51 slots: the frame needs several passes
+  options.gpuCacheBytes = kSmallPoolBytes;
   const render::FrameImages reference = renderFile(blobs, camera, w, h, options.iso, options);
 
   const io::BrickStore store(blobs);
@@ -290,14 +304,11 @@ TEST_F(Render, ProgressiveStepsReachTheBlockingImage) {
 // are bit-identical, also when a small pool makes bricks move between slots.
 TEST_F(Render, EveryBrickLayoutGivesTheSameImage) {
   TempDir dir;
-  const std::string blobs = dir / "blobs.vdb";
-  ASSERT_EQ(test::runFccvdb("synth blobs " + blobs + " --dims 96,96,96 --quiet").status, 0);
-  render::Camera camera;
-  camera.eye = glm::dvec3(150.0, 110.0, 150.0);
-  camera.lookat = glm::dvec3(48.0);
+  const std::string blobs = writeSmallBlobs(dir);
+  const render::Camera camera = smallBlobsCamera();
   const int w = 40, h = 32;
   render::RenderOptions options;
-  options.gpuCacheBytes = std::size_t(1) << 20;  // a few dozen slots: bricks are evicted and reloaded
+  options.gpuCacheBytes = kSmallPoolBytes;
   render::FrameStats stats;
   const render::FrameImages reference = renderFile(blobs, camera, w, h, 0.3f, options, &stats);
   int hits = 0;
