@@ -116,14 +116,15 @@ StreamedBuild buildFccGridStreamed(const FccBlockBuilder& builder, const Streame
   std::unique_ptr<BrickKernels> own;
   BrickKernels& kernels = options.kernels ? *options.kernels : *(own = makeReferenceBrickKernels());
 
-  // A brick's bounds read the coefficients one slab either side; raw samples become coefficients
-  // (prefilterGrid) from one slab further.
+  // A brick's bounds read the coefficients one slab either side. Raw samples become coefficients
+  // (prefilterGrid) from one slab further: a coefficient leaf exists where a sample leaf is within one
+  // brick, and that decides which bricks get exact bounds. So the slabs of bricks whose bounds are
+  // computed (the coefficient leaves' and their neighbours) reach as far beyond the blocks.
   const bool rawSamples = !builder.options().prefilter;
   const int reach = rawSamples ? 2 : 1;
   SlabBuilder slabs(builder, options.half, *topology);
   FccSlabWindow window(background);
-  // The bricks whose bounds are computed: the leaves' and their neighbours.
-  const int first = blocks.min().x() - 1, last = blocks.max().x() + 1;
+  const int first = blocks.min().x() - reach, last = blocks.max().x() + reach;
   int nextSlab = blocks.min().x();
   if (progress) progress->start("building FCC topology and bounds");
   for (int x = first; x <= last; ++x) {
