@@ -128,8 +128,8 @@ StreamedBuild buildFccGridStreamed(const FccBlockBuilder& builder, const Streame
   int nextSlab = blocks.min().x();
   if (progress) progress->start("building FCC topology and bounds");
   for (int x = first; x <= last; ++x) {
+    window.dropBelow(x - reach);  // first: never more than 2 reach + 1 slabs at once
     for (; nextSlab <= std::min(x + reach, blocks.max().x()); ++nextSlab) window.add(nextSlab, slabs.build(nextSlab));
-    window.dropBelow(x - reach);
     if (rawSamples) {
       const FccGrid::Ptr coefficients = prefilterGrid(window.grid(), &kernels, slabBricks(x - 1, x + 1));
       computeBrickBoundsIn(*coefficients, slabBricks(x, x), kernels, *result.bounds);

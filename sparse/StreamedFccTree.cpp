@@ -14,8 +14,8 @@ namespace {
 
 using Leaf = FccBlockBuilder::Leaf;
 
-// Leaves rebuilt at once: 8 MiB of values; a second batch is built while one is written.
-constexpr size_t kBatchLeaves = 1024;
+// Leaves rebuilt at once: 2 MiB of values; the next batch is built while one is written.
+constexpr size_t kBatchLeaves = 256;
 
 openvdb::Coord blockOf(const Leaf& leaf) {
   const openvdb::Coord o = leaf.origin();
