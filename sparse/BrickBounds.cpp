@@ -3,7 +3,6 @@
 // work; see sparse/BrickKernels.h.
 #include "BrickBounds.h"
 
-#include <openvdb/math/Half.h>
 #include <openvdb/tools/Prune.h>
 #include <tbb/parallel_for.h>
 
@@ -38,14 +37,15 @@ Vec2f hullOf(const Vec2f& a, const Vec2f& b) { return Vec2f(std::min(a[0], b[0])
 Coord brickOfPacked(const Coord& packed) { return Coord(packed.x() >> 3, packed.y() >> 3, packed.z() >> 3); }
 Coord packedOfBrick(const Coord& brick) { return Coord(brick.x() * kBrickPackedDim, brick.y() * kBrickPackedDim, brick.z() * kBrickPackedDim); }
 
-// The leaves' bricks and their 26 neighbours: the bricks whose halo holds a leaf value.
-std::vector<Coord> leafBricksDilated(const FccTree& tree) {
+// The leaves' bricks and their 26 neighbours inside `region`: the bricks whose halo holds a leaf value.
+std::vector<Coord> leafBricksDilated(const FccTree& tree, const CoordBBox& region) {
   openvdb::MaskTree mask;
   for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
     const Coord b = brickOfPacked(leaf->origin());
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) mask.setValueOn(b.offsetBy(dx, dy, dz));
+        for (int dx = -1; dx <= 1; ++dx)
+          if (region.isInside(b.offsetBy(dx, dy, dz))) mask.setValueOn(b.offsetBy(dx, dy, dz));
   }
   std::vector<Coord> bricks;
   bricks.reserve(mask.activeVoxelCount());
@@ -190,15 +190,11 @@ BrickKernels& orReference(BrickKernels* kernels, std::unique_ptr<BrickKernels>& 
 
 std::unique_ptr<BrickKernels> makeReferenceBrickKernels() { return std::make_unique<ReferenceBrickKernels>(); }
 
-BoundsGrid::Ptr computeBrickBounds(const FccGrid& coefficients, BrickKernels* kernelsOrNull) {
-  if (storesSamples(coefficients))
-    throw ValueError("grid '" + coefficients.getName() + "' stores raw samples: prefilter it before computing bounds");
-  std::unique_ptr<BrickKernels> own;
-  BrickKernels& kernels = orReference(kernelsOrNull, own);
+Vec2f boundsBackground(const Vec4f& fccBackground) { return hullOf(fccBackground); }
+
+void computeBrickBoundsIn(const FccGrid& coefficients, const CoordBBox& region, BrickKernels& kernels,
+                          openvdb::Vec2STree& tree) {
   const FccTree& fccTree = coefficients.tree();
-  const Vec2f background = hullOf(fccTree.background());
-  auto grid = BoundsGrid::create(background);
-  auto& tree = grid->tree();
   auto set = [&](const Coord& brick, const Vec2f& b) {
     if (b[0] < b[1]) tree.setValueOn(brick, b);
     else tree.setValueOff(brick, b);
@@ -206,18 +202,20 @@ BoundsGrid::Ptr computeBrickBounds(const FccGrid& coefficients, BrickKernels* ke
 
   // Constant regions first, then the bricks at their borders, then the exact bricks, each
   // overwriting what came before where they overlap.
-  const std::vector<Coord> exact = leafBricksDilated(fccTree);
+  const std::vector<Coord> exact = leafBricksDilated(fccTree, region);
   const std::vector<Tile> tiles = nonBackgroundTiles(fccTree);
   for (const Tile& t : tiles) {
     const Vec2f b = hullOf(t.value);
-    tree.fill(t.bricks, b, b[0] < b[1]);
+    CoordBBox inside = t.bricks;
+    inside.intersect(region);
+    if (!inside.empty()) tree.fill(inside, b, b[0] < b[1]);
   }
   if (!tiles.empty()) {
     openvdb::MaskTree exactMask;
     for (const Coord& b : exact) exactMask.setValueOn(b);
     for (const Tile& t : tiles)
       forEachShellBrick(t.bricks, [&](const Coord& brick) {
-        if (exactMask.isValueOn(brick)) return;
+        if (!region.isInside(brick) || exactMask.isValueOn(brick)) return;
         // No leaf in the neighbourhood: each neighbour brick is one constant value (a tile, or the
         // background), and the spline is a convex combination of them.
         Vec2f b(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity());
@@ -234,17 +232,29 @@ BoundsGrid::Ptr computeBrickBounds(const FccGrid& coefficients, BrickKernels* ke
     kernels.bricksDone += batch.size();
     for (size_t i = 0; i < batch.size(); ++i) set(batch[i], results[i]);
   }
-  openvdb::tools::prune(tree);
+}
 
-  grid->setName(boundsGridName(coefficients.getName()));
-  auto xform = coefficients.transform().copy();
+BoundsGrid::Ptr boundsGridOf(const openvdb::Vec2STree::Ptr& tree, const FccGrid& fcc) {
+  auto grid = BoundsGrid::create(tree);
+  grid->setName(boundsGridName(fcc.getName()));
+  auto xform = fcc.transform().copy();
   xform->preScale(double(kBrickSites));
   grid->setTransform(xform);
-  grid->insertMeta(meta::kBoundsOf, openvdb::StringMetadata(coefficients.getName()));
+  grid->insertMeta(meta::kBoundsOf, openvdb::StringMetadata(fcc.getName()));
   return grid;
 }
 
-FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernelsOrNull) {
+BoundsGrid::Ptr computeBrickBounds(const FccGrid& coefficients, BrickKernels* kernelsOrNull) {
+  if (storesSamples(coefficients))
+    throw ValueError("grid '" + coefficients.getName() + "' stores raw samples: prefilter it before computing bounds");
+  std::unique_ptr<BrickKernels> own;
+  auto tree = std::make_shared<openvdb::Vec2STree>(boundsBackground(coefficients.background()));
+  computeBrickBoundsIn(coefficients, CoordBBox::inf(), orReference(kernelsOrNull, own), *tree);
+  openvdb::tools::prune(*tree);
+  return boundsGridOf(tree, coefficients);
+}
+
+FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernelsOrNull, const CoordBBox& region) {
   std::unique_ptr<BrickKernels> own;
   BrickKernels& kernels = orReference(kernelsOrNull, own);
   const FccTree& in = samples.tree();
@@ -254,7 +264,7 @@ FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernelsOrNull) 
   FccTree& out = grid->tree();
 
   // Inside a tile, away from its border, every site sees the tile's values only.
-  std::vector<Coord> work = leafBricksDilated(in);
+  std::vector<Coord> work = leafBricksDilated(in, region);
   const std::vector<Tile> tiles = nonBackgroundTiles(in);
   if (!tiles.empty()) {
     openvdb::MaskTree workMask;
@@ -263,9 +273,14 @@ FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernelsOrNull) 
       Vec4f v;
       for (int c = 0; c < 4; ++c)
         v[c] = spline::prefilterAt(siteOfChannel(glm::ivec3(0), c), [&](const glm::ivec3& ijk) { return t.value[channelOfSite(ijk)]; });
-      const CoordBBox packed(packedOfBrick(t.bricks.min()), packedOfBrick(t.bricks.max()).offsetBy(kBrickPackedDim - 1));
-      out.fill(packed, v, v != background);
-      forEachShellBrick(t.bricks, [&](const Coord& brick) { workMask.setValueOn(brick); });
+      CoordBBox inside = t.bricks;
+      inside.intersect(region);
+      if (!inside.empty())
+        out.fill(CoordBBox(packedOfBrick(inside.min()), packedOfBrick(inside.max()).offsetBy(kBrickPackedDim - 1)), v,
+                 v != background);
+      forEachShellBrick(t.bricks, [&](const Coord& brick) {
+        if (region.isInside(brick)) workMask.setValueOn(brick);
+      });
     }
     work.clear();
     for (auto it = workMask.cbeginValueOn(); it; ++it) work.push_back(it.getCoord());
@@ -306,11 +321,7 @@ FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernelsOrNull) 
 FccGrid::ConstPtr valuesAsStored(const FccGrid::ConstPtr& grid) {
   if (!grid->saveFloatAsHalf()) return grid;
   FccGrid::Ptr rounded = grid->deepCopy();
-  const Vec4f background = rounded->background();
-  for (auto it = rounded->tree().beginValueAll(); it; ++it) {
-    const Vec4f v = *it;
-    if (v != background) it.setValue(Vec4f(openvdb::math::Vec4<openvdb::math::half>(v)));
-  }
+  roundAsStoredHalf(rounded->tree().beginValueAll(), rounded->background());
   return rounded;
 }
 

@@ -16,6 +16,7 @@
 //     world box of its sites.
 #pragma once
 
+#include <openvdb/math/Half.h>
 #include <openvdb/openvdb.h>
 
 #include <string>
@@ -44,16 +45,47 @@ class BrickKernels;  // sparse/BrickKernels.h; null below means the C++/TBB refe
 // background (c0, c0).
 BoundsGrid::Ptr computeBrickBounds(const FccGrid& coefficients, BrickKernels* kernels = nullptr);
 
+// The part of computeBrickBounds that sets the bricks inside `region` (brick coordinates), written
+// into `tree` (background boundsBackground of the FCC background; not pruned); bricks outside are
+// left as they are. A brick reads only the leaves and tiles of its 27-brick neighbourhood, so
+// `coefficients` may hold just those around the region: the streamed build (StreamedBuild.h) passes
+// a window of three slabs of leaves for a region of one slab.
+void computeBrickBoundsIn(const FccGrid& coefficients, const openvdb::CoordBBox& region, BrickKernels& kernels,
+                          openvdb::Vec2STree& tree);
+
+// The bounds grid's background for an FCC grid's background: the hull of its channels.
+openvdb::Vec2f boundsBackground(const openvdb::Vec4f& fccBackground);
+
+// The bounds grid of FCC grid `fcc` around `tree`: its name, transform and fcc_bounds_of.
+BoundsGrid::Ptr boundsGridOf(const openvdb::Vec2STree::Ptr& tree, const FccGrid& fcc);
+
 // The quasi-interpolation prefilter q_fcc applied to a grid of raw samples (fcc_values = samples):
 // the grid the builder would have written without --no-prefilter. Active where a coefficient differs
 // from the background; uniform leaves are pruned to tiles; metadata and transform are copied, with
-// fcc_values = coefficients.
-FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernels = nullptr);
+// fcc_values = coefficients. Only the bricks inside `region` are computed (the rest holds the
+// background); a brick reads the samples of its 27-brick neighbourhood.
+FccGrid::Ptr prefilterGrid(const FccGrid& samples, BrickKernels* kernels = nullptr,
+                           const openvdb::CoordBBox& region = openvdb::CoordBBox::inf());
 
 // The grid's values as a reader of its file will see them: rounded through half floats where the
 // grid is saved as half (Grid::saveFloatAsHalf; the background, stored exactly, stays), else the grid
 // itself. Bounds must be those of the stored values.
 FccGrid::ConstPtr valuesAsStored(const FccGrid::ConstPtr& grid);
+
+// A value as a half-stored file holds it; the background is stored exactly.
+inline openvdb::Vec4f asStoredHalf(const openvdb::Vec4f& v, const openvdb::Vec4f& background) {
+  return v == background ? v : openvdb::Vec4f(openvdb::math::Vec4<openvdb::math::half>(v));
+}
+
+// Sets every value that `it` (a value iterator over a grid or a leaf) visits to asStoredHalf: what
+// valuesAsStored does to a whole grid.
+template <class ValueIter>
+void roundAsStoredHalf(ValueIter it, const openvdb::Vec4f& background) {
+  for (; it; ++it) {
+    const openvdb::Vec4f v = *it;
+    if (v != background) it.setValue(asStoredHalf(v, background));
+  }
+}
 
 // The coefficients to compute bounds of: the grid itself, or its prefiltered copy when it stores
 // samples.

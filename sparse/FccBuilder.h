@@ -1,18 +1,15 @@
-// Builds the sparse four-channel FCC grid from a sample field, block by block (one VDB leaf of packed
-// voxels at a time), applying the quasi-interpolation prefilter on the way.
+// Builds the sparse four-channel FCC grid from a sample field in memory, block by block (one VDB leaf
+// of packed voxels at a time, FccBlockBuilder.h), applying the quasi-interpolation prefilter on the
+// way. StreamedBuild.h builds the same grid for writing without holding its values.
 #pragma once
 
 #include <openvdb/util/NullInterrupter.h>
 
+#include "FccBlockBuilder.h"
 #include "FccGrid.h"
 #include "SampleField.h"
 
 namespace fcc {
-
-struct BuildOptions {
-  bool prefilter = true;   // store coefficients c = q_fcc * V (what the renderer needs) or raw samples V
-  float tolerance = 0.0f;  // a packed voxel whose four values are within this of the background is inactive
-};
 
 struct BuildResult {
   FccGrid::Ptr grid;

@@ -4,11 +4,8 @@
 #include "Command.h"
 #include "ProgressBar.h"
 #include "Triple.h"
-#include "io/VdbFile.h"
-#include "sparse/BrickBounds.h"
+#include "io/SynthFile.h"
 #include "sparse/BrickKernels.h"
-#include "sparse/FccBuilder.h"
-#include "sparse/SynthFields.h"
 
 namespace fcc::cli {
 
@@ -30,41 +27,24 @@ Command addSynthCommand(CLI::App& parent) {
   app->add_flag("--quiet", args->quiet, "No progress bar or summary");
   addDeviceOption(*app, args->device);
   return {app, [args]() {
-            SynthSpec spec;
-            spec.kind = args->kind;
-            glm::dvec3 dims;
+            io::SynthOptions options;
+            options.spec.kind = args->kind;
+            glm::dvec3 dims(0.0);
             parseTriple(args->dims, dims);
-            spec.dims = glm::ivec3(dims);
-            spec.seed = args->seed;
-            const SynthField synth = makeSynthField(spec);
+            options.spec.dims = glm::ivec3(dims);
+            options.spec.seed = args->seed;
+            options.prefilter = !args->noPrefilter;
+            options.half = args->half;
+            options.overwrite = args->force;
             const std::unique_ptr<BrickKernels> kernels = preprocessKernels(args->device);
-            initializeVdb();
+            options.preprocess = kernels.get();
             ProgressBar progress(args->quiet);
-            BuildOptions build;
-            build.prefilter = !args->noPrefilter;
-            BuildResult built = buildFccGrid(*synth.field, build, &progress);
-            auto xform = openvdb::math::Transform::createLinearTransform();
-            const glm::dvec3 s = synth.worldFromIndexScale, o = synth.worldFromIndexOrigin;
-            xform->preScale(openvdb::Vec3d(s.x, s.y, s.z));
-            xform->postTranslate(openvdb::Vec3d(o.x, o.y, o.z));
-            built.grid->setTransform(xform);
-            built.grid->setName(args->kind);
-            FccProvenance p;
-            p.coefficients = build.prefilter;
-            p.mode = "synth:" + args->kind;
-            p.sampleMin = built.sampleMin;
-            p.sampleMax = built.sampleMax;
-            p.levelSet = synth.levelSet;
-            setFccMetadata(*built.grid, p);
-            built.grid->setSaveFloatAsHalf(args->half);
-            // Bounds of the spline the renderer evaluates: of the prefiltered coefficients for samples.
-            const BoundsGrid::Ptr bounds = computeBrickBounds(*coefficientsOf(valuesAsStored(built.grid), kernels.get()), kernels.get());
-            io::writeVdbAtomically(args->output, openvdb::GridCPtrVec{built.grid, bounds}, args->force);
+            const io::SynthSummary summary = io::writeSynthFile(args->output, options, &progress);
             if (!args->quiet)
               std::fprintf(stderr, "wrote %s: %s, %llu active samples in %llu bricks; bounds: %llu varying bricks (%s)\n",
-                           args->output.c_str(), args->kind.c_str(), (unsigned long long)built.grid->activeVoxelCount() * 4,
-                           (unsigned long long)built.grid->tree().leafCount(),
-                           (unsigned long long)bounds->activeVoxelCount(), kernels->describe().c_str());
+                           args->output.c_str(), args->kind.c_str(), (unsigned long long)summary.activeSamples,
+                           (unsigned long long)summary.bricks, (unsigned long long)summary.boundsBricks,
+                           kernels->describe().c_str());
             return 0;
           }};
 }

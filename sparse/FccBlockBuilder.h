@@ -1,0 +1,75 @@
+// One block of the FCC grid built from a sample field: the VDB leaf of 8^3 packed voxels (16^3 sites)
+// at a block coordinate, with the prefilter applied and inactive voxels at the background. The
+// in-memory builder (FccBuilder.h) and the streamed one (StreamedBuild.h) both build every leaf here,
+// so a block built twice, or by either of them, is bit-identical.
+#pragma once
+
+#include <algorithm>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "FccGrid.h"
+#include "SampleField.h"
+
+namespace fcc {
+
+struct BuildOptions {
+  bool prefilter = true;   // store coefficients c = q_fcc * V (what the renderer needs) or raw samples V
+  float tolerance = 0.0f;  // a packed voxel whose four values are within this of the background is inactive
+};
+
+// Range of sample values seen (empty until a value is added).
+struct SampleRange {
+  float min = std::numeric_limits<float>::infinity();
+  float max = -std::numeric_limits<float>::infinity();
+  bool empty() const { return !(min <= max); }
+  void add(float v) {
+    min = std::min(min, v);
+    max = std::max(max, v);
+  }
+  void add(const SampleRange& r) {
+    min = std::min(min, r.min);
+    max = std::max(max, r.max);
+  }
+  // What the metadata records: (background, background) for a field that holds no samples.
+  SampleRange orBackground(float background) const { return empty() ? SampleRange{background, background} : *this; }
+};
+
+class FccBlockBuilder {
+ public:
+  using Leaf = FccTree::LeafNodeType;
+
+  // Working memory of one thread: the block's samples with the prefilter's one-site halo, so the
+  // prefilter reads no sample twice.
+  struct Scratch {
+    glm::ivec3 origin{0};  // site of element (0,0,0)
+    int side = 0;
+    std::vector<float> values;
+    float at(const glm::ivec3& ijk) const {
+      const glm::ivec3 l = ijk - origin;
+      return values[size_t((l.z * side + l.y) * side + l.x)];
+    }
+  };
+
+  // Keeps a reference to `field`, which must outlive the builder.
+  FccBlockBuilder(const SampleField& field, const BuildOptions& options);
+
+  // The blocks (leaf origins / 8, in packed voxels) that can hold active voxels: the field's bounds
+  // and, for coefficients, the one-site halo the prefilter spreads them by. Empty for an empty field.
+  const openvdb::CoordBBox& blocks() const { return blocks_; }
+  float background() const { return field_.background(); }
+  const BuildOptions& options() const { return options_; }
+
+  // The leaf of `block`, or null when none of its voxels is active. Samples at sites inside the
+  // field's bounds are added to `range` (if not null). Thread-safe: one Scratch per thread.
+  std::unique_ptr<Leaf> build(const openvdb::Coord& block, Scratch& scratch, SampleRange* range) const;
+
+ private:
+  const SampleField& field_;
+  BuildOptions options_;
+  SiteBox bounds_;
+  openvdb::CoordBBox blocks_;
+};
+
+}  // namespace fcc

@@ -1,0 +1,154 @@
+#include "StreamedBuild.h"
+
+#include <openvdb/tools/Prune.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "BrickKernels.h"
+#include "Error.h"
+#include "FccSlabWindow.h"
+#include "StreamedFccTree.h"
+
+namespace fcc {
+namespace {
+
+using openvdb::Coord;
+using openvdb::CoordBBox;
+using openvdb::Vec4f;
+using Leaf = FccBlockBuilder::Leaf;
+using LeafTile = FccSlabWindow::LeafTile;
+
+// Bricks (= blocks) with x in [x0, x1], any y and z.
+CoordBBox slabBricks(int x0, int x1) {
+  CoordBBox box = CoordBBox::inf();
+  box.min().setX(x0);
+  box.max().setX(x1);
+  return box;
+}
+
+// Whether the in-memory builder's prune (tools::prune with its tolerance) makes `leaf` a tile, and
+// that tile: the same prune, run on a tree holding only this leaf.
+bool prunesToTile(const Leaf& leaf, const Vec4f& background, float tolerance, LeafTile& tile) {
+  Vec4f lo, hi;
+  bool state;
+  if (!leaf.isConstant(lo, hi, state, Vec4f(tolerance))) return false;  // the prune's own test, first
+  FccTree alone(background);
+  alone.addLeaf(new Leaf(leaf));
+  openvdb::tools::prune(alone, Vec4f(tolerance));
+  if (alone.leafCount() != 0) return false;
+  tile = {leaf.origin(), alone.getValue(leaf.origin()), alone.isValueOn(leaf.origin())};
+  return true;
+}
+
+// Pass 1 for one slab of blocks at a time: the leaves' masks (and the tiles of uniform leaves) go into
+// the topology tree; the leaves themselves, rounded as stored, into the slab for the window.
+class SlabBuilder {
+ public:
+  SlabBuilder(const FccBlockBuilder& builder, bool half, FccTree& topology)
+      : builder_(builder), half_(half), topology_(topology), background_(builder.background()) {}
+
+  FccSlabWindow::Slab build(int x) {
+    const CoordBBox& blocks = builder_.blocks();
+    const int ny = blocks.dim().y(), count = ny * blocks.dim().z();
+    struct Built {
+      std::unique_ptr<Leaf> leaf;
+      bool isTile = false;
+      LeafTile tile;
+    };
+    std::vector<Built> built(static_cast<size_t>(count));
+    tbb::parallel_for(tbb::blocked_range<int>(0, count, 4), [&](const tbb::blocked_range<int>& r) {
+      for (int i = r.begin(); i != r.end(); ++i) {
+        const Coord block(x, blocks.min().y() + i % ny, blocks.min().z() + i / ny);
+        Built& b = built[size_t(i)];
+        b.leaf = builder_.build(block, scratch_.local(), &ranges_.local());
+        if (!b.leaf) continue;
+        b.isTile = prunesToTile(*b.leaf, background_, builder_.options().tolerance, b.tile);
+        if (half_ && !b.isTile) roundAsStoredHalf(b.leaf->beginValueAll(), background_);
+      }
+    });
+    FccSlabWindow::Slab slab;
+    for (Built& b : built) {
+      if (b.isTile) {
+        topology_.addTile(1, b.tile.origin, b.tile.value, b.tile.active);
+        LeafTile stored = b.tile;
+        if (half_) stored.value = asStoredHalf(stored.value, background_);
+        slab.tiles.push_back(stored);
+      } else if (b.leaf) {
+        auto mask = std::make_unique<Leaf>(openvdb::PartialCreate(), b.leaf->origin(), background_);
+        mask->setValueMask(b.leaf->valueMask());
+        topology_.addLeaf(mask.release());
+        slab.leaves.push_back(std::move(b.leaf));
+      }
+    }
+    return slab;
+  }
+
+  SampleRange range() const {
+    SampleRange total;
+    for (const SampleRange& r : ranges_) total.add(r);
+    return total;
+  }
+
+ private:
+  const FccBlockBuilder& builder_;
+  bool half_;
+  FccTree& topology_;
+  Vec4f background_;
+  tbb::enumerable_thread_specific<FccBlockBuilder::Scratch> scratch_;
+  tbb::enumerable_thread_specific<SampleRange> ranges_;
+};
+
+}  // namespace
+
+StreamedBuild buildFccGridStreamed(const FccBlockBuilder& builder, const StreamedBuildOptions& options,
+                                   openvdb::util::NullInterrupter* progress) {
+  const Vec4f background(builder.background());
+  auto topology = std::make_shared<StreamedFccTree>(builder, progress);
+  StreamedBuild result;
+  result.grid = FccGrid::create(topology);
+  result.grid->setSaveFloatAsHalf(options.half);
+  result.bounds = std::make_shared<openvdb::Vec2STree>(boundsBackground(background));
+  const CoordBBox& blocks = builder.blocks();
+  if (blocks.empty()) return result;
+  std::unique_ptr<BrickKernels> own;
+  BrickKernels& kernels = options.kernels ? *options.kernels : *(own = makeReferenceBrickKernels());
+
+  // A brick's bounds read the coefficients one slab either side. Raw samples become coefficients
+  // (prefilterGrid) from one slab further: a coefficient leaf exists where a sample leaf is within one
+  // brick, and that decides which bricks get exact bounds. So the slabs of bricks whose bounds are
+  // computed (the coefficient leaves' and their neighbours) reach as far beyond the blocks.
+  const bool rawSamples = !builder.options().prefilter;
+  const int reach = rawSamples ? 2 : 1;
+  SlabBuilder slabs(builder, options.half, *topology);
+  FccSlabWindow window(background);
+  const int first = blocks.min().x() - reach, last = blocks.max().x() + reach;
+  int nextSlab = blocks.min().x();
+  if (progress) progress->start("building FCC topology and bounds");
+  for (int x = first; x <= last; ++x) {
+    window.dropBelow(x - reach);  // first: never more than 2 reach + 1 slabs at once
+    for (; nextSlab <= std::min(x + reach, blocks.max().x()); ++nextSlab) window.add(nextSlab, slabs.build(nextSlab));
+    if (rawSamples) {
+      const FccGrid::Ptr coefficients = prefilterGrid(window.grid(), &kernels, slabBricks(x - 1, x + 1));
+      computeBrickBoundsIn(*coefficients, slabBricks(x, x), kernels, *result.bounds);
+    } else {
+      computeBrickBoundsIn(window.grid(), slabBricks(x, x), kernels, *result.bounds);
+    }
+    if (progress && progress->wasInterrupted(int(100.0 * double(x - first + 1) / double(last - first + 1))))
+      throw Error("interrupted");
+  }
+  if (progress) progress->end();
+
+  // Uniform leaves became tiles one by one; merging those upwards is the rest of the builder's
+  // prune, and reads no leaf (the topology's have no values).
+  openvdb::tools::pruneTiles(static_cast<FccTree&>(*topology), Vec4f(builder.options().tolerance));
+  openvdb::tools::prune(*result.bounds);
+  const SampleRange range = slabs.range().orBackground(builder.background());
+  result.sampleMin = range.min;
+  result.sampleMax = range.max;
+  return result;
+}
+
+}  // namespace fcc

@@ -1,0 +1,43 @@
+// The FCC grid of a sample field and its bounds, built for writing in bounded memory: the grid the
+// in-memory builder (FccBuilder.h) makes, followed by computeBrickBounds (BrickBounds.h), without
+// ever holding the grid's values.
+//
+// Pass 1 (here) builds the blocks slab by slab along x and keeps, of each leaf, only its active mask
+// (a StreamedFccTree), plus the sample range; the bounds of a slab's bricks are computed from a
+// window of the slabs they read (FccSlabWindow.h): one either side, two for raw samples, whose
+// coefficients read one more. Pass 2 happens while the grid is written: its tree rebuilds each leaf
+// then (StreamedFccTree.h). Memory: the topology (~100 bytes a leaf), the bounds, and a few slabs.
+#pragma once
+
+#include <openvdb/util/NullInterrupter.h>
+
+#include "BrickBounds.h"
+#include "FccBlockBuilder.h"
+#include "FccGrid.h"
+#include "SampleField.h"
+
+namespace fcc {
+
+class BrickKernels;
+
+struct StreamedBuildOptions {
+  bool half = false;              // the grid is saved as half floats: bounds of the rounded values
+  BrickKernels* kernels = nullptr;  // bounds (and prefilter for raw samples); null: the C++ reference
+};
+
+struct StreamedBuild {
+  // Topology only, saveFloatAsHalf set, transform identity; write it (io::writeVdbAtomically) while
+  // the builder's field lives. The caller names it and sets metadata and transform.
+  FccGrid::Ptr grid;
+  // The bounds grid's tree, pruned: boundsGridOf(bounds, *grid) once the grid is named.
+  openvdb::Vec2STree::Ptr bounds;
+  float sampleMin = 0.0f;  // range of the samples V over the field's bounds
+  float sampleMax = 0.0f;
+};
+
+// The grid of `builder`'s field and options. `progress` reports pass 1 here and pass 2 while the
+// grid is written; throws fcc::Error if it asks to stop.
+StreamedBuild buildFccGridStreamed(const FccBlockBuilder& builder, const StreamedBuildOptions& options,
+                                   openvdb::util::NullInterrupter* progress = nullptr);
+
+}  // namespace fcc

@@ -1,0 +1,81 @@
+#include "StreamedFccTree.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
+
+#include <sstream>
+#include <vector>
+
+#include "Error.h"
+
+namespace fcc {
+namespace {
+
+using Leaf = FccBlockBuilder::Leaf;
+
+// Leaves rebuilt at once: 2 MiB of values; the next batch is built while one is written.
+constexpr size_t kBatchLeaves = 256;
+
+openvdb::Coord blockOf(const Leaf& leaf) {
+  const openvdb::Coord o = leaf.origin();
+  return openvdb::Coord(o.x() / int(Leaf::DIM), o.y() / int(Leaf::DIM), o.z() / int(Leaf::DIM));
+}
+
+}  // namespace
+
+StreamedFccTree::StreamedFccTree(const FccBlockBuilder& builder, openvdb::util::NullInterrupter* progress)
+    : FccTree(openvdb::Vec4f(builder.background())), builder_(builder), progress_(progress) {}
+
+openvdb::Index64 StreamedFccTree::memUsage() const { return openvdb::tools::memUsageIfLoaded(static_cast<const FccTree&>(*this)); }
+
+void StreamedFccTree::writeBuffers(std::ostream& os, bool saveFloatAsHalf) const {
+  std::vector<const Leaf*> topology;
+  topology.reserve(leafCount());
+  for (auto it = cbeginLeaf(); it; ++it) topology.push_back(it.getLeaf());
+
+  tbb::enumerable_thread_specific<FccBlockBuilder::Scratch> scratch;
+  auto build = [&](size_t first, std::vector<std::unique_ptr<Leaf>>& out) {
+    out.clear();
+    out.resize(std::min(kBatchLeaves, topology.size() - first));
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i)
+        out[i] = builder_.build(blockOf(*topology[first + i]), scratch.local(), nullptr);
+    });
+  };
+  auto write = [&](size_t first, const std::vector<std::unique_ptr<Leaf>>& leaves) {
+    for (size_t i = 0; i < leaves.size(); ++i) {
+      const Leaf& expected = *topology[first + i];
+      if (!leaves[i] || leaves[i]->valueMask() != expected.valueMask()) {
+        std::ostringstream where;
+        where << expected.origin();
+        throw Error("streamed FCC grid: the leaf at packed voxel " + where.str() +
+                    " was rebuilt with another active mask than its topology's");
+      }
+      leaves[i]->writeBuffers(os, saveFloatAsHalf);
+    }
+  };
+
+  if (progress_) progress_->start("writing FCC grid");
+  std::vector<std::unique_ptr<Leaf>> current, next;
+  if (!topology.empty()) build(0, current);
+  for (size_t first = 0; first < topology.size(); first += kBatchLeaves) {
+    const size_t following = first + kBatchLeaves;
+    tbb::task_group group;
+    if (following < topology.size()) group.run([&] { build(following, next); });
+    try {
+      write(first, current);
+      if (progress_ && progress_->wasInterrupted(int(100.0 * double(first + current.size()) / double(topology.size()))))
+        throw Error("interrupted");
+    } catch (...) {
+      group.cancel();
+      group.wait();
+      throw;
+    }
+    group.wait();
+    std::swap(current, next);
+  }
+  if (progress_) progress_->end();
+}
+
+}  // namespace fcc
