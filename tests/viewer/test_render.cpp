@@ -30,6 +30,22 @@ constexpr double kNormalTolDegrees = 0.05;
 // are left out of the coverage comparison (a pixel there is a matter of the last float bit).
 constexpr double kGrazingFraction = 0.01;
 
+// Asserts `image` equals `reference` bit for bit (colour, normal and depth); returns the hit pixels.
+int expectSameImage(const render::FrameImages& reference, const render::FrameImages& image, const std::string& what) {
+  EXPECT_EQ(reference.rgba.size(), image.rgba.size()) << what;
+  int hits = 0;
+  for (std::size_t i = 0; i < reference.rgba.size() && i < image.rgba.size(); ++i) {
+    if (reference.rgba[i] != image.rgba[i] || !(reference.normalDepth[i] == image.normalDepth[i])) {
+      ADD_FAILURE() << what << ": component " << i << " (pixel " << i / 4 << ") differs: rgba " << reference.rgba[i]
+                    << " vs " << image.rgba[i] << ", normal/depth " << reference.normalDepth[i] << " vs "
+                    << image.normalDepth[i];
+      return hits;
+    }
+    hits += (i % 4 == 3) && reference.rgba[i] > 0.5f;
+  }
+  return hits;
+}
+
 class Render : public GlSuite {};
 
 // f = |x - c|^2 / R^2 is quadratic, so the prefiltered spline reproduces it exactly and the
@@ -199,13 +215,7 @@ TEST_F(Render, SmallCachesGiveTheSameImageWithinTheirBudgets) {
               (unsigned long long)bigStats.bricksUploaded, smallStats.passes,
               (unsigned long long)smallStats.bricksUploaded);
   ASSERT_GT(smallStats.bricksUploaded, bigStats.bricksUploaded) << "the small pool must have evicted bricks";
-  int hits = 0;
-  for (std::size_t i = 0; i < reference.rgba.size(); ++i) {
-    ASSERT_FLOAT_EQ(reference.rgba[i], limited.rgba[i]) << "rgba component " << i;
-    ASSERT_FLOAT_EQ(reference.normalDepth[i], limited.normalDepth[i]) << "normal/depth component " << i;
-    hits += (i % 4 == 3) && reference.rgba[i] > 0.5f;
-  }
-  EXPECT_GT(hits, w * h / 20);
+  EXPECT_GT(expectSameImage(reference, limited, "1 MiB caches"), w * h / 20);
 
   // Peak memory: the same budgets on a tiny dataset give the fixed overhead (libraries, GL driver,
   // images); the large one may add no more than the budgets and a little bookkeeping.
@@ -278,13 +288,7 @@ TEST_F(Render, ProgressiveStepsReachTheBlockingImage) {
   std::printf("complete after %d steps, %llu bricks uploaded\n", steps, (unsigned long long)raycaster.bricksUploaded());
   EXPECT_GT(steps, 2) << "a pool this small needs several steps";
   const render::FrameImages progressive = raycaster.readImages();
-  int hits = 0;
-  for (std::size_t i = 0; i < reference.rgba.size(); ++i) {
-    ASSERT_FLOAT_EQ(reference.rgba[i], progressive.rgba[i]) << "rgba component " << i;
-    ASSERT_FLOAT_EQ(reference.normalDepth[i], progressive.normalDepth[i]) << "normal/depth component " << i;
-    hits += (i % 4 == 3) && reference.rgba[i] > 0.5f;
-  }
-  EXPECT_GT(hits, w * h / 20);
+  EXPECT_GT(expectSameImage(reference, progressive, "progressive"), w * h / 20);
 
   const render::StepStats idle = raycaster.step(camera, w, h, 0.0);
   EXPECT_TRUE(idle.complete);
@@ -296,8 +300,7 @@ TEST_F(Render, ProgressiveStepsReachTheBlockingImage) {
   ASSERT_TRUE(last.complete);
   const render::FrameImages other = renderFile(blobs, moved, w, h, options.iso, options);
   const render::FrameImages afterMove = raycaster.readImages();
-  for (std::size_t i = 0; i < other.rgba.size(); ++i)
-    ASSERT_FLOAT_EQ(other.rgba[i], afterMove.rgba[i]) << "rgba component " << i << " after the camera moved";
+  expectSameImage(other, afterMove, "progressive, after the camera moved");
 }
 
 // Every brick layout of the pool (viewer/BrickPool.h) reads the same coefficients, so the images
@@ -311,19 +314,14 @@ TEST_F(Render, EveryBrickLayoutGivesTheSameImage) {
   options.gpuCacheBytes = kSmallPoolBytes;
   render::FrameStats stats;
   const render::FrameImages reference = renderFile(blobs, camera, w, h, 0.3f, options, &stats);
-  int hits = 0;
-  for (std::size_t i = 3; i < reference.rgba.size(); i += 4) hits += reference.rgba[i] > 0.5f;
-  ASSERT_GT(hits, w * h / 20);
+  ASSERT_GT(expectSameImage(reference, reference, "reference"), w * h / 20);
   for (const render::BrickLayout layout : render::allBrickLayouts()) {
     options.layout = layout;
     render::FrameStats s;
     const render::FrameImages image = renderFile(blobs, camera, w, h, 0.3f, options, &s);
     std::printf("%s: %d passes, %llu uploads\n", render::brickLayoutName(layout).c_str(), s.passes,
                 (unsigned long long)s.bricksUploaded);
-    for (std::size_t i = 0; i < reference.rgba.size(); ++i) {
-      ASSERT_EQ(reference.rgba[i], image.rgba[i]) << render::brickLayoutName(layout) << ", rgba component " << i;
-      ASSERT_EQ(reference.normalDepth[i], image.normalDepth[i]) << render::brickLayoutName(layout) << ", component " << i;
-    }
+    expectSameImage(reference, image, render::brickLayoutName(layout));
   }
   EXPECT_THROW(render::parseBrickLayout("one-channel"), ValueError);
 }
