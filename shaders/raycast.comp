@@ -12,7 +12,12 @@
 #include "FccRay.h"
 #include "pool.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+// The work group: pixels per group in x and y (RenderOptions::workGroup defines them).
+#ifndef FCC_GROUP_X
+#define FCC_GROUP_X 8
+#define FCC_GROUP_Y 8
+#endif
+layout(local_size_x = FCC_GROUP_X, local_size_y = FCC_GROUP_Y) in;
 
 layout(std430, binding = 1) readonly buffer PageTable { uint pageEntries[]; };
 // Per node of 16^3 bricks (relative to uBrickMin): 0 if no brick in it needs evaluation.

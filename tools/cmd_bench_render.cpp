@@ -1,6 +1,7 @@
 // fccvdb bench render FILE.vdb: frames per second of the raycaster over an orbit of the camera, with
 // and without empty-space skipping, analytic and finite-difference normals; the time to the first
 // complete frame from cold caches and the bricks streamed per second meanwhile.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -56,6 +57,8 @@ Command addBenchRenderCommand(CLI::App& bench) {
   struct Args {
     RenderFlags flags;
     int frames = 60, warmup = 5;
+    std::string workGroup = "4x8";
+    std::vector<std::string> variants = {"skip+analytic", "skip+fd", "noskip+analytic", "noskip+fd"};
     bool json = false;
   };
   auto args = std::make_shared<Args>();
@@ -64,6 +67,9 @@ Command addBenchRenderCommand(CLI::App& bench) {
   addRenderFlags(*app, args->flags);
   app->add_option("--frames", args->frames, "Timed frames per variant (one orbit)")->capture_default_str()->check(CLI::PositiveNumber);
   app->add_option("--warmup", args->warmup, "Untimed frames before each variant")->capture_default_str()->check(CLI::NonNegativeNumber);
+  app->add_option("--work-group", args->workGroup, "Pixels per raycasting work group WxH (tuning)")->capture_default_str();
+  app->add_option("--variants", args->variants, "Variants to time (default: all four)")
+      ->check(CLI::IsMember({"skip+analytic", "skip+fd", "noskip+analytic", "noskip+fd"}));
   args->flags.layout = "all";
   app->get_option("--layout")->description("Brick layout to time, or all (the default)");
   app->add_flag("--json", args->json, "A JSON list of objects: variant, skip, normals, fps, frame_ms, ...");
@@ -81,6 +87,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
             else layouts = {render::parseBrickLayout(flags.layout)};
             render::RenderOptions options = renderOptionsFromFlags(flags);
             options.iso = iso;
+            resolutionFromFlags(args->workGroup, options.workGroup.x, options.workGroup.y);
 
             std::vector<Measurement> results;
             render::FrameStats cold;
@@ -98,13 +105,15 @@ Command addBenchRenderCommand(CLI::App& bench) {
               }
               for (const bool skip : {true, false})
                 for (const bool fd : {false, true}) {
+                  const std::string variant = std::string(skip ? "skip" : "noskip") + "+" + (fd ? "fd" : "analytic");
+                  if (std::find(args->variants.begin(), args->variants.end(), variant) == args->variants.end()) continue;
                   raycaster.setSkipEmpty(skip);
                   raycaster.setFiniteDifferenceNormals(fd);
                   Measurement m = measureOrbit(raycaster, camera, width, height, args->warmup, args->frames);
                   m.layout = render::brickLayoutName(layout);
                   m.skip = skip;
                   m.normals = fd ? "finite-difference" : "analytic";
-                  m.variant = std::string(skip ? "skip" : "noskip") + "+" + (fd ? "fd" : "analytic");
+                  m.variant = variant;
                   results.push_back(m);
                 }
             }

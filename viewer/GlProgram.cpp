@@ -106,21 +106,6 @@ GlProgram GlProgram::compute(std::string_view source, std::string_view name) {
   return p;
 }
 
-GlProgram GlProgram::graphics(std::string_view vertexSource, std::string_view fragmentSource, std::string_view name) {
-  GlProgram p;
-  p.name_ = std::string(name);
-  const GLuint vertex = compileStage(GL_VERTEX_SHADER, "vertex", vertexSource, p.name_);
-  GLuint fragment = 0;
-  try {
-    fragment = compileStage(GL_FRAGMENT_SHADER, "fragment", fragmentSource, p.name_);
-  } catch (...) {
-    glDeleteShader(vertex);
-    throw;
-  }
-  p.id_ = linkStages({vertex, fragment}, "program '" + p.name_ + "'");
-  return p;
-}
-
 GlProgram::GlProgram(GlProgram&& other) noexcept
     : id_(std::exchange(other.id_, 0)), name_(std::move(other.name_)) {}
 

@@ -1,4 +1,4 @@
-// OpenGL compute (and drawing) programs, storage buffers and textures (needs a current 4.5 context, e.g. fcc::EglContext).
+// OpenGL compute programs, storage buffers and textures (needs a current 4.5 context, e.g. fcc::EglContext).
 //
 //   fcc::GlProgram p = fcc::GlProgram::compute(fcc::embedded::shaders("shaders/spline_eval.comp"),
 //                                              "shaders/spline_eval.comp");
@@ -35,8 +35,6 @@ class GlProgram {
   // Compiles and links one compute shader. `name` labels errors. Throws GlError: "compiling compute
   // shader '<name>' failed:\n<info log>" (or linking).
   static GlProgram compute(std::string_view source, std::string_view name = "compute shader");
-  // Compiles and links a vertex and a fragment shader (drawing on screen, in the viewer).
-  static GlProgram graphics(std::string_view vertexSource, std::string_view fragmentSource, std::string_view name);
 
   GlProgram() = default;
   GlProgram(GlProgram&& other) noexcept;

@@ -5,14 +5,13 @@
 namespace fcc::render {
 
 Presenter::Presenter() {
-  program_ = GlProgram::graphics(embedded::shaders("shaders/present.vert"), embedded::shaders("shaders/present.frag"),
-                                 "shaders/present.{vert,frag}");
-  glCreateVertexArrays(1, &vertexArray_);
-  checkGl("creating the presenter's vertex array");
+  program_ = GlProgram::compute(embedded::shaders("shaders/present.comp"), "shaders/present.comp");
+  glCreateFramebuffers(1, &readFramebuffer_);
+  checkGl("creating the presenter's framebuffer");
 }
 
 Presenter::~Presenter() {
-  if (vertexArray_) glDeleteVertexArrays(1, &vertexArray_);
+  if (readFramebuffer_) glDeleteFramebuffers(1, &readFramebuffer_);
 }
 
 void Presenter::draw(const GlTexture2D& image, const glm::vec3& backgroundLinear, int x, int y, int width,
@@ -20,18 +19,24 @@ void Presenter::draw(const GlTexture2D& image, const glm::vec3& backgroundLinear
   if (image.width() != width || image.height() != height)
     throw GlError("presenter: the image is " + std::to_string(image.width()) + "x" + std::to_string(image.height()) +
                   ", the viewport " + std::to_string(width) + "x" + std::to_string(height));
-  glViewport(x, y, width, height);
-  glDisable(GL_BLEND);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_SCISSOR_TEST);
-  const GLuint p = program_.id();
-  glProgramUniform3fv(p, program_.uniformLocation("uBackground"), 1, &backgroundLinear.x);
-  glProgramUniform2i(p, program_.uniformLocation("uOrigin"), x, y);
-  glBindTextureUnit(0, image.id());
+  if (display_.width() != width || display_.height() != height) {
+    display_ = GlTexture2D(GL_RGBA8, width, height);
+    glNamedFramebufferTexture(readFramebuffer_, GL_COLOR_ATTACHMENT0, display_.id(), 0);
+    if (glCheckNamedFramebufferStatus(readFramebuffer_, GL_READ_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw GlError("presenter: the display image's framebuffer is incomplete");
+  }
+  glProgramUniform3fv(program_.id(), program_.uniformLocation("uBackground"), 1, &backgroundLinear.x);
+  image.bindImage(0, GL_READ_ONLY);
+  display_.bindImage(1, GL_WRITE_ONLY);
   program_.use();
-  glBindVertexArray(vertexArray_);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
+  const std::array<GLint, 3> group = program_.localSize();
+  glDispatchCompute(GLuint((width + group[0] - 1) / group[0]), GLuint((height + group[1] - 1) / group[1]), 1);
+  glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
+
+  GLint drawFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
+  glBlitNamedFramebuffer(readFramebuffer_, GLuint(drawFramebuffer), 0, 0, width, height, x, y, x + width, y + height,
+                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
   checkGl("drawing the rendered image");
 }
 

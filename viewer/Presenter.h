@@ -1,6 +1,7 @@
-// Draws the raycaster's colour image into the current framebuffer (the viewer's window, or an
+// Draws the raycaster's colour image into the current draw framebuffer (the viewer's window, or an
 // offscreen target in `fccvdb bench view`): over a background colour, sRGB-encoded exactly as
-// `fccvdb render` writes PNGs, one texel per pixel.
+// `fccvdb render` writes PNGs, one texel per pixel. A compute pass encodes it into an RGBA8 image
+// that is then blitted: compute GPUs (H100/H200) run fragment work slowly (docs/BENCHMARKS.md).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -16,13 +17,14 @@ class Presenter {
   Presenter(const Presenter&) = delete;
   Presenter& operator=(const Presenter&) = delete;
 
-  // Fills the viewport (x, y, width, height; GL's lower-left origin) with `image`, which must be
-  // width x height.
+  // Fills the rectangle (x, y, width, height; GL's lower-left origin) of the bound draw framebuffer
+  // with `image`, which must be width x height.
   void draw(const GlTexture2D& image, const glm::vec3& backgroundLinear, int x, int y, int width, int height);
 
  private:
   GlProgram program_;
-  GLuint vertexArray_ = 0;  // empty: the core profile draws nothing without one bound
+  GlTexture2D display_;     // RGBA8, the encoded image
+  GLuint readFramebuffer_ = 0;  // wraps display_ as the blit's source
 };
 
 }  // namespace fcc::render

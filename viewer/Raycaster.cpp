@@ -14,7 +14,6 @@ namespace {
 
 constexpr std::size_t kSlotVoxels = 512;  // per-voxel cell bounds of a slot (shaders/pool.glsl)
 constexpr std::size_t kSlotBoundsBytes = kSlotVoxels * 2 * sizeof(float);
-constexpr int kLocalSize = 8;             // shaders/raycast.comp's local_size_x and _y
 constexpr std::size_t kUploadBatch = 256; // bricks the loader holds ready, and render()'s upload batch (4 MB)
 constexpr std::size_t kStepUploadBatch = 32;  // step()'s upload batch, checked against its time budget
 constexpr int kMaxPasses = 1 << 20;       // a frame that needs more has a bug, not a small pool
@@ -43,8 +42,14 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options) 
   slots = std::max<std::size_t>(slots, 1);
   pool_ = std::make_unique<BrickPool>(options.layout, slots);
 
+  if (options.workGroup.x < 1 || options.workGroup.y < 1 || options.workGroup.x * options.workGroup.y > 1024)
+    throw ValueError("work group " + std::to_string(options.workGroup.x) + "x" + std::to_string(options.workGroup.y) +
+                     ": valid are 1 to 1024 invocations");
   std::string defines = pool_->glslDefines();
-  program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines), "shaders/raycast.comp");
+  const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
+                                   "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
+  program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines + groupDefines),
+                                "shaders/raycast.comp");
   // A CPU rasteriser gets the cheap coefficient-hull cell bounds, a GPU the BB-coefficient ones
   // (both conservative; the image is the same, only the work skipped differs).
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -185,9 +190,11 @@ uint32_t Raycaster::dispatchPass(const CameraFrame& frame, int width, int height
   resume_.bindImage(2, GL_READ_WRITE);
 
   program_.use();
-  glDispatchCompute(GLuint((width + kLocalSize - 1) / kLocalSize), GLuint((height + kLocalSize - 1) / kLocalSize), 1);
+  const glm::ivec2 group = options_.workGroup;
+  glDispatchCompute(GLuint((width + group.x - 1) / group.x), GLuint((height + group.y - 1) / group.y), 1);
+  // Texture fetch too: the viewer samples the colour image the pass wrote with imageStore.
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                  GL_TEXTURE_UPDATE_BARRIER_BIT);
+                  GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   checkGl("raycasting pass " + std::to_string(pass_));
   uint32_t count = 0;
   requests_->read(&count, sizeof count);

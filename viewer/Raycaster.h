@@ -33,6 +33,8 @@ struct RenderOptions {
   // How the pool stores bricks (viewer/BrickPool.h). The one-channel embedding measured fastest on
   // the H200 (docs/BENCHMARKS.md: +20-25% over vec4) at twice the GPU bytes per brick.
   BrickLayout layout = BrickLayout::SsboScalar;
+  // Pixels per raycasting work group: 4x8 (one warp) measured fastest on the H200 (docs/BENCHMARKS.md).
+  glm::ivec2 workGroup{4, 8};
   bool skipEmpty = true;   // skip nodes and bricks whose bounds exclude the isovalue
   int lookahead = 2;       // bricks a stopped ray requests beyond its first missing one
   bool finiteDifferenceNormals = false;  // central differences instead of the analytic gradient

@@ -40,6 +40,8 @@ void Residency::setNeeded(const std::vector<glm::ivec3>& bricks) {
     nodeEntries_[(std::size_t(node.z) * nodeDims_.y + node.y) * nodeDims_.x + node.x] = 1;
   }
   neededCount_ = bricks.size();
+  residentNeeded_ = 0;
+  for (const auto& [index, slot] : brickSlot_) residentNeeded_ += needed_[index];
   for (std::size_t i = 0; i < pageEntries_.size(); ++i) {
     if (!needed_[i]) {
       pageEntries_[i] = kSkip;
@@ -50,11 +52,7 @@ void Residency::setNeeded(const std::vector<glm::ivec3>& bricks) {
   }
 }
 
-std::size_t Residency::missingCount() const {
-  std::size_t residentNeeded = 0;
-  for (const auto& [index, slot] : brickSlot_) residentNeeded += needed_[index];
-  return neededCount_ - residentNeeded;
-}
+std::size_t Residency::missingCount() const { return neededCount_ - residentNeeded_; }
 
 bool Residency::isResident(const glm::ivec3& brick) const { return brickSlot_.count(brickIndex(brick)) != 0; }
 
@@ -80,10 +78,12 @@ std::vector<std::pair<glm::ivec3, uint32_t>> Residency::assign(const std::vector
     if (slotBrick_[slot] >= 0) {  // evict
       const uint32_t old = uint32_t(slotBrick_[slot]);
       brickSlot_.erase(old);
+      residentNeeded_ -= needed_[old];
       pageEntries_[old] = needed_[old] ? kMissing : kSkip;
     }
     slotBrick_[slot] = index;
     brickSlot_[index] = slot;
+    residentNeeded_ += needed_[index];
     pageEntries_[index] = needed_[index] ? slot : kSkip;
     out.emplace_back(brick, slot);
   }

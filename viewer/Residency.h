@@ -56,6 +56,7 @@ class Residency {
   std::vector<int64_t> slotBrick_;         // per slot: brick index, or -1 when free
   std::unordered_map<uint32_t, uint32_t> brickSlot_;
   std::size_t neededCount_ = 0;
+  std::size_t residentNeeded_ = 0;  // needed bricks that are resident (kept up to date: read every frame)
 };
 
 }  // namespace fcc::render

@@ -14,6 +14,7 @@ TEST(Residency, PageEntriesFollowNeedAndResidence) {
   const glm::ivec3 a(-2, 0, 0), b(17, 1, 1), c(0, 1, 0);
   EXPECT_EQ(r.brickAt(r.brickIndex(b)), b);
   r.setNeeded({a, b});
+  EXPECT_EQ(r.missingCount(), 2u);
   EXPECT_EQ(r.pageEntries()[r.brickIndex(a)], Residency::kMissing);
   EXPECT_EQ(r.pageEntries()[r.brickIndex(c)], Residency::kSkip);
   EXPECT_EQ(r.nodeEntries()[0], 1u);
@@ -22,11 +23,15 @@ TEST(Residency, PageEntriesFollowNeedAndResidence) {
   ASSERT_EQ(assigned.size(), 2u);
   EXPECT_EQ(r.pageEntries()[r.brickIndex(a)], assigned[0].second);
   EXPECT_EQ(r.pageEntries()[r.brickIndex(b)], assigned[1].second);
+  EXPECT_EQ(r.missingCount(), 0u);
   // A new isovalue that needs only c: a and b stay resident but are skipped; node 1 is empty.
   r.setNeeded({c});
   EXPECT_EQ(r.pageEntries()[r.brickIndex(a)], Residency::kSkip);
   EXPECT_TRUE(r.isResident(a));
   EXPECT_EQ(r.nodeEntries()[1], 0u);
+  EXPECT_EQ(r.missingCount(), 1u) << "c is needed and not resident";
+  r.setNeeded({a, c});
+  EXPECT_EQ(r.missingCount(), 1u) << "a is resident, c is not";
 }
 
 TEST(Residency, EvictsTheLeastRecentlyUsedAndNeverWhatItJustAssigned) {
@@ -46,6 +51,7 @@ TEST(Residency, EvictsTheLeastRecentlyUsedAndNeverWhatItJustAssigned) {
   EXPECT_EQ(second[0].second, first[0].second);
   EXPECT_FALSE(r.isResident(all[0]));
   EXPECT_EQ(r.pageEntries()[r.brickIndex(all[0])], Residency::kMissing);
+  EXPECT_EQ(r.missingCount(), 5u) << "8 needed, 3 resident after an eviction";
   // More requests than slots: only slotCount() are assigned, each to a different slot.
   const auto third = r.assign({all[4], all[5], all[6], all[7]}, lastUse);
   ASSERT_EQ(third.size(), 3u);

@@ -1,6 +1,0 @@
-#version 450 core
-// One triangle that covers the viewport (the viewer draws the raycaster's image with it).
-void main() {
-  vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
-}
