@@ -9,10 +9,10 @@
 // applied to unit samples) summed in double, and value and gradient come from the Bernstein form in
 // double (the gradient by differentiating it, not through the derivative kernels the renderer uses).
 //
-// Near-tangent rays are told apart: `tangency` is the smallest |s - iso| at an extremum of s along the
-// ray that comes before the first crossing (a touch that misses) or between the first and the second
-// crossing (a touch that hits), each extremum refined by golden-section search; a dip that the
-// samples straddle but that crosses iso is found that way too. A small tangency means a float raycaster
+// Near-tangent rays are told apart: a touch is an extremum of s along the ray that comes before the
+// first crossing (a touch that misses) or between the first and the second crossing (a touch that
+// hits), refined by golden-section search (a dip that the samples straddle but that crosses iso is
+// found that way too); `tangency` is the closest touch's distance from the surface in lattice units. A small tangency means a float raycaster
 // may legitimately see a hit where the reference misses, or the other way round, or a later crossing.
 #pragma once
 
@@ -40,9 +40,11 @@ struct ReferenceRay {
   double t = std::numeric_limits<double>::infinity();  // world distance along the unit world ray
   glm::dvec3 normal{0.0};                              // unit gradient direction, world space
   double gradientLattice = 0.0;  // |grad s| per lattice unit at the hit
-  // Smallest |s - iso| at a touch before the first crossing or inside the first crossing's interval
-  // (+inf if none), and where along the ray (world distance).
+  // The closest touch before the first crossing or inside the first crossing's interval: its
+  // distance from the surface in lattice units (|s - iso| / (|grad s| + 1e-3 local coefficient
+  // scale); +inf if none), |s - iso| there, and where along the ray (world distance).
   double tangency = std::numeric_limits<double>::infinity();
+  double tangencyValue = std::numeric_limits<double>::infinity();
   double tangencyT = std::numeric_limits<double>::infinity();
   long evaluations = 0;
 };
@@ -163,9 +165,17 @@ class ReferenceRayCaster {
       tExt = 0.5 * (a + b);
       return sign * g(tExt);
     };
+    // A touch with |s - iso| = value at t, in lattice units: how far the surface is from the ray there,
+    // value / |grad s|, with value rounding of 1e-6 of the local coefficients counted as 1e-3 units.
     auto touch = [&](double value, double t) {
-      if (std::abs(value) < out.tangency) {
-        out.tangency = std::abs(value);
+      glm::dvec3 grad;
+      g(t, &grad);
+      double scale = 0.0;
+      for (double b : cache.b) scale = std::max(scale, std::abs(b));
+      const double distance = std::abs(value) / (glm::length(grad) + 1e-3 * scale);
+      if (distance < out.tangency) {
+        out.tangency = distance;
+        out.tangencyValue = std::abs(value);
         out.tangencyT = t;
       }
     };

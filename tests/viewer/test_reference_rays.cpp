@@ -13,6 +13,7 @@
 #include "ReferenceRays.h"
 #include "RenderTestSupport.h"
 #include "sparse/FccSampler.h"
+#include "sparse/SampleField.h"
 #include "tests/tools/RunCommand.h"
 #include "viewer/Camera.h"
 
@@ -28,9 +29,13 @@ using test::TempDir;
 constexpr double kDepthTolLattice = 1e-3;
 // Normal agreement there, in degrees.
 constexpr double kNormalTolDegrees = 0.5;
-// A ray is near-tangent when the reference's tangency (|s - iso| at a touch, ReferenceRays.h) is
-// below this fraction of the spline's value range: there a float raycaster may see the touch or not.
-constexpr double kTangentFraction = 1e-4;
+// Grazing rays: where the ray meets the surface at |cos| < 0.1, a hit within this distance of the
+// reference's surface along its normal is the same crossing. A float ray ~800 lattice units from its
+// eye is itself some 5e-5 lattice units off the double one, which at |cos| 0.02 is 2.5e-3 along it.
+constexpr double kSurfaceTolLattice = 1e-4;
+// A ray is near-tangent when the reference's closest touch (ReferenceRays.h) is this close to the
+// surface, in lattice units: there a float raycaster may see the touch or not.
+constexpr double kTangentLattice = 1e-3;
 // Neighbours whose normals all differ by more than this make a pixel's normal "isolated".
 constexpr double kIsolatedNormalDegrees = 60.0;
 
@@ -41,7 +46,7 @@ struct Comparison {
   int nearTangent = 0;  // disagreements on near-tangent rays (allowed)
   int real = 0;         // disagreements elsewhere (failures)
   int normalOff = 0;    // same crossing, normal beyond kNormalTolDegrees
-  double worstDepthLattice = 0.0, worstNormalDegrees = 0.0;
+  double worstDepthLattice = 0.0, worstSurfaceLattice = 0.0, worstNormalDegrees = 0.0;
   int gpuIsolatedNormals = 0, refIsolatedNormals = 0, gpuIsolatedMisses = 0, refIsolatedMisses = 0;
   long evaluations = 0;
   std::vector<std::string> messages;  // the disagreements (real first)
@@ -77,8 +82,7 @@ void countIsolated(int w, int h, const std::vector<char>& hit, const std::vector
 Comparison compareWithReference(const std::string& path, const render::Camera& camera, int w, int h, float iso) {
   const render::FrameImages img = test::renderFile(path, camera, w, h, iso);
   const ReferenceRayCaster reference(path, iso);
-  const io::BrickStore store(path);
-  const double tangentTol = kTangentFraction * (store.valueMax() - store.valueMin());
+  const double tangentTol = kTangentLattice;
   const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
   const glm::dmat3 indexFromWorld(reference.indexFromWorld());
 
@@ -110,13 +114,15 @@ Comparison compareWithReference(const std::string& path, const render::Camera& c
       c.evaluations += r.evaluations;
       c.tangentRays += r.tangency < tangentTol;
       const double depthLattice = hit && r.hit ? std::abs(t - r.t) * latticePerT : 0.0;
+      const double cosine = r.hit ? std::abs(glm::dot(r.normal, d)) : 0.0;
       if (!hit && !r.hit) {
         ++c.agreeMiss;
         continue;
       }
-      if (hit && r.hit && depthLattice <= kDepthTolLattice) {
+      if (hit && r.hit && (depthLattice <= kDepthTolLattice || depthLattice * cosine <= kSurfaceTolLattice)) {
         ++c.agreeHit;
         c.worstDepthLattice = std::max(c.worstDepthLattice, depthLattice);
+        c.worstSurfaceLattice = std::max(c.worstSurfaceLattice, depthLattice * cosine);
         const double angle = angleDegrees(n, r.normal);
         c.worstNormalDegrees = std::max(c.worstNormalDegrees, angle);
         if (angle > kNormalTolDegrees) {
@@ -131,10 +137,11 @@ Comparison compareWithReference(const std::string& path, const render::Camera& c
       const bool tangent = r.tangency < tangentTol;
       char buf[512];
       std::snprintf(buf, sizeof buf,
-                    "pixel (%d, %d): %s, renderer %s t %.9g, reference %s t %.9g (%.3g lattice units apart), "
-                    "tangency %.3g at t %.9g (tolerance %.3g)",
+                    "pixel (%d, %d): %s, renderer %s t %.9g, reference %s t %.9g (%.3g lattice units apart, "
+                    "%.3g along the normal, |cos| %.3g), tangency %.3g lattice units (|s - iso| %.3g) at t %.9g",
                     px, py, tangent ? "near-tangent" : "DISAGREES", hit ? "hit" : "miss", t, r.hit ? "hit" : "miss",
-                    r.t, hit && r.hit ? depthLattice : 0.0, r.tangency, r.tangencyT, tangentTol);
+                    r.t, hit && r.hit ? depthLattice : 0.0, hit && r.hit ? depthLattice * cosine : 0.0, cosine,
+                    r.tangency, r.tangencyValue, r.tangencyT);
       if (tangent) {
         ++c.nearTangent;
         nearMessages.push_back(buf);
@@ -152,10 +159,10 @@ Comparison compareWithReference(const std::string& path, const render::Camera& c
 void report(const std::string& what, const Comparison& c) {
   std::printf(
       "%s: %d pixels, renderer %d hits, reference %d hits; agree: %d hits, %d misses; near-tangent "
-      "rays %d, disagreements on them %d, elsewhere %d; worst depth %.3g lattice units, worst normal %.3g degrees (%d beyond %.2g); "
+      "rays %d, disagreements on them %d, elsewhere %d; worst depth %.3g lattice units (%.3g along the normal), worst normal %.3g degrees (%d beyond %.2g); "
       "isolated normals renderer %d / reference %d, isolated misses %d / %d; %ld reference evaluations\n",
       what.c_str(), c.pixels, c.gpuHits, c.refHits, c.agreeHit, c.agreeMiss, c.tangentRays, c.nearTangent, c.real,
-      c.worstDepthLattice, c.worstNormalDegrees, c.normalOff, kNormalTolDegrees, c.gpuIsolatedNormals,
+      c.worstDepthLattice, c.worstSurfaceLattice, c.worstNormalDegrees, c.normalOff, kNormalTolDegrees, c.gpuIsolatedNormals,
       c.refIsolatedNormals, c.gpuIsolatedMisses, c.refIsolatedMisses, c.evaluations);
   const std::size_t shown = std::min<std::size_t>(c.messages.size(), 40);
   for (std::size_t i = 0; i < shown; ++i) std::printf("  %s\n", c.messages[i].c_str());
@@ -188,6 +195,23 @@ Comparison compareSynth(const TempDir& dir, const std::string& kind, int dims, i
   name = kind + " " + d + "^3 at " + std::to_string(w) + "x" + std::to_string(h);
   return compareWithReference(path, defaultCamera(store, double(w) / h), w, h, iso < 0.0f ? defaultIso(store) : iso);
 }
+
+// f = ((n . x - c) / k)^2 is quadratic, so the prefiltered spline reproduces it (up to the float
+// rounding of its coefficients): the isosurface f = (eps / k)^2 is the pair of planes n . x = c +- eps.
+class PlaneSlabField : public SampleField {
+ public:
+  PlaneSlabField(const glm::dvec3& n, double c, double k) : n_(n), c_(c), k_(k) {}
+  float sample(const glm::ivec3& ijk) const override {
+    const double u = (glm::dot(n_, glm::dvec3(ijk)) - c_) / k_;
+    return float(u * u);
+  }
+  SiteBox bounds() const override { return SiteBox{glm::ivec3(0), glm::ivec3(47)}; }
+  float background() const override { return 100.0f; }
+
+ private:
+  glm::dvec3 n_;
+  double c_, k_;
+};
 
 // The reference's double evaluation is the spline: it matches the float sampler at random points.
 TEST(ReferenceRays, ValueAndGradientMatchTheSampler) {
@@ -224,6 +248,39 @@ TEST_F(ReferenceRender, EveryPixelMatchesTheCpuReference) {
   expectAgreement(name, ml);
   Comparison blobs = compareSynth(dir, "blobs", 64, 80, 80, 0.3f, name);
   expectAgreement(name, blobs);
+}
+
+// Roots right behind a brick face, seen from afar: the plane x = 31.995, 0.005 lattice units past the
+// face x = 32 of the bricks the rays leave, the eye 2000 units away. The brick walk used to step past a
+// face by up to 1e-5 of the distance (0.02 units here) when rounding put the ray back in the brick it
+// was leaving, and missed the plane on about half the pixels (issue 6c).
+TEST_F(ReferenceRender, RootsJustPastABrickFaceAreFound) {
+  TempDir dir;
+  const std::string path = dir / "face.vdb";
+  const double eps = 0.04;
+  test::writeFccFile(path, PlaneSlabField(glm::dvec3(1, 0, 0), 31.995 - eps, 4.0));
+  render::Camera camera;
+  camera.eye = glm::dvec3(2000.0, 26.0, 22.0);
+  camera.lookat = glm::dvec3(24.0);
+  camera.fovYDegrees = 1.0;
+  const Comparison c = compareWithReference(path, camera, 48, 48, float((eps / 4.0) * (eps / 4.0)));
+  expectAgreement("plane behind a brick face", c);
+}
+
+// Roots on piece splits: the plane x + y + z = 71 is a split plane of every cell it cuts. Each piece
+// evaluates the spline at the split with its own rounding, so the segment before it could end just
+// short of iso and the one after start just past it; the root at the join was lost (issue 6c).
+TEST_F(ReferenceRender, RootsOnPieceSplitsAreFound) {
+  TempDir dir;
+  const std::string path = dir / "split.vdb";
+  const double eps = 0.12, k = 8.0;
+  test::writeFccFile(path, PlaneSlabField(glm::dvec3(1, 1, 1), 71.0 - eps, k));
+  render::Camera camera;
+  camera.eye = glm::dvec3(84.0, 74.0, 64.0);
+  camera.lookat = glm::dvec3(24.0);
+  camera.fovYDegrees = 30.0;
+  const Comparison c = compareWithReference(path, camera, 64, 64, float((eps / k) * (eps / k)));
+  expectAgreement("plane on piece splits", c);
 }
 
 // The same at the scale of issue 6c (H200: 1024^2 of ML 320^3), outside CI: FCC_LARGE_REFERENCE=1,
