@@ -164,7 +164,7 @@ void report(const std::string& what, const Comparison& c) {
       what.c_str(), c.pixels, c.gpuHits, c.refHits, c.agreeHit, c.agreeMiss, c.tangentRays, c.nearTangent, c.real,
       c.worstDepthLattice, c.worstSurfaceLattice, c.worstNormalDegrees, c.normalOff, kNormalTolDegrees, c.gpuIsolatedNormals,
       c.refIsolatedNormals, c.gpuIsolatedMisses, c.refIsolatedMisses, c.evaluations);
-  const std::size_t shown = std::min<std::size_t>(c.messages.size(), 40);
+  const std::size_t shown = std::min<std::size_t>(c.messages.size(), std::getenv("FCC_REFERENCE_SHOW_ALL") ? c.messages.size() : 40);
   for (std::size_t i = 0; i < shown; ++i) std::printf("  %s\n", c.messages[i].c_str());
   if (shown < c.messages.size()) std::printf("  ... and %zu more\n", c.messages.size() - shown);
 }
