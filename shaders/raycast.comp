@@ -93,8 +93,9 @@ struct Hit {
   vec3 gradient;  // index space
 };
 
-// The first hit in the resident brick b between ta and tb, walking its unit cells.
-bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout Hit hit) {
+// The first hit in the resident brick b between ta and tb, walking its unit cells. prevSign: the sign
+// of s - iso where the ray reaches ta (-1 negative, +1 not, 0 unknown), updated to where it leaves.
+bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout int prevSign, inout Hit hit) {
   selectSlot(slot, b);
   uint boundsBase = slot * uint(kSlotVoxels);
   ivec3 cellLo = b * 16, cellHi = cellLo + 15;
@@ -111,7 +112,9 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     float tExit = min(min(min(tMax.x, tMax.y), tMax.z), tb);
     ivec3 voxel = (cell - cellLo) >> 1;
     vec2 cellBounds = slotBounds[boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
-    if (tExit > tCell && (uSkipEmpty == 0 || (cellBounds.x <= uIso && uIso <= cellBounds.y))) {
+    if (tExit > tCell && uSkipEmpty != 0 && !(cellBounds.x <= uIso && uIso <= cellBounds.y)) {
+      prevSign = cellBounds.x > uIso ? 1 : -1;
+    } else if (tExit > tCell) {
       vec4 splits = fcc_cell_splits(cell, o, d, tCell, tExit);
       float s0 = tCell;
       // Up to five sub-segments, one per piece the ray passes (in practice at most three).
@@ -123,8 +126,12 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
         FccSamples samples = gatherStencil(frame);
         FccCubic cubic = fcc_cubic(samples, frame.type);
         FccRange range = fcc_cubic_range(cubic);
-        if (range.lo <= uIso && uIso <= range.hi) {
-          float u = fcc_first_root_bernstein3(fcc_segment_bernstein(cubic, frame, o, d, s0, s1, uIso));
+        if (!(range.lo <= uIso && uIso <= range.hi)) {
+          prevSign = range.lo > uIso ? 1 : -1;
+        } else {
+          vec4 bz = fcc_segment_bernstein(cubic, frame, o, d, s0, s1, uIso);
+          float u = fcc_first_root_after(bz, prevSign);
+          prevSign = bz.w < 0.0 ? -1 : 1;
           if (u >= 0.0) {
             hit.t = s0 + u * (s1 - s0);
             vec3 xyz = o + hit.t * d;
@@ -184,6 +191,7 @@ void main() {
   bool found = false;
   bool stopped = false;
   int lookahead = uLookahead;
+  int prevSign = 0;  // sign of s - iso where the last marched brick ended (0: unknown)
   Hit hit;
   hit.t = 0.0;
   hit.gradient = vec3(0.0);
@@ -194,12 +202,19 @@ void main() {
     ++guard;
     vec3 p = o + t * d;
     ivec3 b = clamp(ivec3(floor(p / kBrickSites)), uBrickMin, uBrickMin + uBrickDims - 1);
+    // At a brick's (or node's) exit, rounding can put p back in the brick the ray is leaving: step
+    // across each face already behind the ray (the same float expressions as clipBox), so that the
+    // next brick is marched from t itself and no stretch past its face is skipped.
+    vec3 tFar = (vec3(b) * kBrickSites + vec3(greaterThan(d, vec3(0.0))) * kBrickSites - o) * invD;
+    b += ivec3(lessThanEqual(tFar, vec3(t))) * ivec3(sign(d));
+    if (any(lessThan(b, uBrickMin)) || any(greaterThanEqual(b, uBrickMin + uBrickDims))) break;
     ivec3 rel = b - uBrickMin;
     ivec3 node = rel >> 4;
     if (uSkipEmpty != 0 && nodeEntries[(node.z * uNodeDims.y + node.y) * uNodeDims.x + node.x] == 0u) {
       vec3 nodeLo = vec3(uBrickMin + node * 16) * kBrickSites;
       float tExitNode = clipBox(o, invD, nodeLo, nodeLo + 16.0 * kBrickSites).y;
-      t = max(tExitNode, t + 1e-5 * abs(t) + 1e-6);
+      t = tExitNode > t ? tExitNode : t + 1e-5 * abs(t) + 1e-6;  // the nudge only guards progress
+      prevSign = 0;
       continue;
     }
     vec3 brickLo = vec3(b) * kBrickSites;
@@ -214,14 +229,16 @@ void main() {
       } else if (--lookahead < 0) {
         break;
       }
-    } else if (entry != kSkip && !stopped) {
+    } else if (entry == kSkip) {
+      prevSign = 0;
+    } else if (!stopped) {
       slotLastUse[entry] = uPass;
-      if (marchBrick(b, entry, o, d, invD, t, tExitBrick, hit)) {
+      if (marchBrick(b, entry, o, d, invD, t, tExitBrick, prevSign, hit)) {
         found = true;
         break;
       }
     }
-    t = max(tExitBrick, t + 1e-5 * abs(t) + 1e-6);
+    t = tExitBrick > t ? tExitBrick : t + 1e-5 * abs(t) + 1e-6;
   }
   if (stopped && !found) {  // resumes next pass; meanwhile the pixel shows the background
     imageStore(uColor, pixel, vec4(0.0));

@@ -68,6 +68,15 @@ FCC_FUNC float fcc_first_root_bernstein3(FCC_VEC4 b) {
   return -1.0f;
 }
 
+// The first root on a piece sub-segment that continues the previous one along the ray, whose end
+// value was negative (prevSign -1), non-negative (+1) or is unknown (0): a sign change at the join is
+// a root at u = 0. Each piece evaluates the shared point with its own rounding, so without this a root
+// within rounding of a split (a few 1e-4 voxels) could lie in neither sub-segment.
+FCC_FUNC float fcc_first_root_after(FCC_VEC4 b, int prevSign) {
+  if (prevSign != 0 && (b.x < 0.0f ? -1 : 1) != prevSign) return 0.0f;
+  return fcc_first_root_bernstein3(b);
+}
+
 // Bernstein coefficients on u in [0, 1] of s(o + (s0 + u (s1 - s0)) d) - iso, where the segment lies
 // in the piece `frame` whose scaled BB-coefficients are `cubic`: from the cubic's values at the
 // segment's thirds (the spline is a polynomial there, so extrapolation past a face is harmless).
