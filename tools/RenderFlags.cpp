@@ -38,7 +38,9 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
       ->check(CLI::PositiveNumber);
   std::string layouts;
   for (render::BrickLayout l : render::allBrickLayouts()) layouts += (layouts.empty() ? "" : ", ") + render::brickLayoutName(l);
-  app.add_option("--layout", flags.layout, "How the GPU pool stores bricks: " + layouts)->capture_default_str();
+  app.add_option("--layout", flags.layout,
+                 "How the GPU pool stores bricks: " + layouts + ", or auto (one channel when every varying brick fits the GPU cache)")
+      ->capture_default_str();
 }
 
 float isoFromFlags(const RenderFlags& flags, const io::BrickStore& store) {
@@ -90,7 +92,7 @@ render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags) {
   const std::size_t ram = pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : (std::size_t(4) << 30);
   options.hostCacheBytes = flags.hostCacheMiB > 0.0 ? mibToBytes(flags.hostCacheMiB) : ram / 4;
   options.gpuCacheBytes = flags.gpuCacheMiB > 0.0 ? mibToBytes(flags.gpuCacheMiB) : (std::size_t(1) << 30);
-  options.layout = render::parseBrickLayout(flags.layout);
+  if (flags.layout != "auto") options.layout = render::parseBrickLayout(flags.layout);
   return options;
 }
 

@@ -15,7 +15,7 @@ namespace fcc::cli {
 struct RenderFlags {
   std::string file, grid, iso, res = "1024x1024", eye, lookat, up, fov;
   double gpuCacheMiB = 0.0, hostCacheMiB = 0.0;  // 0: the defaults
-  std::string layout = "ssbo-scalar";            // render::BrickLayout by name (RenderOptions' default)
+  std::string layout = "auto";                   // a render::BrickLayout by name, or auto (chooseBrickLayout)
 };
 
 // Registers FILE, --grid, --iso, --res, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache, --layout.

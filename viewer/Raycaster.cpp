@@ -30,17 +30,27 @@ std::string withDefines(std::string_view source, const std::string& defines) {
 
 }  // namespace
 
-Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options) : store_(store), options_(options) {
+BrickLayout chooseBrickLayout(const io::BrickStore& store, std::size_t gpuCacheBytes) {
+  const std::size_t varying = std::size_t(store.bounds().activeVoxelCount());
+  const std::size_t scalarBytes = varying * (BrickPool::slotBytes(BrickLayout::SsboScalar) + kSlotBoundsBytes);
+  return scalarBytes <= gpuCacheBytes ? BrickLayout::SsboScalar : BrickLayout::SsboVec4;
+}
+
+Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested)
+    : store_(store), options_(requested) {
+  if (!options_.layout) options_.layout = chooseBrickLayout(store, options_.gpuCacheBytes);
+  const RenderOptions& options = options_;
+  const BrickLayout layout = *options.layout;
   const openvdb::CoordBBox box = store.activeBrickBox();
   const glm::ivec3 brickMin = box.empty() ? glm::ivec3(0) : toGlm(box.min());
   const glm::ivec3 brickDims = box.empty() ? glm::ivec3(1) : toGlm(box.dim());
   const std::size_t bricksInBox = std::size_t(brickDims.x) * brickDims.y * brickDims.z;
 
   // The GPU budget pays for a slot's data and its cell bounds.
-  std::size_t slots = options.gpuCacheBytes / (BrickPool::slotBytes(options.layout) + kSlotBoundsBytes);
-  slots = std::min({slots, BrickPool::maxSlots(options.layout), bricksInBox});
+  std::size_t slots = options.gpuCacheBytes / (BrickPool::slotBytes(layout) + kSlotBoundsBytes);
+  slots = std::min({slots, BrickPool::maxSlots(layout), bricksInBox});
   slots = std::max<std::size_t>(slots, 1);
-  pool_ = std::make_unique<BrickPool>(options.layout, slots);
+  pool_ = std::make_unique<BrickPool>(layout, slots);
 
   if (options.workGroup.x < 1 || options.workGroup.y < 1 || options.workGroup.x * options.workGroup.y > 1024)
     throw ValueError("work group " + std::to_string(options.workGroup.x) + "x" + std::to_string(options.workGroup.y) +
@@ -75,7 +85,7 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options) 
 
 Raycaster::~Raycaster() = default;
 
-std::size_t Raycaster::slotBytes() const { return BrickPool::slotBytes(options_.layout) + kSlotBoundsBytes; }
+std::size_t Raycaster::slotBytes() const { return BrickPool::slotBytes(*options_.layout) + kSlotBoundsBytes; }
 
 std::size_t Raycaster::poolBytes() const { return std::size_t(residency_->slotCount()) * slotBytes(); }
 

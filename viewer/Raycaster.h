@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "BrickLoader.h"
@@ -30,9 +31,8 @@ struct RenderOptions {
   float iso = std::numeric_limits<float>::quiet_NaN();  // NaN: midway through the data's value range
   std::size_t gpuCacheBytes = std::size_t(512) << 20;   // the brick pool
   std::size_t hostCacheBytes = std::size_t(512) << 20;  // decoded bricks in host memory
-  // How the pool stores bricks (viewer/BrickPool.h). The one-channel embedding measured fastest on
-  // the H200 (docs/BENCHMARKS.md: +20-25% over vec4) at twice the GPU bytes per brick.
-  BrickLayout layout = BrickLayout::SsboScalar;
+  // How the pool stores bricks (viewer/BrickPool.h); unset: chooseBrickLayout below.
+  std::optional<BrickLayout> layout;
   // Pixels per raycasting work group: 4x8 (one warp) measured fastest on the H200 (docs/BENCHMARKS.md).
   glm::ivec2 workGroup{4, 8};
   bool skipEmpty = true;   // skip nodes and bricks whose bounds exclude the isovalue
@@ -42,6 +42,13 @@ struct RenderOptions {
   // Direction towards the light in camera space: x right, y up, z towards the viewer.
   glm::vec3 lightInCamera{0.3f, 0.6f, 1.0f};
 };
+
+// The layout when none is asked for, by measurement (docs/BENCHMARKS.md, H200): the one-channel
+// embedding (ssbo-scalar) is 10-25% faster than the four-channel packing (ssbo-vec4), but a brick
+// costs twice the GPU bytes, and when the data outgrows the pool that halves what stays resident (10x
+// slower while streaming). So: ssbo-scalar when every brick whose bounds vary fits the budget, else
+// ssbo-vec4. (SSBO and 3D texture measured alike; the SSBO has no texture-size limit.)
+BrickLayout chooseBrickLayout(const io::BrickStore& store, std::size_t gpuCacheBytes);
 
 // The output of a frame, row 0 at the top.
 struct FrameImages {
@@ -97,7 +104,7 @@ class Raycaster {
   std::size_t poolBytes() const;  // slotCount() * slotBytes()
   uint64_t bricksUploaded() const { return bricksUploaded_; }  // since construction
   uint64_t bricksDecoded() const { return loader_->loadedCount(); }
-  const RenderOptions& options() const { return options_; }
+  const RenderOptions& options() const { return options_; }  // layout always set: the one in use
   // Settings that change without reloading anything (benchmarks and the viewer).
   void setSkipEmpty(bool skip);
   void setFiniteDifferenceNormals(bool on);

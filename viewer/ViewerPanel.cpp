@@ -95,7 +95,7 @@ void ViewerSession::drawPanel(int windowWidth, int windowHeight) {
   if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("empty-space skipping", &settings_.skipEmpty);
     ImGui::Checkbox("finite-difference normals", &settings_.finiteDifferenceNormals);
-    row("brick layout", brickLayoutName(raycaster_.options().layout));
+    row("brick layout", brickLayoutName(*raycaster_.options().layout));
   }
   if (ImGui::CollapsingHeader("Dataset", ImGuiTreeNodeFlags_DefaultOpen)) {
     row("file", summary_.file);
