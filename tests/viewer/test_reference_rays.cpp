@@ -29,6 +29,10 @@ using test::TempDir;
 constexpr double kDepthTolLattice = 1e-3;
 // Normal agreement there, in degrees.
 constexpr double kNormalTolDegrees = 0.5;
+// Plus what a float gradient's absolute error (value units per lattice unit) turns into where the
+// gradient is small: a normal's direction is ill-conditioned near critical points (seen on the H200:
+// 0.75 degrees at |grad s| = 0.0046 in ML 320^3 at 1024^2).
+constexpr double kGradientErrorAbs = 5e-5;
 // Grazing rays: where the ray meets the surface at |cos| < 0.1, a hit within this distance of the
 // reference's surface along its normal is the same crossing. A float ray ~800 lattice units from its
 // eye is itself some 5e-5 lattice units off the double one, which at |cos| 0.02 is 2.5e-3 along it.
@@ -45,7 +49,7 @@ struct Comparison {
   int tangentRays = 0;  // rays the reference finds near-tangent (whatever the renderer did)
   int nearTangent = 0;  // disagreements on near-tangent rays (allowed)
   int real = 0;         // disagreements elsewhere (failures)
-  int normalOff = 0;    // same crossing, normal beyond kNormalTolDegrees
+  int normalOff = 0;    // same crossing, normal beyond kNormalTolDegrees (+ the small-gradient allowance)
   double worstDepthLattice = 0.0, worstSurfaceLattice = 0.0, worstNormalDegrees = 0.0;
   int gpuIsolatedNormals = 0, refIsolatedNormals = 0, gpuIsolatedMisses = 0, refIsolatedMisses = 0;
   long evaluations = 0;
@@ -125,11 +129,12 @@ Comparison compareWithReference(const std::string& path, const render::Camera& c
         c.worstSurfaceLattice = std::max(c.worstSurfaceLattice, depthLattice * cosine);
         const double angle = angleDegrees(n, r.normal);
         c.worstNormalDegrees = std::max(c.worstNormalDegrees, angle);
-        if (angle > kNormalTolDegrees) {
+        const double allowed = kNormalTolDegrees + glm::degrees(std::atan(kGradientErrorAbs / std::max(r.gradientLattice, 1e-30)));
+        if (angle > allowed) {
           ++c.normalOff;
           char buf[256];
-          std::snprintf(buf, sizeof buf, "pixel (%d, %d): normal %.3g degrees off (|grad s| %.3g per lattice unit)",
-                        px, py, angle, r.gradientLattice);
+          std::snprintf(buf, sizeof buf, "pixel (%d, %d): normal %.3g degrees off, %.3g allowed (|grad s| %.3g per lattice unit)",
+                        px, py, angle, allowed, r.gradientLattice);
           c.messages.push_back(buf);
         }
         continue;
