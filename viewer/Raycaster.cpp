@@ -32,8 +32,8 @@ std::string withDefines(std::string_view source, const std::string& defines) {
 
 BrickLayout chooseBrickLayout(const io::BrickStore& store, std::size_t gpuCacheBytes) {
   const std::size_t varying = std::size_t(store.bounds().activeVoxelCount());
-  const std::size_t scalarBytes = varying * (BrickPool::slotBytes(BrickLayout::SsboScalar) + kSlotBoundsBytes);
-  return scalarBytes <= gpuCacheBytes ? BrickLayout::SsboScalar : BrickLayout::SsboVec4;
+  const std::size_t scalarBytes = varying * (BrickPool::slotBytes(BrickLayout::TextureScalar) + kSlotBoundsBytes);
+  return scalarBytes <= gpuCacheBytes ? BrickLayout::TextureScalar : BrickLayout::TextureVec4;
 }
 
 Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested)

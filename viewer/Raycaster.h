@@ -44,10 +44,10 @@ struct RenderOptions {
 };
 
 // The layout when none is asked for, by measurement (docs/BENCHMARKS.md, H200): the one-channel
-// embedding (ssbo-scalar) is 10-25% faster than the four-channel packing (ssbo-vec4), but a brick
-// costs twice the GPU bytes, and when the data outgrows the pool that halves what stays resident (10x
-// slower while streaming). So: ssbo-scalar when every brick whose bounds vary fits the budget, else
-// ssbo-vec4. (SSBO and 3D texture measured alike; the SSBO has no texture-size limit.)
+// embedding is 10-15% faster than the four-channel packing, but a brick costs twice the GPU bytes,
+// and when the data outgrows the pool that halves what stays resident (10x slower while
+// streaming). So: texture-scalar when every brick whose bounds vary fits the budget, else
+// texture-vec4 (3D textures measured 2-3% ahead of SSBOs in long runs).
 BrickLayout chooseBrickLayout(const io::BrickStore& store, std::size_t gpuCacheBytes);
 
 // The output of a frame, row 0 at the top.

@@ -328,9 +328,9 @@ TEST_F(Render, EveryBrickLayoutGivesTheSameImage) {
   // Without a layout asked for: one channel while every varying brick fits the budget, else four.
   const io::BrickStore store(blobs);
   const std::size_t varying = std::size_t(store.bounds().activeVoxelCount());
-  const std::size_t scalarSlot = render::BrickPool::slotBytes(render::BrickLayout::SsboScalar) + 4096;
-  EXPECT_EQ(render::chooseBrickLayout(store, varying * scalarSlot), render::BrickLayout::SsboScalar);
-  EXPECT_EQ(render::chooseBrickLayout(store, varying * scalarSlot - 1), render::BrickLayout::SsboVec4);
+  const std::size_t scalarSlot = render::BrickPool::slotBytes(render::BrickLayout::TextureScalar) + 4096;
+  EXPECT_EQ(render::chooseBrickLayout(store, varying * scalarSlot), render::BrickLayout::TextureScalar);
+  EXPECT_EQ(render::chooseBrickLayout(store, varying * scalarSlot - 1), render::BrickLayout::TextureVec4);
 }
 
 }  // namespace
