@@ -303,12 +303,8 @@ StepStats Raycaster::step(const Camera& camera, int width, int height, double up
     stepComplete_ = false;
     stats.restarted = true;
   }
-  if (stepComplete_) {
-    stats.complete = true;
-    stats.streaming = loader_->pending();
-    return stats;
-  }
-  // Uploads first, so this step's pass already sees them.
+  // Uploads first, so this step's pass already sees them; also once the frame is complete, so that
+  // bricks still arriving (look-ahead requests) do not wait in the loader forever.
   const auto start = std::chrono::steady_clock::now();
   std::vector<uint32_t> slotUse;
   do {
@@ -319,6 +315,11 @@ StepStats Raycaster::step(const Camera& camera, int width, int height, double up
   } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < uploadSeconds);
   if (stats.uploaded) uploadPageTable();
 
+  if (stepComplete_) {
+    stats.complete = true;
+    stats.streaming = loader_->pending();
+    return stats;
+  }
   stats.dispatched = true;
   stats.requested = dispatchPass(frame, width, height);
   if (stats.requested == 0) {
