@@ -92,7 +92,13 @@ render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags) {
   const std::size_t ram = pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : (std::size_t(4) << 30);
   options.hostCacheBytes = flags.hostCacheMiB > 0.0 ? mibToBytes(flags.hostCacheMiB) : ram / 4;
   options.gpuCacheBytes = flags.gpuCacheMiB > 0.0 ? mibToBytes(flags.gpuCacheMiB) : (std::size_t(1) << 30);
-  if (flags.layout != "auto") options.layout = render::parseBrickLayout(flags.layout);
+  if (flags.layout != "auto") {
+    try {
+      options.layout = render::parseBrickLayout(flags.layout);
+    } catch (const ValueError& e) {
+      throw ValueError("--layout: " + std::string(e.what()) + ", or auto");
+    }
+  }
   return options;
 }
 
