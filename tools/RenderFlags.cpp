@@ -52,14 +52,14 @@ float isoFromFlags(const RenderFlags& flags, const io::BrickStore& store) {
   return float(v);
 }
 
-void resolutionFromFlags(const std::string& res, int& width, int& height) {
+void resolutionFromFlags(const std::string& res, int& width, int& height, const char* flag) {
   char x = 0;
   long w = 0, h = 0;
   char rest = 0;
   if (std::sscanf(res.c_str(), "%ld%c%ld%c", &w, &x, &h, &rest) != 3 || (x != 'x' && x != 'X'))
-    throw ValueError("--res '" + res + "': expected WIDTHxHEIGHT, e.g. 1024x1024");
+    throw ValueError(std::string(flag) + " '" + res + "': expected WIDTHxHEIGHT, e.g. 1024x1024");
   if (w <= 0 || h <= 0 || w > 16384 || h > 16384)
-    throw ValueError("--res '" + res + "': width and height must be 1 to 16384");
+    throw ValueError(std::string(flag) + " '" + res + "': width and height must be 1 to 16384");
   width = int(w);
   height = int(h);
 }

@@ -23,8 +23,8 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags);
 
 // --iso (default: midway through the data's value range); ValueError if not a finite number.
 float isoFromFlags(const RenderFlags& flags, const io::BrickStore& store);
-// --res "WxH"; ValueError for anything else or a zero size.
-void resolutionFromFlags(const std::string& res, int& width, int& height);
+// --res (or `flag`) "WxH"; ValueError naming the flag for anything else or a zero size.
+void resolutionFromFlags(const std::string& res, int& width, int& height, const char* flag = "--res");
 // The camera: frames the data unless --eye/--lookat/--up/--fov say otherwise.
 render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect);
 render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags);

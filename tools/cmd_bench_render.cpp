@@ -3,11 +3,11 @@
 // complete frame from cold caches and the bricks streamed per second meanwhile.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "BenchOrbit.h"
 #include "Command.h"
 #include "JsonText.h"
 #include "RenderFlags.h"
@@ -25,24 +25,13 @@ struct Measurement {
   int passes = 0;
 };
 
-// The camera turned by `angle` radians about its up axis through the look-at point.
-render::Camera orbit(const render::Camera& c, double angle) {
-  const glm::dvec3 axis = glm::normalize(c.up);
-  const glm::dvec3 v = c.eye - c.lookat;
-  const glm::dvec3 rotated = v * std::cos(angle) + glm::cross(axis, v) * std::sin(angle) +
-                             axis * glm::dot(axis, v) * (1.0 - std::cos(angle));
-  render::Camera out = c;
-  out.eye = c.lookat + rotated;
-  return out;
-}
-
 Measurement measureOrbit(render::Raycaster& raycaster, const render::Camera& camera, int width, int height,
                          int warmup, int frames) {
   Measurement m;
-  for (int i = 0; i < warmup; ++i) raycaster.render(orbit(camera, 2.0 * M_PI * i / std::max(warmup, 1)), width, height);
+  for (int i = 0; i < warmup; ++i) raycaster.render(orbitStep(camera, i, std::max(warmup, 1)), width, height);
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < frames; ++i) {
-    const render::FrameStats s = raycaster.render(orbit(camera, 2.0 * M_PI * i / frames), width, height);
+    const render::FrameStats s = raycaster.render(orbitStep(camera, i, frames), width, height);
     m.uploads += s.bricksUploaded;
     m.passes += s.passes;
   }
@@ -87,7 +76,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
             else layouts = {render::parseBrickLayout(flags.layout)};
             render::RenderOptions options = renderOptionsFromFlags(flags);
             options.iso = iso;
-            resolutionFromFlags(args->workGroup, options.workGroup.x, options.workGroup.y);
+            resolutionFromFlags(args->workGroup, options.workGroup.x, options.workGroup.y, "--work-group");
 
             std::vector<Measurement> results;
             render::FrameStats cold;

@@ -8,13 +8,13 @@
 #include <chrono>
 #include <cstdio>
 
+#include "BenchOrbit.h"
 #include "Command.h"
 #include "JsonText.h"
 #include "RenderFlags.h"
 #include "sparse/Error.h"
 #include "viewer/DatasetSummary.h"
 #include "viewer/EglContext.h"
-#include "viewer/OrbitControls.h"
 #include "viewer/Presenter.h"
 #include "viewer/ViewerSession.h"
 
@@ -61,10 +61,6 @@ class HeadlessImGui {
   }
 };
 
-render::Camera orbitStep(const render::Camera& start, int frame, int frames) {
-  return render::orbit(start, 360.0 / render::kOrbitDegreesPerPixel * frame / frames, 0.0);
-}
-
 struct ViewTiming {
   double ms = 0.0;
   int completeFrames = 0;
@@ -78,7 +74,7 @@ void viewerFrame(render::ViewerSession& session, const OffscreenTarget& target, 
   ImGui_ImplOpenGL3_NewFrame();
   ImGui::NewFrame();
   target.bind();
-  session.frame(width, height, width, height);
+  session.frame(width, height, height);
   ImGui::Render();
   glViewport(0, 0, width, height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

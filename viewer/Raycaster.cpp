@@ -91,7 +91,6 @@ std::size_t Raycaster::poolBytes() const { return std::size_t(residency_->slotCo
 
 void Raycaster::setIso(float iso) {
   if (!std::isfinite(iso)) throw ValueError("isovalue " + std::to_string(iso) + " is not finite");
-  iso_ = iso;
   options_.iso = iso;
   ++settings_;
   std::vector<glm::ivec3> needed;
@@ -106,7 +105,7 @@ void Raycaster::setIso(float iso) {
 
 void Raycaster::setSkipEmpty(bool skip) {
   options_.skipEmpty = skip;
-  setIso(iso_);
+  setIso(options_.iso);
 }
 
 void Raycaster::setFiniteDifferenceNormals(bool on) {
@@ -178,7 +177,7 @@ uint32_t Raycaster::dispatchPass(const CameraFrame& frame, int width, int height
   glProgramUniform3fv(p, program_.uniformLocation("uUp"), 1, &up.x);
   glProgramUniformMatrix4fv(p, program_.uniformLocation("uIndexFromWorld"), 1, GL_FALSE, &indexFromWorldF[0][0]);
   glProgramUniformMatrix3fv(p, program_.uniformLocation("uNormalFromIndex"), 1, GL_FALSE, &normalFromIndex[0][0]);
-  glProgramUniform1f(p, program_.uniformLocation("uIso"), iso_);
+  glProgramUniform1f(p, program_.uniformLocation("uIso"), options_.iso);
   glProgramUniform3iv(p, program_.uniformLocation("uBrickMin"), 1, &residency_->brickMin().x);
   glProgramUniform3iv(p, program_.uniformLocation("uBrickDims"), 1, &residency_->brickDims().x);
   glProgramUniform3iv(p, program_.uniformLocation("uNodeDims"), 1, &residency_->nodeDims().x);
@@ -224,6 +223,8 @@ std::vector<glm::ivec3> Raycaster::requestedBricks(uint32_t requestCount) const 
     if (!(r & 0x80000000u)) bricks.push_back(residency_->brickAt(r));
   for (uint32_t r : raw)
     if (r & 0x80000000u) bricks.push_back(residency_->brickAt(r & 0x7FFFFFFFu));
+  // No more than the pool holds: every brick loaded in a pass keeps its slot through the pass.
+  if (bricks.size() > residency_->slotCount()) bricks.resize(residency_->slotCount());
   return bricks;
 }
 
@@ -269,10 +270,7 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
     const uint32_t requested = dispatchPass(frame, width, height);
     if (requested == 0) break;
     if (stats.passes >= kMaxPasses) throw Error("renderer: the frame did not complete in " + std::to_string(kMaxPasses) + " passes");
-    std::vector<glm::ivec3> bricks = requestedBricks(requested);
-    // No more than the pool holds: every brick loaded in a pass keeps its slot through the pass.
-    if (bricks.size() > residency_->slotCount()) bricks.resize(residency_->slotCount());
-    loader_->request(bricks);
+    loader_->request(requestedBricks(requested));
     std::vector<uint32_t> slotUse = readSlotUse();
     uint64_t uploaded = 0;
     for (;;) {
@@ -295,9 +293,8 @@ StepStats Raycaster::step(const Camera& camera, int width, int height, double up
   const CameraFrame frame = cameraFrame(camera, double(width) / double(height));
   StepStats stats;
   const StepKey key{frame, width, height, settings_};
-  const auto same = [](const glm::dvec3& a, const glm::dvec3& b) { return a == b; };
-  if (!(same(key.frame.eye, stepKey_.frame.eye) && same(key.frame.forward, stepKey_.frame.forward) &&
-        same(key.frame.right, stepKey_.frame.right) && same(key.frame.up, stepKey_.frame.up) &&
+  if (!(key.frame.eye == stepKey_.frame.eye && key.frame.forward == stepKey_.frame.forward &&
+        key.frame.right == stepKey_.frame.right && key.frame.up == stepKey_.frame.up &&
         key.width == stepKey_.width && key.height == stepKey_.height && key.settings == stepKey_.settings)) {
     stepKey_ = key;
     restartRays(width, height);
@@ -328,9 +325,7 @@ StepStats Raycaster::step(const Camera& camera, int width, int height, double up
     stepComplete_ = true;
     stats.complete = true;
   } else {
-    std::vector<glm::ivec3> bricks = requestedBricks(stats.requested);
-    if (bricks.size() > residency_->slotCount()) bricks.resize(residency_->slotCount());
-    loader_->request(bricks);
+    loader_->request(requestedBricks(stats.requested));
   }
   stats.streaming = loader_->pending();
   return stats;

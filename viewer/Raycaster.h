@@ -81,7 +81,7 @@ class Raycaster {
 
   // Bricks needed change; resident ones stay (no preprocessing, no reload for a revisited isovalue).
   void setIso(float iso);
-  float iso() const { return iso_; }
+  float iso() const { return options_.iso; }
 
   // Renders a complete frame, passes and uploads until no ray waits for a brick.
   FrameStats render(const Camera& camera, int width, int height);
@@ -122,7 +122,6 @@ class Raycaster {
 
   const io::BrickStore& store_;
   RenderOptions options_;
-  float iso_ = 0.0f;
   uint32_t pass_ = 0;
   uint32_t requestCapacity_ = 0;
   uint64_t bricksUploaded_ = 0;

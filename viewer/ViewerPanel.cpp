@@ -46,8 +46,7 @@ void usageBar(const char* label, double used, double budget) {
 
 }  // namespace
 
-void ViewerSession::drawPanel(int windowWidth, int windowHeight) {
-  (void)windowWidth;
+void ViewerSession::drawPanel(int windowHeight) {
   if (!settings_.showPanel) return;
   const float scale = ImGui::GetIO().FontGlobalScale;
   panelWidth_ = kPanelWidth * scale;
@@ -151,8 +150,7 @@ void ViewerSession::drawHelp() {
   ImGui::End();
 }
 
-void ViewerSession::drawStreamingLine(int windowWidth, int windowHeight) {
-  (void)windowWidth;
+void ViewerSession::drawStreamingLine(int windowHeight) {
   if (stats_.complete && stats_.streaming == 0) return;
   char text[96];
   if (stats_.streaming > 0)

@@ -16,8 +16,7 @@ constexpr double kRateWindowSeconds = 0.5;
 
 ViewerSession::ViewerSession(const io::BrickStore& store, const RenderOptions& options, const Camera& initialCamera,
                              DatasetSummary summary)
-    : store_(store),
-      raycaster_(store, options),
+    : raycaster_(store, options),
       camera_(initialCamera),
       initialCamera_(initialCamera),
       summary_(std::move(summary)) {
@@ -96,14 +95,14 @@ void ViewerSession::updateStats(const StepStats& step) {
   stats_.complete = step.complete;
 }
 
-void ViewerSession::frame(int fbWidth, int fbHeight, int windowWidth, int windowHeight) {
+void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight) {
   handleInput(windowHeight);
-  drawPanel(windowWidth, windowHeight);
+  drawPanel(windowHeight);
   if (settings_.showHelp) drawHelp();
   applySettings();
   const StepStats step = raycaster_.step(camera_, fbWidth, fbHeight, kUploadSecondsPerFrame);
   updateStats(step);
-  drawStreamingLine(windowWidth, windowHeight);
+  drawStreamingLine(windowHeight);
   presenter_.draw(raycaster_.colorTexture(), settings_.background, 0, 0, fbWidth, fbHeight);
 }
 

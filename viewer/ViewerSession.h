@@ -49,11 +49,11 @@ class ViewerSession {
   ViewerSession(const io::BrickStore& store, const RenderOptions& options, const Camera& initialCamera,
                 DatasetSummary summary);
 
-  // One frame into the bound framebuffer of fbWidth x fbHeight pixels; the window is windowWidth x
-  // windowHeight in ImGui's coordinates (they differ on high-DPI screens). Reads this frame's mouse
+  // One frame into the bound framebuffer of fbWidth x fbHeight pixels; the window is windowHeight
+  // high in ImGui's coordinates (they differ on high-DPI screens). Reads this frame's mouse
   // and keys from ImGui (where the panel does not take them), builds the panel, steps the
   // raycaster within the upload budget and draws its image.
-  void frame(int fbWidth, int fbHeight, int windowWidth, int windowHeight);
+  void frame(int fbWidth, int fbHeight, int windowHeight);
 
   // True once the frame is complete and no brick is streaming (screenshots wait for it).
   bool settled() const { return stats_.complete && stats_.streaming == 0; }
@@ -77,11 +77,10 @@ class ViewerSession {
   void handleInput(int windowHeight);
   void applySettings();
   void updateStats(const StepStats& step);
-  void drawPanel(int windowWidth, int windowHeight);  // viewer/ViewerPanel.cpp
+  void drawPanel(int windowHeight);  // viewer/ViewerPanel.cpp
   void drawHelp();
-  void drawStreamingLine(int windowWidth, int windowHeight);
+  void drawStreamingLine(int windowHeight);
 
-  const io::BrickStore& store_;
   Raycaster raycaster_;
   Presenter presenter_;
   Camera camera_, initialCamera_;

@@ -100,8 +100,9 @@ double ViewerWindow::aspect() const {
 
 void ViewerWindow::writeScreenshots(ViewerSession& session, const std::string& pngPath, const std::string& exrPath,
                                     const std::function<void(const std::string&)>& report) {
-  int w = 0, h = 0;
+  int w = 0, h = 0, windowWidth = 0, windowHeight = 0;
   glfwGetFramebufferSize(window_, &w, &h);
+  glfwGetWindowSize(window_, &windowWidth, &windowHeight);
   if (!pngPath.empty()) {
     // The back buffer as drawn this frame (image and panel), rows flipped to put row 0 at the top.
     std::vector<unsigned char> bottomUp(std::size_t(w) * h * 3), rgb(bottomUp.size());
@@ -113,7 +114,7 @@ void ViewerWindow::writeScreenshots(ViewerSession& session, const std::string& p
       std::copy_n(bottomUp.data() + std::size_t(h - 1 - y) * w * 3, std::size_t(w) * 3, rgb.data() + std::size_t(y) * w * 3);
     io::writeScreenPng(pngPath, w, h, rgb);
     report("wrote " + pngPath + " (" + std::to_string(w) + "x" + std::to_string(h) + " window, panel " +
-           std::to_string(int(std::lround(session.panelWidth() * w / std::max(1, options_.width)))) + " px wide)");
+           std::to_string(int(std::lround(session.panelWidth() * w / std::max(1, windowWidth)))) + " px wide)");
   }
   if (!exrPath.empty()) {
     session.writeExr(exrPath);
@@ -128,9 +129,9 @@ void ViewerWindow::run(ViewerSession& session, const std::function<void(const st
     // Idle and complete: wait for input instead of redrawing the same image.
     if (!automated && session.settled()) glfwWaitEventsTimeout(0.25);
     else glfwPollEvents();
-    int fbWidth = 0, fbHeight = 0, winWidth = 0, winHeight = 0;
+    int fbWidth = 0, fbHeight = 0, winHeight = 0;
     glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
-    glfwGetWindowSize(window_, &winWidth, &winHeight);
+    glfwGetWindowSize(window_, nullptr, &winHeight);
     if (fbWidth <= 0 || fbHeight <= 0) {  // minimised
       glfwWaitEvents();
       continue;
@@ -141,7 +142,7 @@ void ViewerWindow::run(ViewerSession& session, const std::function<void(const st
     if (!ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false))
       glfwSetWindowShouldClose(window_, GLFW_TRUE);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    session.frame(fbWidth, fbHeight, winWidth, winHeight);
+    session.frame(fbWidth, fbHeight, winHeight);
     ImGui::Render();
     glViewport(0, 0, fbWidth, fbHeight);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
