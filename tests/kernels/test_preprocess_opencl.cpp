@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "kernels/ClBrickKernels.h"
+#include "tests/kernels/ClTestSuite.h"
 #include "sparse/BrickBounds.h"
 #include "sparse/BrickKernels.h"
 #include "tests/sparse/BrickTestData.h"
@@ -23,24 +24,7 @@ namespace {
 
 using openvdb::Coord;
 
-class Preprocess : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    try {
-      cl = std::make_unique<ClBrickKernels>("auto");
-    } catch (const ClError& e) {
-      unavailable = e.what();
-    }
-  }
-  static void TearDownTestSuite() { cl.reset(); }
-  void SetUp() override {
-    if (cl) return;
-    if (std::getenv("CI")) FAIL() << "OpenCL is required when CI is set: " << unavailable;
-    GTEST_SKIP() << "no OpenCL device: " << unavailable;
-  }
-  static inline std::unique_ptr<ClBrickKernels> cl;
-  static inline std::string unavailable;
-};
+class Preprocess : public test::ClSuite<ClBrickKernels> {};
 
 // Bricks with a leaf, bricks beside leaves and tiles, and bricks far from anything.
 std::vector<Coord> someBricks() {
@@ -64,7 +48,7 @@ TEST_F(Preprocess, BoundsKernelEqualsReferenceWithinTolerance) {
   const std::vector<Coord> bricks = someBricks();
   std::vector<openvdb::Vec2f> expected, actual;
   makeReferenceBrickKernels()->bounds(*grid, bricks, expected);
-  cl->bounds(*grid, bricks, actual);
+  device->bounds(*grid, bricks, actual);
   ASSERT_EQ(actual.size(), bricks.size());
   int varying = 0, bitEqual = 0;
   float largest = 0.0f;
@@ -79,7 +63,7 @@ TEST_F(Preprocess, BoundsKernelEqualsReferenceWithinTolerance) {
   }
   EXPECT_GT(varying, 20) << "the data exercises varying bricks";
   std::printf("[   INFO   ] %zu bricks on %s: %d of %zu bounds bit-equal, largest difference %g\n", bricks.size(),
-              cl->describe().c_str(), bitEqual, 2 * bricks.size(), double(largest));
+              device->describe().c_str(), bitEqual, 2 * bricks.size(), double(largest));
 }
 
 TEST_F(Preprocess, PrefilterKernelEqualsReferenceBitForBit) {
@@ -87,7 +71,7 @@ TEST_F(Preprocess, PrefilterKernelEqualsReferenceBitForBit) {
   const std::vector<Coord> bricks = someBricks();
   std::vector<openvdb::Vec4f> expected, actual;
   makeReferenceBrickKernels()->prefilter(*grid, bricks, expected);
-  cl->prefilter(*grid, bricks, actual);
+  device->prefilter(*grid, bricks, actual);
   ASSERT_EQ(actual.size(), expected.size());
   size_t mismatches = 0;
   for (size_t i = 0; i < expected.size(); ++i)
@@ -101,7 +85,7 @@ TEST_F(Preprocess, PrefilterKernelEqualsReferenceBitForBit) {
 TEST_F(Preprocess, WholeGridsEqualReference) {
   const FccGrid::Ptr grid = test::randomBrickGrid(5);
   const BoundsGrid::Ptr expected = computeBrickBounds(*grid);
-  const BoundsGrid::Ptr actual = computeBrickBounds(*grid, cl.get());
+  const BoundsGrid::Ptr actual = computeBrickBounds(*grid, device.get());
   EXPECT_NEAR(double(actual->activeVoxelCount()), double(expected->activeVoxelCount()), 0.01 * expected->activeVoxelCount());
   auto a = actual->getConstAccessor();
   for (auto it = expected->cbeginValueAll(); it; ++it) {
@@ -119,7 +103,7 @@ TEST_F(Preprocess, WholeGridsEqualReference) {
 
   grid->insertMeta(meta::kValues, openvdb::StringMetadata(kValuesSamples));
   const FccGrid::Ptr expectedCoefficients = prefilterGrid(*grid);
-  const FccGrid::Ptr actualCoefficients = prefilterGrid(*grid, cl.get());
+  const FccGrid::Ptr actualCoefficients = prefilterGrid(*grid, device.get());
   EXPECT_EQ(actualCoefficients->activeVoxelCount(), expectedCoefficients->activeVoxelCount());
   EXPECT_EQ(actualCoefficients->tree().leafCount(), expectedCoefficients->tree().leafCount());
   auto ac = actualCoefficients->getConstAccessor();

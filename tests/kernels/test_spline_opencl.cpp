@@ -15,84 +15,49 @@
 #include "embedded_kernels.h"
 #include "kernels/ClRunner.h"
 #include "sparse/Spline.h"
+#include "tests/kernels/ClTestSuite.h"
 #include "tests/sparse/DialectComparison.h"
 
 using fcc::test::DenseBlock;
-using fcc::test::kBackground;
-using fcc::test::kBlockSide;
-using fcc::test::kGradientTol;
-using fcc::test::kPoints;
-using fcc::test::kValueTol;
-using fcc::test::randomPoints;
-using fcc::test::str;
 
 namespace fcc {
 namespace {
 
-
-class OpenCl : public ::testing::Test {
+class OpenCl : public test::ClSuite<ClRunner> {
  protected:
-  static void SetUpTestSuite() {
-    try {
-      runner = std::make_unique<ClRunner>("auto");
-    } catch (const ClError& e) {
-      unavailable = e.what();
-    }
-  }
-  static void TearDownTestSuite() { runner.reset(); }
-  void SetUp() override {
-    if (runner) return;
-    if (std::getenv("CI")) FAIL() << "OpenCL is required when CI is set: " << unavailable;
-    GTEST_SKIP() << "no OpenCL device: " << unavailable;
-  }
-
   static std::string_view splineSource() { return embedded::kernels("kernels/spline_eval.cl"); }
 
   // (value, gradient) per point from the kernel.
   static std::vector<glm::vec4> evaluateOnDevice(const DenseBlock& block, const std::vector<glm::vec4>& points) {
-    cl::Kernel kernel = runner->kernel(std::string(splineSource()), "fcc_spline_eval");
+    cl::Kernel kernel = device->kernel(std::string(splineSource()), "fcc_spline_eval");
     const auto start = std::chrono::steady_clock::now();
-    cl::Buffer pointBuffer = runner->upload(points);
-    cl::Buffer coefficientBuffer = runner->upload(block.values);
-    cl::Buffer resultBuffer = runner->allocate(points.size() * sizeof(glm::vec4), CL_MEM_WRITE_ONLY);
+    cl::Buffer pointBuffer = device->upload(points);
+    cl::Buffer coefficientBuffer = device->upload(block.values);
+    cl::Buffer resultBuffer = device->allocate(points.size() * sizeof(glm::vec4), CL_MEM_WRITE_ONLY);
     const cl_int4 origin = {{block.origin.x, block.origin.y, block.origin.z, 0}};
     const cl_int4 dims = {{block.dims.x, block.dims.y, block.dims.z, 0}};
-    runner->launch("spline evaluation", kernel, points.size(), pointBuffer, cl_uint(points.size()), coefficientBuffer,
+    device->launch("spline evaluation", kernel, points.size(), pointBuffer, cl_uint(points.size()), coefficientBuffer,
                    origin, dims, cl_float(block.background), resultBuffer);
     std::vector<glm::vec4> results(points.size());
-    runner->download(resultBuffer, results);
+    device->download(resultBuffer, results);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     std::printf("[   INFO   ] %zu points on %s: %.1f ms (upload, launch, download)\n", points.size(),
-                runner->describe().c_str(), ms);
+                device->describe().c_str(), ms);
     return results;
   }
 
-  static void expectMatchesCpp(const DenseBlock& block, const std::vector<glm::vec4>& points) {
-    test::expectMatchesCpp("OpenCL", block, points, evaluateOnDevice(block, points));
-  }
-
-  static inline std::unique_ptr<ClRunner> runner;
-  static inline std::string unavailable;
 };
 
-TEST_F(OpenCl, SplineMatchesCppAtRandomPoints) {
-  // An odd origin: the block's storage parity differs from the lattice's.
-  const DenseBlock block(glm::ivec3(-7, 3, 12), kBlockSide, kBackground, 21);
-  expectMatchesCpp(block, randomPoints(block, kPoints, 2.0f, 22));
-}
+TEST_F(OpenCl, SplineMatchesCppAtRandomPoints) { test::expectMatchesCppAtRandomPoints("OpenCL", evaluateOnDevice); }
 
-TEST_F(OpenCl, SplineUsesTheBackgroundOutsideTheBlock) {
-  // Points up to 3 outside the block on every side: stencils straddle the boundary or miss the block.
-  const DenseBlock block(glm::ivec3(4, -9, 0), 8, kBackground, 23);
-  expectMatchesCpp(block, randomPoints(block, 2000, -3.0f, 24));
-}
+TEST_F(OpenCl, SplineUsesTheBackgroundOutsideTheBlock) { test::expectBackgroundOutsideTheBlock("OpenCL", evaluateOnDevice); }
 
 TEST_F(OpenCl, ProgramCacheBuildsEachSourceOnce) {
   const std::string source(splineSource());
-  runner->kernel(source, "fcc_spline_eval");
-  const size_t cached = runner->cachedPrograms();
-  runner->kernel(source, "fcc_spline_eval");
-  EXPECT_EQ(runner->cachedPrograms(), cached);
+  device->kernel(source, "fcc_spline_eval");
+  const size_t cached = device->cachedPrograms();
+  device->kernel(source, "fcc_spline_eval");
+  EXPECT_EQ(device->cachedPrograms(), cached);
 }
 
 TEST_F(OpenCl, EmbeddedSourceHasTheHeaderInlined) {
@@ -105,7 +70,7 @@ TEST_F(OpenCl, EmbeddedSourceHasTheHeaderInlined) {
 TEST_F(OpenCl, BuildFailureCarriesTheLog) {
   const std::string broken = "__kernel void broken(__global float* x) { x[0] = fcc_no_such_name; }\n";
   try {
-    runner->program(broken);
+    device->program(broken);
     FAIL() << "an invalid kernel built";
   } catch (const ClError& e) {
     EXPECT_EQ(e.code(), CL_BUILD_PROGRAM_FAILURE) << e.what();
@@ -117,10 +82,10 @@ TEST_F(OpenCl, BuildFailureCarriesTheLog) {
 }
 
 TEST_F(OpenCl, LaunchErrorsNameTheCodeAndTheLaunch) {
-  cl::Kernel kernel = runner->kernel(std::string(splineSource()), "fcc_spline_eval");
+  cl::Kernel kernel = device->kernel(std::string(splineSource()), "fcc_spline_eval");
   try {
-    runner->launch("spline evaluation without arguments", kernel, 16);  // no argument set
-    runner->finish();
+    device->launch("spline evaluation without arguments", kernel, 16);  // no argument set
+    device->finish();
     FAIL() << "a kernel without arguments launched";
   } catch (const ClError& e) {
     const std::string what = e.what();
@@ -130,7 +95,7 @@ TEST_F(OpenCl, LaunchErrorsNameTheCodeAndTheLaunch) {
     EXPECT_NE(what.find("fcc_spline_eval"), std::string::npos) << what;
   }
   try {
-    runner->kernel(std::string(splineSource()), "fcc_no_such_kernel");
+    device->kernel(std::string(splineSource()), "fcc_no_such_kernel");
     FAIL() << "a missing kernel was created";
   } catch (const ClError& e) {
     EXPECT_NE(std::string(e.what()).find("CL_INVALID_KERNEL_NAME"), std::string::npos) << e.what();
@@ -144,7 +109,7 @@ TEST_F(OpenCl, SelectsTheCpuDevice) {
   const ClRunner cpu("cpu");
   EXPECT_TRUE(cpu.entry().type & CL_DEVICE_TYPE_CPU);
   EXPECT_NE(cpu.describe().find(" / "), std::string::npos);
-  std::printf("[   INFO   ] auto: %s; cpu: %s\n", runner->describe().c_str(), cpu.describe().c_str());
+  std::printf("[   INFO   ] auto: %s; cpu: %s\n", device->describe().c_str(), cpu.describe().c_str());
   const ClRunner byIndex(std::to_string(cpu.entry().index));
   EXPECT_EQ(byIndex.describe(), cpu.describe());
 }

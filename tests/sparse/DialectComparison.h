@@ -36,4 +36,22 @@ inline void expectMatchesCpp(const char* dialect, const DenseBlock& block, const
               maxValue, kValueTol, maxGradient, kGradientTol);
 }
 
+// The cases every device dialect runs, so OpenCL C and GLSL are checked on the same points.
+// `evaluate(block, points)` returns the device's (value, gradient) per point.
+template <class Evaluate>
+void expectMatchesCppAtRandomPoints(const char* dialect, Evaluate&& evaluate) {
+  // An odd origin: the block's storage parity differs from the lattice's.
+  const DenseBlock block(glm::ivec3(-7, 3, 12), kBlockSide, kBackground, 21);
+  const std::vector<glm::vec4> points = randomPoints(block, kPoints, 2.0f, 22);
+  expectMatchesCpp(dialect, block, points, evaluate(block, points));
+}
+
+template <class Evaluate>
+void expectBackgroundOutsideTheBlock(const char* dialect, Evaluate&& evaluate) {
+  // Points up to 3 outside the block on every side: stencils straddle the boundary or miss the block.
+  const DenseBlock block(glm::ivec3(4, -9, 0), 8, kBackground, 23);
+  const std::vector<glm::vec4> points = randomPoints(block, 2000, -3.0f, 24);
+  expectMatchesCpp(dialect, block, points, evaluate(block, points));
+}
+
 }  // namespace fcc::test

@@ -15,17 +15,10 @@
 #include "embedded_shaders.h"
 #include "sparse/Spline.h"
 #include "tests/sparse/DialectComparison.h"
-
-using fcc::test::DenseBlock;
-using fcc::test::kBackground;
-using fcc::test::kBlockSide;
-using fcc::test::kGradientTol;
-using fcc::test::kPoints;
-using fcc::test::kValueTol;
-using fcc::test::randomPoints;
-using fcc::test::str;
 #include "tests/viewer/GlTestSuite.h"
 #include "viewer/GlProgram.h"
+
+using fcc::test::DenseBlock;
 
 namespace fcc {
 namespace {
@@ -67,10 +60,6 @@ class Glsl : public test::GlSuite {
     return results;
   }
 
-  static void expectMatchesCpp(const DenseBlock& block, const std::vector<glm::vec4>& points) {
-    test::expectMatchesCpp("GLSL", block, points, evaluateOnDevice(block, points));
-  }
-
   static inline std::optional<GlProgram> program;
 };
 
@@ -94,17 +83,9 @@ TEST_F(Glsl, ContextIsOpenGL45Core) {
   EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
 }
 
-TEST_F(Glsl, SplineMatchesCppAtRandomPoints) {
-  // An odd origin: the block's storage parity differs from the lattice's.
-  const DenseBlock block(glm::ivec3(-7, 3, 12), kBlockSide, kBackground, 21);
-  expectMatchesCpp(block, randomPoints(block, kPoints, 2.0f, 22));
-}
+TEST_F(Glsl, SplineMatchesCppAtRandomPoints) { test::expectMatchesCppAtRandomPoints("GLSL", evaluateOnDevice); }
 
-TEST_F(Glsl, SplineUsesTheBackgroundOutsideTheBlock) {
-  // Points up to 3 outside the block on every side: stencils straddle the boundary or miss the block.
-  const DenseBlock block(glm::ivec3(4, -9, 0), 8, kBackground, 23);
-  expectMatchesCpp(block, randomPoints(block, 2000, -3.0f, 24));
-}
+TEST_F(Glsl, SplineUsesTheBackgroundOutsideTheBlock) { test::expectBackgroundOutsideTheBlock("GLSL", evaluateOnDevice); }
 
 TEST_F(Glsl, CompileErrorCarriesTheInfoLog) {
   const char* broken = "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() { fcc_no_such_name = 1.0; }\n";
