@@ -46,6 +46,7 @@ uniform ivec3 uBrickMin;
 uniform ivec3 uBrickDims;
 uniform ivec3 uNodeDims;
 uniform uint uPass;
+uniform int uFirstPass;       // 1: every ray starts at the eye (uResume holds an older frame's values)
 uniform uint uRequestCapacity;
 uniform int uLookahead;       // bricks requested past the first missing one
 uniform int uSkipEmpty;       // 0: evaluate every resident brick (for measuring the skipping)
@@ -170,7 +171,8 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, uResolution))) return;
-  float tResume = imageLoad(uResume, pixel).x;
+  // The first pass writes every pixel's resume value (below), so the image needs no clearing.
+  float tResume = uFirstPass != 0 ? 0.0 : imageLoad(uResume, pixel).x;
   if (tResume < 0.0) return;
 
   // Pinhole camera, rays through pixel centres, row 0 at the top.

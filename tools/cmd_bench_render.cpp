@@ -23,6 +23,7 @@ struct Measurement {
   double seconds = 0.0;
   uint64_t uploads = 0;
   int passes = 0;
+  double gpuSeconds = 0.0;  // --gpu-time
 };
 
 Measurement measureOrbit(render::Raycaster& raycaster, const render::Camera& camera, int width, int height,
@@ -34,6 +35,7 @@ Measurement measureOrbit(render::Raycaster& raycaster, const render::Camera& cam
     const render::FrameStats s = raycaster.render(orbitStep(camera, i, frames), width, height);
     m.uploads += s.bricksUploaded;
     m.passes += s.passes;
+    m.gpuSeconds += s.gpuSeconds;
   }
   m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   m.frames = frames;
@@ -49,6 +51,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
     std::string workGroup = "4x8";
     std::vector<std::string> variants = {"skip+analytic", "skip+fd", "noskip+analytic", "noskip+fd"};
     bool json = false;
+    bool gpuTime = false;
   };
   auto args = std::make_shared<Args>();
   args->flags.res = "512x512";
@@ -61,6 +64,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
       ->check(CLI::IsMember({"skip+analytic", "skip+fd", "noskip+analytic", "noskip+fd"}));
   args->flags.layout = "all";
   app->get_option("--layout")->description("Brick layout to time, or all (the default)");
+  app->add_flag("--gpu-time", args->gpuTime, "Also time the raycasting passes on the GPU (timestamp queries)");
   app->add_flag("--json", args->json, "A JSON list of objects: variant, skip, normals, fps, frame_ms, ...");
   return {app, [args]() {
             int width = 0, height = 0;
@@ -76,6 +80,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
             else layouts = {render::parseBrickLayout(flags.layout)};
             render::RenderOptions options = renderOptionsFromFlags(flags);
             options.iso = iso;
+            options.timeGpu = args->gpuTime;
             resolutionFromFlags(args->workGroup, options.workGroup.x, options.workGroup.y, "--work-group");
 
             std::vector<Measurement> results;
@@ -113,12 +118,13 @@ Command addBenchRenderCommand(CLI::App& bench) {
                 const Measurement& m = results[i];
                 std::printf("%s\n {\"variant\": %s, \"layout\": %s, \"skip\": %s, \"normals\": %s, "
                             "\"res\": [%d, %d], \"iso\": %s, \"frames\": %d, \"fps\": %s, \"frame_ms\": %s, "
-                            "\"passes_per_frame\": %s, \"bricks_streamed_per_second\": %s, "
+                            "\"gpu_frame_ms\": %s, \"passes_per_frame\": %s, \"bricks_streamed_per_second\": %s, "
                             "\"first_frame_seconds\": %s, \"first_frame_bricks\": %llu, \"pool_mib\": %s, "
                             "\"device\": %s, \"file\": %s}",
                             i ? "," : "", jsonString(m.variant).c_str(), jsonString(m.layout).c_str(), m.skip ? "true" : "false",
                             jsonString(m.normals).c_str(), width, height, jsonNumber(iso).c_str(), m.frames,
                             jsonNumber(m.frames / m.seconds).c_str(), jsonNumber(1e3 * m.seconds / m.frames).c_str(),
+                            args->gpuTime ? jsonNumber(1e3 * m.gpuSeconds / m.frames).c_str() : "null",
                             jsonNumber(double(m.passes) / m.frames).c_str(), jsonNumber(m.uploads / m.seconds).c_str(),
                             jsonNumber(cold.seconds).c_str(), (unsigned long long)cold.bricksUploaded,
                             jsonNumber(poolMiB).c_str(), jsonString(gl.renderer()).c_str(),
@@ -132,10 +138,14 @@ Command addBenchRenderCommand(CLI::App& bench) {
             std::printf("first complete frame (cold caches, %s): %.3f s, %llu bricks streamed (%.0f bricks/s), %d passes\n",
                         render::brickLayoutName(layouts.front()).c_str(), cold.seconds, (unsigned long long)cold.bricksUploaded, cold.bricksUploaded / cold.seconds,
                         cold.passes);
-            std::printf("%-16s %-18s %10s %10s %8s %14s\n", "layout", "variant", "fps", "frame ms", "passes", "bricks/s");
-            for (const Measurement& m : results)
-              std::printf("%-16s %-18s %10.1f %10.3f %8.2f %14.0f\n", m.layout.c_str(), m.variant.c_str(), m.frames / m.seconds,
-                          1e3 * m.seconds / m.frames, double(m.passes) / m.frames, m.uploads / m.seconds);
+            std::printf("%-16s %-18s %10s %10s %10s %8s %14s\n", "layout", "variant", "fps", "frame ms", "gpu ms", "passes",
+                        "bricks/s");
+            for (const Measurement& m : results) {
+              const std::string gpuMs = args->gpuTime ? std::to_string(1e3 * m.gpuSeconds / m.frames).substr(0, 6) : "-";
+              std::printf("%-16s %-18s %10.1f %10.3f %10s %8.2f %14.0f\n", m.layout.c_str(), m.variant.c_str(),
+                          m.frames / m.seconds, 1e3 * m.seconds / m.frames, gpuMs.c_str(), double(m.passes) / m.frames,
+                          m.uploads / m.seconds);
+            }
             return 0;
           }};
 }

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <memory>
 
 #include "BenchOrbit.h"
 #include "Command.h"
@@ -15,6 +16,7 @@
 #include "sparse/Error.h"
 #include "viewer/DatasetSummary.h"
 #include "viewer/EglContext.h"
+#include "viewer/GpuTimer.h"
 #include "viewer/Presenter.h"
 #include "viewer/ViewerSession.h"
 
@@ -64,20 +66,32 @@ class HeadlessImGui {
 struct ViewTiming {
   double ms = 0.0;
   int completeFrames = 0;
+  // --gpu-time: per frame on the GPU, the raycasting pass, the session's whole frame (pass, uploads,
+  // image) and the ImGui draw lists.
+  double passGpuMs = 0.0, sessionGpuMs = 0.0, imguiGpuMs = 0.0;
+};
+
+// GPU intervals around the parts of a viewer frame (--gpu-time); null: not timed.
+struct FrameTimers {
+  GpuInterval session, imgui;
 };
 
 // One viewer frame at `camera` into the offscreen target, finished on the GPU.
 void viewerFrame(render::ViewerSession& session, const OffscreenTarget& target, const render::Camera& camera, int width,
-                 int height) {
+                 int height, FrameTimers* timers = nullptr) {
   session.setCamera(camera);
   ImGui::GetIO().DeltaTime = 1.0f / 60.0f;
   ImGui_ImplOpenGL3_NewFrame();
   ImGui::NewFrame();
   target.bind();
+  if (timers) timers->session.begin();
   session.frame(width, height, height);
+  if (timers) timers->session.end();
   ImGui::Render();
   glViewport(0, 0, width, height);
+  if (timers) timers->imgui.begin();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (timers) timers->imgui.end();
   glFinish();  // the frame is on screen: what a swap with vsync off waits for
 }
 
@@ -95,33 +109,57 @@ void settleOrbit(render::ViewerSession& session, const OffscreenTarget& target, 
 }
 
 ViewTiming timeViewer(render::ViewerSession& session, const OffscreenTarget& target, const render::Camera& camera,
-                      int width, int height, int frames) {
+                      int width, int height, int frames, bool gpuTime) {
   ViewTiming t;
+  std::unique_ptr<FrameTimers> timers = gpuTime ? std::make_unique<FrameTimers>() : nullptr;
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < frames; ++i) {
-    viewerFrame(session, target, orbitStep(camera, i, frames), width, height);
+    viewerFrame(session, target, orbitStep(camera, i, frames), width, height, timers.get());
     t.completeFrames += session.stats().complete;
+    if (timers) {
+      t.passGpuMs += session.stats().passGpuMs / frames;
+      t.sessionGpuMs += 1e3 * timers->session.seconds() / frames;
+      t.imguiGpuMs += 1e3 * timers->imgui.seconds() / frames;
+    }
   }
   t.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
   return t;
 }
 
 // The image drawn over the background alone, the same image each time.
-double timePresent(const render::Raycaster& raycaster, const OffscreenTarget& target, int width, int height, int frames) {
+struct PresentTiming {
+  double ms = 0.0, gpuMs = 0.0;
+};
+
+PresentTiming timePresent(const render::Raycaster& raycaster, const OffscreenTarget& target, int width, int height,
+                          int frames) {
   render::Presenter presenter;
+  GpuInterval timer;
   target.bind();
+  PresentTiming t;
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < frames; ++i) {
+    timer.begin();
     presenter.draw(raycaster.colorTexture(), glm::vec3(0.1f), 0, 0, width, height);
+    timer.end();
     glFinish();
+    t.gpuMs += 1e3 * timer.seconds() / frames;
   }
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
+  t.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
+  return t;
 }
 
-double timeRender(render::Raycaster& raycaster, const render::Camera& camera, int width, int height, int frames) {
+struct RenderTiming {
+  double ms = 0.0, gpuMs = 0.0;  // gpuMs: the passes alone (RenderOptions::timeGpu)
+};
+
+RenderTiming timeRender(render::Raycaster& raycaster, const render::Camera& camera, int width, int height, int frames) {
+  RenderTiming t;
   const auto start = std::chrono::steady_clock::now();
-  for (int i = 0; i < frames; ++i) raycaster.render(orbitStep(camera, i, frames), width, height);
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
+  for (int i = 0; i < frames; ++i)
+    t.gpuMs += 1e3 * raycaster.render(orbitStep(camera, i, frames), width, height).gpuSeconds / frames;
+  t.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
+  return t;
 }
 
 }  // namespace
@@ -131,6 +169,7 @@ Command addBenchViewCommand(CLI::App& bench) {
     RenderFlags flags;
     int frames = 120;
     bool json = false;
+    bool gpuTime = false;
   };
   auto args = std::make_shared<Args>();
   args->flags.res = "1920x1080";
@@ -140,6 +179,8 @@ Command addBenchViewCommand(CLI::App& bench) {
   app->add_option("--frames", args->frames, "Timed frames per variant (one orbit)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app->add_flag("--gpu-time", args->gpuTime,
+                "Also time the parts of a frame on the GPU (timestamp queries; adds a little to the frame times)");
   app->add_flag("--json", args->json, "One JSON object: render_ms, view_panel_ms, view_no_panel_ms, ratio, ...");
   return {app, [args]() {
             int width = 0, height = 0;
@@ -147,6 +188,7 @@ Command addBenchViewCommand(CLI::App& bench) {
             const io::BrickStore store(args->flags.file, args->flags.grid);
             render::RenderOptions options = renderOptionsFromFlags(args->flags);
             options.iso = isoFromFlags(args->flags, store);
+            options.timeGpu = args->gpuTime;
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;
             const OffscreenTarget target(width, height);
@@ -155,14 +197,16 @@ Command addBenchViewCommand(CLI::App& bench) {
             // Warm caches first (one orbit each), then the same orbit timed three ways.
             render::Raycaster raycaster(store, options);
             timeRender(raycaster, camera, width, height, args->frames);
-            const double renderMs = timeRender(raycaster, camera, width, height, args->frames);
-            const double presentMs = timePresent(raycaster, target, width, height, args->frames);
+            const RenderTiming renderTiming = timeRender(raycaster, camera, width, height, args->frames);
+            const double renderMs = renderTiming.ms;
+            const PresentTiming present = timePresent(raycaster, target, width, height, args->frames);
+            const double presentMs = present.ms;
 
             render::ViewerSession session(store, options, camera, render::summarizeDataset(store));
             settleOrbit(session, target, camera, width, height, args->frames);
-            const ViewTiming withPanel = timeViewer(session, target, camera, width, height, args->frames);
+            const ViewTiming withPanel = timeViewer(session, target, camera, width, height, args->frames, args->gpuTime);
             session.settings().showPanel = false;
-            const ViewTiming noPanel = timeViewer(session, target, camera, width, height, args->frames);
+            const ViewTiming noPanel = timeViewer(session, target, camera, width, height, args->frames, args->gpuTime);
 
             const double ratio = withPanel.ms / renderMs;
             if (args->json) {
@@ -183,6 +227,12 @@ Command addBenchViewCommand(CLI::App& bench) {
             std::printf("viewer without panel:      %8.3f ms (%d of %d frames complete)\n", noPanel.ms,
                         noPanel.completeFrames, args->frames);
             std::printf("drawing the image alone:   %8.3f ms\n", presentMs);
+            if (args->gpuTime) {
+              std::printf("on the GPU: render passes %.3f ms; image %.3f ms; viewer with panel: pass %.3f, session "
+                          "frame %.3f, ImGui %.3f ms; without: pass %.3f, session frame %.3f, ImGui %.3f ms\n",
+                          renderTiming.gpuMs, present.gpuMs, withPanel.passGpuMs, withPanel.sessionGpuMs,
+                          withPanel.imguiGpuMs, noPanel.passGpuMs, noPanel.sessionGpuMs, noPanel.imguiGpuMs);
+            }
             return 0;
           }};
 }

@@ -194,6 +194,36 @@ void GlBuffer::clear() {
   checkGl("clearing a buffer");
 }
 
+GlReadbackBuffer::GlReadbackBuffer(std::size_t bytes) : bytes_(bytes) {
+  constexpr GLbitfield kFlags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+  glCreateBuffers(1, &id_);
+  glNamedBufferStorage(id_, GLsizeiptr(bytes), nullptr, kFlags | GL_CLIENT_STORAGE_BIT);
+  mapped_ = glMapNamedBufferRange(id_, 0, GLsizeiptr(bytes), kFlags);
+  checkGl("creating a " + std::to_string(bytes) + "-byte read-back buffer");
+  if (!mapped_) throw GlError("mapping a " + std::to_string(bytes) + "-byte read-back buffer failed");
+}
+
+GlReadbackBuffer::~GlReadbackBuffer() {
+  if (id_) {
+    glUnmapNamedBuffer(id_);
+    glDeleteBuffers(1, &id_);
+  }
+}
+
+const void* GlReadbackBuffer::read(const GlBuffer& source, std::size_t bytes, std::size_t offset) {
+  if (bytes > bytes_ || offset + bytes > source.size())
+    throw GlError("reading back " + std::to_string(bytes) + " bytes at " + std::to_string(offset) + " of a " +
+                  std::to_string(source.size()) + "-byte buffer into " + std::to_string(bytes_));
+  glCopyNamedBufferSubData(source.id(), id_, GLintptr(offset), 0, GLsizeiptr(bytes));
+  GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  GLenum status = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
+  while (status == GL_TIMEOUT_EXPIRED) status = glClientWaitSync(fence, 0, 1'000'000'000);
+  glDeleteSync(fence);
+  if (status == GL_WAIT_FAILED) throw GlError("waiting for a read-back failed");
+  checkGl("reading back a buffer");
+  return mapped_;
+}
+
 GlTexture2D::GlTexture2D(GLenum internalFormat, int width, int height)
     : format_(internalFormat), width_(width), height_(height) {
   glCreateTextures(GL_TEXTURE_2D, 1, &id_);

@@ -92,6 +92,24 @@ class GlBuffer {
   std::size_t bytes_ = 0;
 };
 
+// A small host-visible buffer (persistently mapped) into which results are copied on the GPU and read
+// after a fence: the CPU waits only for the commands before the copy, and nothing is copied back
+// through the driver (what glGetBufferSubData does).
+class GlReadbackBuffer {
+ public:
+  explicit GlReadbackBuffer(std::size_t bytes);
+  GlReadbackBuffer(const GlReadbackBuffer&) = delete;
+  GlReadbackBuffer& operator=(const GlReadbackBuffer&) = delete;
+  ~GlReadbackBuffer();
+  // Copies `bytes` of `source` from `offset` and waits until the copy is done; returns the bytes.
+  const void* read(const GlBuffer& source, std::size_t bytes, std::size_t offset = 0);
+
+ private:
+  GLuint id_ = 0;
+  std::size_t bytes_ = 0;
+  const void* mapped_ = nullptr;
+};
+
 // A 2D texture with immutable storage of one level (glTextureStorage2D), e.g. GL_RGBA32F, used as a
 // compute shader image.
 class GlTexture2D {

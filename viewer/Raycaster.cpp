@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -64,6 +65,11 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   // (both conservative; the image is the same, only the work skipped differs).
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   if (!(renderer && std::string(renderer).find("llvmpipe") != std::string::npos)) defines += "#define FCC_SLOT_BOUNDS_BB 1\n";
+  const auto at = [this](const char* name) { return program_.uniformLocation(name); };
+  uniforms_ = Uniforms{at("uResolution"), at("uEye"), at("uForward"), at("uRight"), at("uUp"), at("uIndexFromWorld"),
+                       at("uNormalFromIndex"), at("uIso"), at("uBrickMin"), at("uBrickDims"), at("uNodeDims"),
+                       at("uPass"), at("uFirstPass"), at("uRequestCapacity"), at("uLookahead"), at("uSkipEmpty"),
+                       at("uFiniteDifferenceNormals"), at("uSurfaceColor"), at("uLightDir")};
   slotBoundsProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/slot_bounds.comp"), defines),
                                           "shaders/slot_bounds.comp");
 
@@ -77,6 +83,9 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   nodeTable_ = std::make_unique<GlBuffer>(residency_->nodeEntries().size() * sizeof(uint32_t));
   requests_ = std::make_unique<GlBuffer>((1 + std::size_t(requestCapacity_)) * sizeof(uint32_t));
   requestBits_ = std::make_unique<GlBuffer>((bricksInBox / 32 + 1) * sizeof(uint32_t));
+  requestBits_->clear();
+  requestCountReadback_ = std::make_unique<GlReadbackBuffer>(sizeof(uint32_t));
+  if (options.timeGpu) passTimer_ = std::make_unique<GpuInterval>();
   slotUse_ = std::make_unique<GlBuffer>(slots * sizeof(uint32_t));
   slotUse_->clear();
   loader_ = std::make_unique<BrickLoader>(store, *hostCache_, kUploadBatch);
@@ -150,18 +159,19 @@ void Raycaster::restartRays(int width, int height) {
     normalDepth_ = GlTexture2D(GL_RGBA32F, width, height);
     resume_ = GlTexture2D(GL_R32F, width, height);
   }
-  const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  resume_.clear(zero);  // every ray starts at t = 0
+  firstPass_ = true;  // every ray starts at t = 0; the first pass writes every pixel's resume value
 }
 
-uint32_t Raycaster::dispatchPass(const CameraFrame& frame, int width, int height) {
+Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int width, int height) {
   ++pass_;
-  // Only the count: entries past it are never read (clearing the whole 256 KiB list cost time per pass).
+  // Only the count: entries past it are never read (clearing the whole 256 KiB list cost time per
+  // pass); and the request bits only after a pass that set some.
   const uint32_t zero = 0;
   requests_->write(&zero, sizeof zero);
-  requestBits_->clear();
+  if (requestBitsDirty_) requestBits_->clear();
 
   const GLuint p = program_.id();
+  const Uniforms& u = uniforms_;
   const glm::dmat4 indexFromWorld = glm::inverse(store_.worldFromIndex());
   const glm::mat4 indexFromWorldF(indexFromWorld);
   const glm::mat3 normalFromIndex = glm::transpose(glm::mat3(indexFromWorldF));
@@ -169,25 +179,26 @@ uint32_t Raycaster::dispatchPass(const CameraFrame& frame, int width, int height
   const glm::vec3 lightSum = l.x * glm::vec3(glm::normalize(frame.right)) + l.y * glm::vec3(glm::normalize(frame.up)) -
                              l.z * glm::vec3(frame.forward);
   const glm::vec3 lightDir = glm::length(lightSum) > 0.0f ? glm::normalize(lightSum) : -glm::vec3(frame.forward);
-  glProgramUniform2i(p, program_.uniformLocation("uResolution"), width, height);
+  glProgramUniform2i(p, u.resolution, width, height);
   const glm::vec3 eye(frame.eye), forward(frame.forward), right(frame.right), up(frame.up);
-  glProgramUniform3fv(p, program_.uniformLocation("uEye"), 1, &eye.x);
-  glProgramUniform3fv(p, program_.uniformLocation("uForward"), 1, &forward.x);
-  glProgramUniform3fv(p, program_.uniformLocation("uRight"), 1, &right.x);
-  glProgramUniform3fv(p, program_.uniformLocation("uUp"), 1, &up.x);
-  glProgramUniformMatrix4fv(p, program_.uniformLocation("uIndexFromWorld"), 1, GL_FALSE, &indexFromWorldF[0][0]);
-  glProgramUniformMatrix3fv(p, program_.uniformLocation("uNormalFromIndex"), 1, GL_FALSE, &normalFromIndex[0][0]);
-  glProgramUniform1f(p, program_.uniformLocation("uIso"), options_.iso);
-  glProgramUniform3iv(p, program_.uniformLocation("uBrickMin"), 1, &residency_->brickMin().x);
-  glProgramUniform3iv(p, program_.uniformLocation("uBrickDims"), 1, &residency_->brickDims().x);
-  glProgramUniform3iv(p, program_.uniformLocation("uNodeDims"), 1, &residency_->nodeDims().x);
-  glProgramUniform1ui(p, program_.uniformLocation("uPass"), pass_);
-  glProgramUniform1ui(p, program_.uniformLocation("uRequestCapacity"), requestCapacity_);
-  glProgramUniform1i(p, program_.uniformLocation("uLookahead"), options_.lookahead);
-  glProgramUniform1i(p, program_.uniformLocation("uSkipEmpty"), options_.skipEmpty ? 1 : 0);
-  glProgramUniform1i(p, program_.uniformLocation("uFiniteDifferenceNormals"), options_.finiteDifferenceNormals ? 1 : 0);
-  glProgramUniform3fv(p, program_.uniformLocation("uSurfaceColor"), 1, &options_.surfaceColor.x);
-  glProgramUniform3fv(p, program_.uniformLocation("uLightDir"), 1, &lightDir.x);
+  glProgramUniform3fv(p, u.eye, 1, &eye.x);
+  glProgramUniform3fv(p, u.forward, 1, &forward.x);
+  glProgramUniform3fv(p, u.right, 1, &right.x);
+  glProgramUniform3fv(p, u.up, 1, &up.x);
+  glProgramUniformMatrix4fv(p, u.indexFromWorld, 1, GL_FALSE, &indexFromWorldF[0][0]);
+  glProgramUniformMatrix3fv(p, u.normalFromIndex, 1, GL_FALSE, &normalFromIndex[0][0]);
+  glProgramUniform1f(p, u.iso, options_.iso);
+  glProgramUniform3iv(p, u.brickMin, 1, &residency_->brickMin().x);
+  glProgramUniform3iv(p, u.brickDims, 1, &residency_->brickDims().x);
+  glProgramUniform3iv(p, u.nodeDims, 1, &residency_->nodeDims().x);
+  glProgramUniform1ui(p, u.pass, pass_);
+  glProgramUniform1i(p, u.firstPass, firstPass_ ? 1 : 0);
+  glProgramUniform1ui(p, u.requestCapacity, requestCapacity_);
+  glProgramUniform1i(p, u.lookahead, options_.lookahead);
+  glProgramUniform1i(p, u.skipEmpty, options_.skipEmpty ? 1 : 0);
+  glProgramUniform1i(p, u.finiteDifferenceNormals, options_.finiteDifferenceNormals ? 1 : 0);
+  glProgramUniform3fv(p, u.surfaceColor, 1, &options_.surfaceColor.x);
+  glProgramUniform3fv(p, u.lightDir, 1, &lightDir.x);
 
   pool_->bind();
   pageTable_->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
@@ -202,14 +213,20 @@ uint32_t Raycaster::dispatchPass(const CameraFrame& frame, int width, int height
 
   program_.use();
   const glm::ivec2 group = options_.workGroup;
+  if (passTimer_) passTimer_->begin();
   glDispatchCompute(GLuint((width + group.x - 1) / group.x), GLuint((height + group.y - 1) / group.y), 1);
+  if (passTimer_) passTimer_->end();
+  firstPass_ = false;
   // Texture fetch too: the viewer samples the colour image the pass wrote with imageStore.
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                   GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-  checkGl("raycasting pass " + std::to_string(pass_));
-  uint32_t count = 0;
-  requests_->read(&count, sizeof count);
-  return count;
+  checkGl("raycasting pass");
+  PassResult result;
+  // Waits for the pass: every command before the copy (the pass included) has completed after it.
+  std::memcpy(&result.requested, requestCountReadback_->read(*requests_, sizeof(uint32_t)), sizeof(uint32_t));
+  requestBitsDirty_ = result.requested != 0;
+  if (passTimer_) result.gpuSeconds = passTimer_->seconds();
+  return result;
 }
 
 std::vector<glm::ivec3> Raycaster::requestedBricks(uint32_t requestCount) const {
@@ -267,7 +284,9 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
   stats.bricksNeeded = residency_->neededCount();
   for (;;) {
     ++stats.passes;
-    const uint32_t requested = dispatchPass(frame, width, height);
+    const PassResult pass = dispatchPass(frame, width, height);
+    stats.gpuSeconds += pass.gpuSeconds;
+    const uint32_t requested = pass.requested;
     if (requested == 0) break;
     if (stats.passes >= kMaxPasses) throw Error("renderer: the frame did not complete in " + std::to_string(kMaxPasses) + " passes");
     loader_->request(requestedBricks(requested));
@@ -282,7 +301,7 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
     uploadPageTable();
     stats.bricksUploaded += uploaded;
   }
-  glFinish();
+  // No glFinish: the last pass's read-back waited for every command of the frame.
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
@@ -320,7 +339,9 @@ StepStats Raycaster::step(const Camera& camera, int width, int height, double up
     return stats;
   }
   stats.dispatched = true;
-  stats.requested = dispatchPass(frame, width, height);
+  const PassResult pass = dispatchPass(frame, width, height);
+  stats.requested = pass.requested;
+  stats.gpuSeconds = pass.gpuSeconds;
   if (stats.requested == 0) {
     stepComplete_ = true;
     stats.complete = true;

@@ -21,6 +21,7 @@
 #include "BrickPool.h"
 #include "Camera.h"
 #include "GlProgram.h"
+#include "GpuTimer.h"
 #include "Residency.h"
 #include "io/BrickCache.h"
 #include "io/BrickStore.h"
@@ -38,6 +39,7 @@ struct RenderOptions {
   bool skipEmpty = true;   // skip nodes and bricks whose bounds exclude the isovalue
   int lookahead = 2;       // bricks a stopped ray requests beyond its first missing one
   bool finiteDifferenceNormals = false;  // central differences instead of the analytic gradient
+  bool timeGpu = false;    // time every raycasting pass on the GPU (FrameStats::gpuSeconds; benchmarks)
   glm::vec3 surfaceColor{0.85f, 0.72f, 0.52f};
   // Direction towards the light in camera space: x right, y up, z towards the viewer.
   glm::vec3 lightInCamera{0.3f, 0.6f, 1.0f};
@@ -62,6 +64,7 @@ struct FrameStats {
   uint64_t bricksUploaded = 0;
   uint64_t bricksNeeded = 0;     // bricks whose bounds hold the isovalue
   double seconds = 0.0;
+  double gpuSeconds = 0.0;       // the passes on the GPU alone (RenderOptions::timeGpu; else 0)
 };
 
 // What one step() of a progressive frame did.
@@ -72,6 +75,7 @@ struct StepStats {
   uint32_t requested = 0;      // bricks the pass's rays asked for
   uint32_t uploaded = 0;       // bricks uploaded into the pool this step
   std::size_t streaming = 0;   // bricks queued or decoding on the loader thread
+  double gpuSeconds = 0.0;     // the pass on the GPU alone (RenderOptions::timeGpu; else 0)
 };
 
 class Raycaster {
@@ -113,7 +117,11 @@ class Raycaster {
 
  private:
   void restartRays(int width, int height);
-  uint32_t dispatchPass(const CameraFrame& frame, int width, int height);
+  struct PassResult {
+    uint32_t requested = 0;  // bricks the pass's rays asked for
+    double gpuSeconds = 0.0;
+  };
+  PassResult dispatchPass(const CameraFrame& frame, int width, int height);
   std::vector<glm::ivec3> requestedBricks(uint32_t requestCount) const;
   uint32_t upload(const std::vector<LoadedBrick>& loaded, std::vector<uint32_t>& slotLastUse);
   std::vector<uint32_t> readSlotUse() const;
@@ -123,6 +131,8 @@ class Raycaster {
   const io::BrickStore& store_;
   RenderOptions options_;
   uint32_t pass_ = 0;
+  bool firstPass_ = true;          // the next pass starts every ray at the eye (no resume image read)
+  bool requestBitsDirty_ = false;  // the last pass requested bricks: their bits need clearing
   uint32_t requestCapacity_ = 0;
   uint64_t bricksUploaded_ = 0;
   std::unique_ptr<Residency> residency_;
@@ -137,6 +147,13 @@ class Raycaster {
   uint64_t settings_ = 1;  // bumped by every change of the isovalue or an option
   bool stepComplete_ = false;
   GlProgram program_, slotBoundsProgram_;
+  // raycast.comp's uniform locations, looked up once.
+  struct Uniforms {
+    GLint resolution, eye, forward, right, up, indexFromWorld, normalFromIndex, iso, brickMin, brickDims, nodeDims,
+        pass, firstPass, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir;
+  } uniforms_{};
+  std::unique_ptr<GlReadbackBuffer> requestCountReadback_;
+  std::unique_ptr<GpuInterval> passTimer_;
   std::unique_ptr<BrickPool> pool_;
   std::unique_ptr<GlBuffer> slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;
   GlTexture2D color_, normalDepth_, resume_;

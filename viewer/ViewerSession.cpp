@@ -91,6 +91,7 @@ void ViewerSession::updateStats(const StepStats& step) {
   stats_.needed = raycaster_.neededCount();
   stats_.missing = raycaster_.missingCount();
   if (step.dispatched) stats_.requested = step.requested;
+  stats_.passGpuMs = 1e3 * step.gpuSeconds;
   stats_.streaming = step.streaming;
   stats_.complete = step.complete;
 }

@@ -41,6 +41,7 @@ struct ViewerStats {
   std::size_t streaming = 0;     // queued or decoding on the loader thread
   bool complete = false;         // the image is final for this view
   double uploadMiBPerSecond = 0.0;
+  double passGpuMs = 0.0;        // the last raycasting pass on the GPU (RenderOptions::timeGpu; else 0)
 };
 
 class ViewerSession {
