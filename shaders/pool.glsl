@@ -72,8 +72,14 @@ float coefficientAt(ivec3 ijk) {
 #endif
 }
 
+// Written out rather than looped: constant indices keep the 19 values in registers whatever the
+// compiler decides about unrolling (a dynamically indexed array may live in local memory).
+#define FCC_GATHER(i) s.v[i] = coefficientAt(fcc_stencil_site(frame, i))
 FccSamples gatherStencil(FccFrame frame) {
   FccSamples s;
-  for (int i = 0; i < FCC_STENCIL_SIZE; ++i) s.v[i] = coefficientAt(fcc_stencil_site(frame, i));
+  FCC_GATHER(0); FCC_GATHER(1); FCC_GATHER(2); FCC_GATHER(3); FCC_GATHER(4); FCC_GATHER(5); FCC_GATHER(6);
+  FCC_GATHER(7); FCC_GATHER(8); FCC_GATHER(9); FCC_GATHER(10); FCC_GATHER(11); FCC_GATHER(12); FCC_GATHER(13);
+  FCC_GATHER(14); FCC_GATHER(15); FCC_GATHER(16); FCC_GATHER(17); FCC_GATHER(18);
   return s;
 }
+#undef FCC_GATHER

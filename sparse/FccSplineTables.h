@@ -211,4 +211,33 @@ FCC_FUNC float fcc_decasteljau2(FccQuadratic q, FCC_VEC4 l)
     return l.x*p1_0 + l.y*p1_1 + l.z*p1_2 + l.w*p1_3;
 }
 
+/* One de Casteljau step each: cubic -> quadratic -> linear coefficients at l; with
+ * different points per step they give the blossom (polar form), e.g. a ray segment's
+ * Bernstein coefficients. */
+FCC_FUNC FccQuadratic fcc_decasteljau_step3(FccCubic c, FCC_VEC4 l)
+{
+    FccQuadratic r;
+    r.b[0] = l.x*c.b[0] + l.y*c.b[1] + l.z*c.b[2] + l.w*c.b[3];
+    r.b[1] = l.x*c.b[1] + l.y*c.b[4] + l.z*c.b[5] + l.w*c.b[6];
+    r.b[2] = l.x*c.b[2] + l.y*c.b[5] + l.z*c.b[7] + l.w*c.b[8];
+    r.b[3] = l.x*c.b[3] + l.y*c.b[6] + l.z*c.b[8] + l.w*c.b[9];
+    r.b[4] = l.x*c.b[4] + l.y*c.b[10] + l.z*c.b[11] + l.w*c.b[12];
+    r.b[5] = l.x*c.b[5] + l.y*c.b[11] + l.z*c.b[13] + l.w*c.b[14];
+    r.b[6] = l.x*c.b[6] + l.y*c.b[12] + l.z*c.b[14] + l.w*c.b[15];
+    r.b[7] = l.x*c.b[7] + l.y*c.b[13] + l.z*c.b[16] + l.w*c.b[17];
+    r.b[8] = l.x*c.b[8] + l.y*c.b[14] + l.z*c.b[17] + l.w*c.b[18];
+    r.b[9] = l.x*c.b[9] + l.y*c.b[15] + l.z*c.b[18] + l.w*c.b[19];
+    return r;
+}
+
+FCC_FUNC FCC_VEC4 fcc_decasteljau_step2(FccQuadratic q, FCC_VEC4 l)
+{
+    FCC_VEC4 r;
+    r.x = l.x*q.b[0] + l.y*q.b[1] + l.z*q.b[2] + l.w*q.b[3];
+    r.y = l.x*q.b[1] + l.y*q.b[4] + l.z*q.b[5] + l.w*q.b[6];
+    r.z = l.x*q.b[2] + l.y*q.b[5] + l.z*q.b[7] + l.w*q.b[8];
+    r.w = l.x*q.b[3] + l.y*q.b[6] + l.z*q.b[8] + l.w*q.b[9];
+    return r;
+}
+
 #endif /* FCC_SPLINE_TABLES_H */

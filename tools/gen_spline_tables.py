@@ -533,6 +533,26 @@ def decasteljau(fname, ctype, arg, deg):
     return L
 
 
+def decasteljau_step(fname, ctype, arg, deg):
+    """One de Casteljau step: the degree deg-1 coefficients at l (blossoming, FccRay.h)."""
+    rtype = "FccQuadratic" if deg == 3 else "FCC_VEC4"
+    L = ["FCC_FUNC %s %s(%s %s, FCC_VEC4 l)" % (rtype, fname, ctype, arg), "{",
+         "    %s r;" % rtype]
+    comps = ("l.x", "l.y", "l.z", "l.w")
+    prev = {a: "%s.b[%d]" % (arg, n) for n, a in enumerate(multi_indices(deg))}
+    for n, a in enumerate(multi_indices(deg - 1)):
+        terms = []
+        for i in range(4):
+            up = list(a)
+            up[i] += 1
+            terms.append("%s*%s" % (comps[i], prev[tuple(up)]))
+        target = "r.b[%d]" % n if deg == 3 else "r.%s" % "xyzw"[n]
+        L.append("    %s = %s;" % (target, " + ".join(terms)))
+    L.append("    return r;")
+    L.append("}")
+    return L
+
+
 def generate():
     stencil, cubic, quad, d3, d2 = derive()
     sidx = {k: i for i, k in enumerate(stencil)}
@@ -621,6 +641,13 @@ def generate():
     out.extend(decasteljau("fcc_decasteljau3", "FccCubic", "c", 3))
     w("")
     out.extend(decasteljau("fcc_decasteljau2", "FccQuadratic", "q", 2))
+    w("")
+    w("/* One de Casteljau step each: cubic -> quadratic -> linear coefficients at l; with")
+    w(" * different points per step they give the blossom (polar form), e.g. a ray segment's")
+    w(" * Bernstein coefficients. */")
+    out.extend(decasteljau_step("fcc_decasteljau_step3", "FccCubic", "c", 3))
+    w("")
+    out.extend(decasteljau_step("fcc_decasteljau_step2", "FccQuadratic", "q", 2))
     w("")
     w("#endif /* FCC_SPLINE_TABLES_H */")
     # integer scaling must be exact
