@@ -46,7 +46,9 @@ uniform ivec3 uBrickMin;
 uniform ivec3 uBrickDims;
 uniform ivec3 uNodeDims;
 uniform uint uPass;
-uniform int uFirstPass;       // 1: every ray starts at the eye (uResume holds an older frame's values)
+uniform int uFirstPass;
+uniform int uFirstColumn;     // columns left of it are covered (the viewer's opaque panel): no rays
+uniform int uColumnOffset;    // the dispatch's first column: uFirstColumn rounded down to a group       // 1: every ray starts at the eye (uResume holds an older frame's values)
 uniform uint uRequestCapacity;
 uniform int uLookahead;       // bricks requested past the first missing one
 uniform int uSkipEmpty;       // 0: evaluate every resident brick (for measuring the skipping)
@@ -169,8 +171,8 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(pixel, uResolution))) return;
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(uColumnOffset, 0);
+  if (any(greaterThanEqual(pixel, uResolution)) || pixel.x < uFirstColumn) return;
   // The first pass writes every pixel's resume value (below), so the image needs no clearing.
   float tResume = uFirstPass != 0 ? 0.0 : imageLoad(uResume, pixel).x;
   if (tResume < 0.0) return;

@@ -140,7 +140,7 @@ PresentTiming timePresent(const render::Raycaster& raycaster, const OffscreenTar
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < frames; ++i) {
     timer.begin();
-    presenter.draw(raycaster.colorTexture(), glm::vec3(0.1f), 0, 0, width, height);
+    presenter.draw(raycaster.colorTexture(), glm::vec3(0.1f));
     timer.end();
     glFinish();
     t.gpuMs += 1e3 * timer.seconds() / frames;

@@ -17,9 +17,10 @@ class Presenter {
   Presenter(const Presenter&) = delete;
   Presenter& operator=(const Presenter&) = delete;
 
-  // Fills the rectangle (x, y, width, height; GL's lower-left origin) of the bound draw framebuffer
-  // with `image`, which must be width x height.
-  void draw(const GlTexture2D& image, const glm::vec3& backgroundLinear, int x, int y, int width, int height);
+  // Fills the bound draw framebuffer's lower-left image.width() x image.height() pixels with `image`,
+  // except the first `firstColumn` columns (covered by the opaque panel, which is drawn there next):
+  // fewer pixels through the raster path, which is slow on compute GPUs.
+  void draw(const GlTexture2D& image, const glm::vec3& backgroundLinear, int firstColumn = 0);
 
  private:
   GlProgram program_;

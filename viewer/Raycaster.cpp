@@ -68,7 +68,7 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   const auto at = [this](const char* name) { return program_.uniformLocation(name); };
   uniforms_ = Uniforms{at("uResolution"), at("uEye"), at("uForward"), at("uRight"), at("uUp"), at("uIndexFromWorld"),
                        at("uNormalFromIndex"), at("uIso"), at("uBrickMin"), at("uBrickDims"), at("uNodeDims"),
-                       at("uPass"), at("uFirstPass"), at("uRequestCapacity"), at("uLookahead"), at("uSkipEmpty"),
+                       at("uPass"), at("uFirstPass"), at("uFirstColumn"), at("uColumnOffset"), at("uRequestCapacity"), at("uLookahead"), at("uSkipEmpty"),
                        at("uFiniteDifferenceNormals"), at("uSurfaceColor"), at("uLightDir")};
   slotBoundsProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/slot_bounds.comp"), defines),
                                           "shaders/slot_bounds.comp");
@@ -162,7 +162,7 @@ void Raycaster::restartRays(int width, int height) {
   firstPass_ = true;  // every ray starts at t = 0; the first pass writes every pixel's resume value
 }
 
-Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int width, int height) {
+Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn) {
   ++pass_;
   // Only the count: entries past it are never read (clearing the whole 256 KiB list cost time per
   // pass); and the request bits only after a pass that set some.
@@ -193,6 +193,11 @@ Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int widt
   glProgramUniform3iv(p, u.nodeDims, 1, &residency_->nodeDims().x);
   glProgramUniform1ui(p, u.pass, pass_);
   glProgramUniform1i(p, u.firstPass, firstPass_ ? 1 : 0);
+  const glm::ivec2 group = options_.workGroup;
+  firstColumn = std::clamp(firstColumn, 0, width);
+  const int columnOffset = firstColumn / group.x * group.x;
+  glProgramUniform1i(p, u.firstColumn, firstColumn);
+  glProgramUniform1i(p, u.columnOffset, columnOffset);
   glProgramUniform1ui(p, u.requestCapacity, requestCapacity_);
   glProgramUniform1i(p, u.lookahead, options_.lookahead);
   glProgramUniform1i(p, u.skipEmpty, options_.skipEmpty ? 1 : 0);
@@ -212,9 +217,9 @@ Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int widt
   resume_.bindImage(2, GL_READ_WRITE);
 
   program_.use();
-  const glm::ivec2 group = options_.workGroup;
   if (passTimer_) passTimer_->begin();
-  glDispatchCompute(GLuint((width + group.x - 1) / group.x), GLuint((height + group.y - 1) / group.y), 1);
+  const int columns = width - columnOffset;
+  glDispatchCompute(GLuint((columns + group.x - 1) / group.x), GLuint((height + group.y - 1) / group.y), 1);
   if (passTimer_) passTimer_->end();
   firstPass_ = false;
   // Texture fetch too: the viewer samples the colour image the pass wrote with imageStore.
@@ -284,7 +289,7 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
   stats.bricksNeeded = residency_->neededCount();
   for (;;) {
     ++stats.passes;
-    const PassResult pass = dispatchPass(frame, width, height);
+    const PassResult pass = dispatchPass(frame, width, height, 0);
     stats.gpuSeconds += pass.gpuSeconds;
     const uint32_t requested = pass.requested;
     if (requested == 0) break;
@@ -306,15 +311,17 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
   return stats;
 }
 
-StepStats Raycaster::step(const Camera& camera, int width, int height, double uploadSeconds) {
+StepStats Raycaster::step(const Camera& camera, int width, int height, double uploadSeconds, int coveredColumns) {
   if (width <= 0 || height <= 0)
     throw ValueError("image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   const CameraFrame frame = cameraFrame(camera, double(width) / double(height));
   StepStats stats;
-  const StepKey key{frame, width, height, settings_};
+  coveredColumns = std::clamp(coveredColumns, 0, width);
+  const StepKey key{frame, width, height, coveredColumns, settings_};
   if (!(key.frame.eye == stepKey_.frame.eye && key.frame.forward == stepKey_.frame.forward &&
         key.frame.right == stepKey_.frame.right && key.frame.up == stepKey_.frame.up &&
-        key.width == stepKey_.width && key.height == stepKey_.height && key.settings == stepKey_.settings)) {
+        key.width == stepKey_.width && key.height == stepKey_.height &&
+        key.coveredColumns == stepKey_.coveredColumns && key.settings == stepKey_.settings)) {
     stepKey_ = key;
     restartRays(width, height);
     loader_->cancelQueued();  // requests of the old view; what still arrives is uploaded all the same
@@ -339,7 +346,7 @@ StepStats Raycaster::step(const Camera& camera, int width, int height, double up
     return stats;
   }
   stats.dispatched = true;
-  const PassResult pass = dispatchPass(frame, width, height);
+  const PassResult pass = dispatchPass(frame, width, height, coveredColumns);
   stats.requested = pass.requested;
   stats.gpuSeconds = pass.gpuSeconds;
   if (stats.requested == 0) {

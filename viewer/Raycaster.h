@@ -93,8 +93,9 @@ class Raycaster {
   // or an option changed since the last step; uploads bricks the loader has finished, for at most
   // `uploadSeconds` (at least one batch); runs one pass continuing every waiting ray unless the frame
   // is complete; queues the bricks the rays asked for. Pixels of rays still waiting show the
-  // background. Never waits for the file.
-  StepStats step(const Camera& camera, int width, int height, double uploadSeconds);
+  // background. Never waits for the file. The first `coveredColumns` columns are hidden under
+  // something opaque (the viewer's panel): no rays are cast there and the image keeps what it had.
+  StepStats step(const Camera& camera, int width, int height, double uploadSeconds, int coveredColumns = 0);
   FrameImages readImages() const;
   // The colour image (RGBA32F, premultiplied, row 0 at the top) for drawing on screen.
   const GlTexture2D& colorTexture() const { return color_; }
@@ -121,7 +122,7 @@ class Raycaster {
     uint32_t requested = 0;  // bricks the pass's rays asked for
     double gpuSeconds = 0.0;
   };
-  PassResult dispatchPass(const CameraFrame& frame, int width, int height);
+  PassResult dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn);
   std::vector<glm::ivec3> requestedBricks(uint32_t requestCount) const;
   uint32_t upload(const std::vector<LoadedBrick>& loaded, std::vector<uint32_t>& slotLastUse);
   std::vector<uint32_t> readSlotUse() const;
@@ -142,6 +143,7 @@ class Raycaster {
   struct StepKey {
     CameraFrame frame;
     int width = 0, height = 0;
+    int coveredColumns = 0;
     uint64_t settings = 0;
   } stepKey_;
   uint64_t settings_ = 1;  // bumped by every change of the isovalue or an option
@@ -150,7 +152,7 @@ class Raycaster {
   // raycast.comp's uniform locations, looked up once.
   struct Uniforms {
     GLint resolution, eye, forward, right, up, indexFromWorld, normalFromIndex, iso, brickMin, brickDims, nodeDims,
-        pass, firstPass, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir;
+        pass, firstPass, firstColumn, columnOffset, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir;
   } uniforms_{};
   std::unique_ptr<GlReadbackBuffer> requestCountReadback_;
   std::unique_ptr<GpuInterval> passTimer_;

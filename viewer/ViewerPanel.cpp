@@ -52,7 +52,8 @@ void ViewerSession::drawPanel(int windowHeight) {
   panelWidth_ = kPanelWidth * scale;
   ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
   ImGui::SetNextWindowSize(ImVec2(panelWidth_, float(windowHeight)));
-  ImGui::SetNextWindowBgAlpha(0.85f);
+  // Opaque: the raycaster casts no rays under it (ViewerSession::frame).
+  ImGui::SetNextWindowBgAlpha(1.0f);
   ImGui::Begin("fccvdb", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoSavedSettings);

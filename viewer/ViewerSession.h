@@ -60,8 +60,9 @@ class ViewerSession {
   bool settled() const { return stats_.complete && stats_.streaming == 0; }
   // Set by the screenshot key (S, F12); cleared by takeScreenshotRequest().
   bool takeScreenshotRequest();
-  // Writes the last frame's raycaster images as EXR (channels as `fccvdb render`).
-  void writeExr(const std::string& path) const;
+  // Writes a complete frame of the current view as EXR (channels as `fccvdb render`), panel columns
+  // included; waits for bricks still streaming.
+  void writeExr(const std::string& path);
 
   const Camera& camera() const { return camera_; }
   void setCamera(const Camera& camera) { camera_ = camera; }

@@ -311,6 +311,47 @@ TEST_F(Render, ProgressiveStepsReachTheBlockingImage) {
   expectSameImage(other, afterMove, "progressive, after the camera moved");
 }
 
+// Columns covered by the viewer's opaque panel get no rays: the uncovered ones match render() bit for
+// bit (also with an evicting pool), and the covered ones keep what the image held before.
+TEST_F(Render, CoveredColumnsAreNotRaycast) {
+  TempDir dir;
+  const std::string blobs = writeSmallBlobs(dir);
+  const render::Camera camera = smallBlobsCamera();
+  const int w = 48, h = 40, covered = 13;  // not a multiple of the work group's width
+  render::RenderOptions options;
+  options.iso = 0.3f;
+  options.gpuCacheBytes = kSmallPoolBytes;
+  const io::BrickStore store(blobs);
+  render::Raycaster raycaster(store, options);
+  render::Camera before = camera;
+  before.eye.x += 30.0;
+  raycaster.render(before, w, h);
+  const render::FrameImages old = raycaster.readImages();
+  render::StepStats s;
+  int steps = 0;
+  while (!s.complete && ++steps < 100000) s = raycaster.step(camera, w, h, 0.0, covered);
+  ASSERT_TRUE(s.complete);
+  const render::FrameImages stepped = raycaster.readImages();
+  const render::FrameImages full = renderFile(blobs, camera, w, h, options.iso, options);
+  int uncoveredHits = 0, coveredChanged = 0, coveredWouldChange = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 4; ++c) {
+        const std::size_t i = (std::size_t(y) * w + x) * 4 + c;
+        if (x >= covered) {
+          ASSERT_EQ(stepped.rgba[i], full.rgba[i]) << "pixel " << x << "," << y << " channel " << c;
+          ASSERT_EQ(stepped.normalDepth[i], full.normalDepth[i]) << "pixel " << x << "," << y << " channel " << c;
+          uncoveredHits += c == 3 && full.rgba[i] > 0.5f;
+        } else {
+          coveredChanged += stepped.rgba[i] != old.rgba[i];
+          coveredWouldChange += full.rgba[i] != old.rgba[i];
+        }
+      }
+  EXPECT_GT(uncoveredHits, (w - covered) * h / 20) << "the surface must show beside the cover";
+  EXPECT_GT(coveredWouldChange, 0) << "the two views must differ under the cover for this test to mean anything";
+  EXPECT_EQ(coveredChanged, 0) << "rays were cast under the cover";
+}
+
 // Every brick layout of the pool (viewer/BrickPool.h) reads the same coefficients, so the images
 // are bit-identical, also when a small pool makes bricks move between slots.
 TEST_F(Render, EveryBrickLayoutGivesTheSameImage) {
