@@ -1,13 +1,18 @@
 // `fccvdb view` under Xvfb (Debian's xvfb-run): the automation screenshot shows the panel and the
 // surface, and its 3D area matches `fccvdb render` of the same camera; a missing display and a
 // Cartesian input each give one clear line.
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include "PngRead.h"
 #include "RunCommand.h"
@@ -79,6 +84,52 @@ TEST(CliView, ScreenshotShowsThePanelAndMatchesRenderOutsideIt) {
   EXPECT_GT(surface, compared / 50) << "the surface must show";
   EXPECT_LE(double(outliers), kOutlierFraction * double(compared));
   EXPECT_GT(panelDiffers, long(panel) * a.height / 4) << "the panel must show";
+}
+
+// One float channel of an EXR, row 0 at the top.
+std::vector<float> readExrChannel(const std::string& path, const char* channel, int& width, int& height) {
+  Imf::InputFile file(path.c_str());
+  const auto dw = file.header().dataWindow();
+  width = dw.max.x - dw.min.x + 1;
+  height = dw.max.y - dw.min.y + 1;
+  std::vector<float> values(std::size_t(width) * height);
+  Imf::FrameBuffer fb;
+  fb.insert(channel, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data() - dw.min.x - dw.min.y * width),
+                                sizeof(float), sizeof(float) * width));
+  file.setFrameBuffer(fb);
+  file.readPixels(dw.min.y, dw.max.y);
+  return values;
+}
+
+// The EXR screenshot holds the whole view, the columns under the panel (where the viewer casts no
+// rays) included: the same coverage and depth as `fccvdb render`.
+TEST(CliView, ExrScreenshotHoldsTheWholeView) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
+  TempDir dir;
+  const std::string vdb = dir / "blobs.vdb", shot = dir / "view.exr", ref = dir / "render.exr";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 64,64,64 --quiet").status, 0);
+  const std::string common = vdb + " --res 640x400 --iso 0.4";  // the panel is 330 px wide
+  const CommandResult view = runView(common + " --screenshot " + shot + " --frames 10");
+  ASSERT_EQ(view.status, 0) << view.err;
+  ASSERT_EQ(runFccvdb("render " + common + " -o " + ref + " --quiet").status, 0);
+  int w = 0, h = 0, rw = 0, rh = 0;
+  const std::vector<float> alpha = readExrChannel(shot, "A", w, h), depth = readExrChannel(shot, "Z", w, h);
+  const std::vector<float> refAlpha = readExrChannel(ref, "A", rw, rh), refDepth = readExrChannel(ref, "Z", rw, rh);
+  ASSERT_EQ(w, rw);
+  ASSERT_EQ(h, rh);
+  constexpr float kDepthTolerance = 1e-4f;  // relative: the same renderer, the same rays
+  int hitsLeft = 0, mismatches = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = std::size_t(y) * w + x;
+      const bool same = alpha[i] == refAlpha[i] &&
+                        (std::isinf(refDepth[i]) ? std::isinf(depth[i])
+                                                 : std::abs(depth[i] - refDepth[i]) <= kDepthTolerance * refDepth[i]);
+      mismatches += !same;
+      hitsLeft += x < w / 2 && refAlpha[i] > 0.5f;  // under the panel
+    }
+  EXPECT_GT(hitsLeft, 0) << "the surface must reach the panel's columns for this test to mean anything";
+  EXPECT_EQ(mismatches, 0);
 }
 
 TEST(CliView, NoDisplayGivesOneLineAndStatus1) {
