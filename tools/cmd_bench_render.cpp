@@ -27,12 +27,12 @@ struct Measurement {
 };
 
 Measurement measureOrbit(render::Raycaster& raycaster, const render::Camera& camera, int width, int height,
-                         int warmup, int frames) {
+                         int warmup, int frames, double arc) {
   Measurement m;
-  for (int i = 0; i < warmup; ++i) raycaster.render(orbitStep(camera, i, std::max(warmup, 1)), width, height);
+  for (int i = 0; i < warmup; ++i) raycaster.render(orbitStep(camera, i, std::max(warmup, 1), arc), width, height);
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < frames; ++i) {
-    const render::FrameStats s = raycaster.render(orbitStep(camera, i, frames), width, height);
+    const render::FrameStats s = raycaster.render(orbitStep(camera, i, frames, arc), width, height);
     m.uploads += s.bricksUploaded;
     m.passes += s.passes;
     m.gpuSeconds += s.gpuSeconds;
@@ -48,6 +48,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
   struct Args {
     RenderFlags flags;
     int frames = 60, warmup = 5;
+    double arc = 360.0;
     std::string workGroup = "4x8";
     std::vector<std::string> variants = {"skip+analytic", "skip+fd", "noskip+analytic", "noskip+fd"};
     bool json = false;
@@ -58,7 +59,11 @@ Command addBenchRenderCommand(CLI::App& bench) {
   CLI::App* app = bench.add_subcommand("render", "Frames per second over a camera orbit (skipping on/off, analytic/finite-difference normals)");
   addRenderFlags(*app, args->flags);
   app->add_option("--frames", args->frames, "Timed frames per variant (one orbit)")->capture_default_str()->check(CLI::PositiveNumber);
-  app->add_option("--warmup", args->warmup, "Untimed frames before each variant")->capture_default_str()->check(CLI::NonNegativeNumber);
+  app->add_option("--warmup", args->warmup, "Untimed frames before each variant (the same arc)")->capture_default_str()->check(CLI::NonNegativeNumber);
+  app->add_option("--arc", args->arc,
+                  "Degrees the orbit turns through (360: a full turn; less: a user's drag, whose bricks a pool can hold)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 3600.0));
   app->add_option("--work-group", args->workGroup, "Pixels per raycasting work group WxH (tuning)")->capture_default_str();
   app->add_option("--variants", args->variants, "Variants to time (default: all four)")
       ->check(CLI::IsMember({"skip+analytic", "skip+fd", "noskip+analytic", "noskip+fd"}));
@@ -103,7 +108,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
                   if (std::find(args->variants.begin(), args->variants.end(), variant) == args->variants.end()) continue;
                   raycaster.setSkipEmpty(skip);
                   raycaster.setFiniteDifferenceNormals(fd);
-                  Measurement m = measureOrbit(raycaster, camera, width, height, args->warmup, args->frames);
+                  Measurement m = measureOrbit(raycaster, camera, width, height, args->warmup, args->frames, args->arc);
                   m.layout = render::brickLayoutName(layout);
                   m.skip = skip;
                   m.normals = fd ? "finite-difference" : "analytic";
@@ -117,12 +122,12 @@ Command addBenchRenderCommand(CLI::App& bench) {
               for (std::size_t i = 0; i < results.size(); ++i) {
                 const Measurement& m = results[i];
                 std::printf("%s\n {\"variant\": %s, \"layout\": %s, \"skip\": %s, \"normals\": %s, "
-                            "\"res\": [%d, %d], \"iso\": %s, \"frames\": %d, \"fps\": %s, \"frame_ms\": %s, "
+                            "\"res\": [%d, %d], \"arc_degrees\": %s, \"iso\": %s, \"frames\": %d, \"fps\": %s, \"frame_ms\": %s, "
                             "\"gpu_frame_ms\": %s, \"passes_per_frame\": %s, \"bricks_streamed_per_second\": %s, "
                             "\"first_frame_seconds\": %s, \"first_frame_bricks\": %llu, \"pool_mib\": %s, "
                             "\"device\": %s, \"file\": %s}",
                             i ? "," : "", jsonString(m.variant).c_str(), jsonString(m.layout).c_str(), m.skip ? "true" : "false",
-                            jsonString(m.normals).c_str(), width, height, jsonNumber(iso).c_str(), m.frames,
+                            jsonString(m.normals).c_str(), width, height, jsonNumber(args->arc).c_str(), jsonNumber(iso).c_str(), m.frames,
                             jsonNumber(m.frames / m.seconds).c_str(), jsonNumber(1e3 * m.seconds / m.frames).c_str(),
                             args->gpuTime ? jsonNumber(1e3 * m.gpuSeconds / m.frames).c_str() : "null",
                             jsonNumber(double(m.passes) / m.frames).c_str(), jsonNumber(m.uploads / m.seconds).c_str(),
@@ -133,8 +138,9 @@ Command addBenchRenderCommand(CLI::App& bench) {
               std::printf("\n]\n");
               return 0;
             }
-            std::printf("device: %s\nfile:   %s, iso %g, %dx%d, pool %.0f MiB (%u slots)\n", gl.renderer().c_str(),
-                        args->flags.file.c_str(), double(iso), width, height, poolMiB, slotCount);
+            std::printf("device: %s\nfile:   %s, iso %g, %dx%d, pool %.0f MiB (%u slots), orbit %g degrees\n",
+                        gl.renderer().c_str(), args->flags.file.c_str(), double(iso), width, height, poolMiB, slotCount,
+                        args->arc);
             std::printf("first complete frame (cold caches, %s): %.3f s, %llu bricks streamed (%.0f bricks/s), %d passes\n",
                         render::brickLayoutName(layouts.front()).c_str(), cold.seconds, (unsigned long long)cold.bricksUploaded, cold.bricksUploaded / cold.seconds,
                         cold.passes);
