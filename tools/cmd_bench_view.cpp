@@ -206,6 +206,8 @@ Command addBenchViewCommand(CLI::App& bench) {
             settleOrbit(session, target, camera, width, height, args->frames);
             const ViewTiming withPanel = timeViewer(session, target, camera, width, height, args->frames, args->gpuTime);
             session.settings().showPanel = false;
+            // The columns the panel covered need rays (and maybe bricks) now: settle them too.
+            settleOrbit(session, target, camera, width, height, args->frames);
             const ViewTiming noPanel = timeViewer(session, target, camera, width, height, args->frames, args->gpuTime);
 
             const double ratio = withPanel.ms / renderMs;
