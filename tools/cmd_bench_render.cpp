@@ -147,9 +147,10 @@ Command addBenchRenderCommand(CLI::App& bench) {
             std::printf("%-16s %-18s %10s %10s %10s %8s %14s\n", "layout", "variant", "fps", "frame ms", "gpu ms", "passes",
                         "bricks/s");
             for (const Measurement& m : results) {
-              const std::string gpuMs = args->gpuTime ? std::to_string(1e3 * m.gpuSeconds / m.frames).substr(0, 6) : "-";
+              char gpuMs[32] = "-";
+              if (args->gpuTime) std::snprintf(gpuMs, sizeof gpuMs, "%.3f", 1e3 * m.gpuSeconds / m.frames);
               std::printf("%-16s %-18s %10.1f %10.3f %10s %8.2f %14.0f\n", m.layout.c_str(), m.variant.c_str(),
-                          m.frames / m.seconds, 1e3 * m.seconds / m.frames, gpuMs.c_str(), double(m.passes) / m.frames,
+                          m.frames / m.seconds, 1e3 * m.seconds / m.frames, gpuMs, double(m.passes) / m.frames,
                           m.uploads / m.seconds);
             }
             return 0;
