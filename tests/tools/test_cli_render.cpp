@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <string>
 
@@ -66,6 +67,34 @@ TEST(CliRender, BadInputsGiveOneLineStatus1AndNoOutput) {
     EXPECT_THAT(r.err, HasSubstr(c.says)) << c.args;
   }
   EXPECT_EQ(dir.fileCount(), 1) << "only the input: nothing written for a bad render";
+}
+
+
+// `bench render --json`: one row per layout and variant with the documented keys; --arc and
+// --gpu-time reach the rows (a GPU time that is a positive number, within the frame's wall time
+// allowing for the timer's own resolution).
+TEST(CliRender, BenchRenderJsonHasTheDocumentedKeys) {
+  TempDir dir;
+  const std::string vdb = dir / "s.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 24,24,24 --quiet").status, 0);
+  const auto r = runFccvdb("bench render " + vdb +
+                           " --res 32x24 --frames 3 --warmup 1 --variants skip+analytic --layout texture-vec4"
+                           " --arc 10 --gpu-time --json");
+  if (failedForLackOfGl(r)) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string json = dir / "bench.json";
+  std::ofstream(json) << r.out;
+  const std::string check =
+      "import json,sys\n"
+      "rows = json.load(open(sys.argv[1]))\n"
+      "assert len(rows) == 1, rows\n"
+      "r = rows[0]\n"
+      "assert r['variant'] == 'skip+analytic' and r['layout'] == 'texture-vec4', r\n"
+      "assert r['arc_degrees'] == 10 and r['res'] == [32, 24] and r['frames'] == 3, r\n"
+      "assert r['fps'] > 0 and r['frame_ms'] > 0 and r['first_frame_seconds'] > 0, r\n"
+      "assert r['gpu_frame_ms'] is not None and 0 < r['gpu_frame_ms'] <= 1.5 * r['frame_ms'], r\n";
+  std::ofstream(dir / "check.py") << check;
+  EXPECT_EQ(std::system(("python3 " + dir / "check.py" + " " + json).c_str()), 0) << r.out;
 }
 
 }  // namespace
