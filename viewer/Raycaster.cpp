@@ -68,8 +68,9 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   const auto at = [this](const char* name) { return program_.uniformLocation(name); };
   uniforms_ = Uniforms{at("uResolution"), at("uEye"), at("uForward"), at("uRight"), at("uUp"), at("uIndexFromWorld"),
                        at("uNormalFromIndex"), at("uIso"), at("uBrickMin"), at("uBrickDims"), at("uNodeDims"),
-                       at("uPass"), at("uFirstPass"), at("uFirstColumn"), at("uColumnOffset"), at("uRequestCapacity"), at("uLookahead"), at("uSkipEmpty"),
-                       at("uFiniteDifferenceNormals"), at("uSurfaceColor"), at("uLightDir")};
+                       at("uPass"), at("uFirstPass"), at("uFirstColumn"), at("uColumnOffset"),
+                       at("uRequestCapacity"), at("uLookahead"), at("uSkipEmpty"), at("uFiniteDifferenceNormals"),
+                       at("uSurfaceColor"), at("uLightDir")};
   slotBoundsProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/slot_bounds.comp"), defines),
                                           "shaders/slot_bounds.comp");
 
