@@ -8,6 +8,9 @@ namespace fcc::render {
 
 Presenter::Presenter() {
   program_ = GlProgram::compute(embedded::shaders("shaders/present.comp"), "shaders/present.comp");
+  backgroundLocation_ = program_.uniformLocation("uBackground");
+  columnOffsetLocation_ = program_.uniformLocation("uColumnOffset");
+  group_ = program_.localSize();
   glCreateFramebuffers(1, &readFramebuffer_);
   checkGl("creating the presenter's framebuffer");
 }
@@ -27,14 +30,14 @@ void Presenter::draw(const GlTexture2D& image, const glm::vec3& backgroundLinear
       throw GlError("presenter: the display image's framebuffer is incomplete");
   }
   if (firstColumn == width) return;
-  const std::array<GLint, 3> group = program_.localSize();
-  const int columnOffset = firstColumn / group[0] * group[0];
-  glProgramUniform3fv(program_.id(), program_.uniformLocation("uBackground"), 1, &backgroundLinear.x);
-  glProgramUniform1i(program_.id(), program_.uniformLocation("uColumnOffset"), columnOffset);
+  const int columnOffset = firstColumn / group_[0] * group_[0];
+  glProgramUniform3fv(program_.id(), backgroundLocation_, 1, &backgroundLinear.x);
+  glProgramUniform1i(program_.id(), columnOffsetLocation_, columnOffset);
   image.bindImage(0, GL_READ_ONLY);
   display_.bindImage(1, GL_WRITE_ONLY);
   program_.use();
-  glDispatchCompute(GLuint((width - columnOffset + group[0] - 1) / group[0]), GLuint((height + group[1] - 1) / group[1]), 1);
+  glDispatchCompute(GLuint((width - columnOffset + group_[0] - 1) / group_[0]), GLuint((height + group_[1] - 1) / group_[1]),
+                    1);
   glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
 
   GLint drawFramebuffer = 0;

@@ -6,6 +6,8 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
+
 #include "GlProgram.h"
 
 namespace fcc::render {
@@ -24,6 +26,8 @@ class Presenter {
 
  private:
   GlProgram program_;
+  GLint backgroundLocation_ = -1, columnOffsetLocation_ = -1;  // looked up once
+  std::array<GLint, 3> group_{};                               // the compute shader's work group
   GlTexture2D display_;     // RGBA8, the encoded image
   GLuint readFramebuffer_ = 0;  // wraps display_ as the blit's source
 };

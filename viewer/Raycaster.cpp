@@ -164,6 +164,7 @@ void Raycaster::restartRays(int width, int height) {
 }
 
 Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn) {
+  // firstColumn is in [0, width]: step() clamps it (its key holds the clamped value), render() passes 0.
   ++pass_;
   // Only the count: entries past it are never read (clearing the whole 256 KiB list cost time per
   // pass); and the request bits only after a pass that set some.
@@ -195,7 +196,6 @@ Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int widt
   glProgramUniform1ui(p, u.pass, pass_);
   glProgramUniform1i(p, u.firstPass, firstPass_ ? 1 : 0);
   const glm::ivec2 group = options_.workGroup;
-  firstColumn = std::clamp(firstColumn, 0, width);
   const int columnOffset = firstColumn / group.x * group.x;
   glProgramUniform1i(p, u.firstColumn, firstColumn);
   glProgramUniform1i(p, u.columnOffset, columnOffset);

@@ -75,4 +75,13 @@ struct TempDir {
   }
 };
 
+// Runs `script` (Python asserts) on `jsonText` (a command's --json output), both written into `dir`;
+// returns python3's exit status (0: every assert held).
+inline int checkJsonWithPython(const TempDir& dir, const std::string& jsonText, const std::string& script) {
+  const std::string json = dir / "check.json", check = dir / "check.py";
+  std::ofstream(json) << jsonText;
+  std::ofstream(check) << "import json,sys\nrows = json.load(open(sys.argv[1]))\n" << script;
+  return std::system(("python3 " + check + " " + json).c_str());
+}
+
 }  // namespace fcc::test
