@@ -22,8 +22,15 @@ layout(local_size_x = FCC_GROUP_X, local_size_y = FCC_GROUP_Y) in;
 layout(std430, binding = 1) readonly buffer PageTable { uint pageEntries[]; };
 // Per node of 16^3 bricks (relative to uBrickMin): 0 if no brick in it needs evaluation.
 layout(std430, binding = 2) readonly buffer NodeTable { uint nodeEntries[]; };
-// Bricks requested this pass: count, then brick indices (bit 31 set for look-ahead requests).
-layout(std430, binding = 3) buffer Requests { uint requestCount; uint requests[]; };
+// What a pass tells the host, read back in one copy: the count of bricks requested this pass; the
+// pixels that show the surface, over every pass of this view (first and last column and row: the
+// viewer draws only what changed, see viewer/RedrawTracker.h); then the requested bricks' indices
+// (bit 31 set for look-ahead requests). Coherent: noteSurfacePixel reads what other groups wrote.
+layout(std430, binding = 3) coherent buffer Requests {
+  uint requestCount;
+  int surfaceMinX, surfaceMinY, surfaceMaxX, surfaceMaxY;
+  uint requests[];
+};
 // One bit per brick: requested already this pass.
 layout(std430, binding = 4) buffer RequestBits { uint requestBits[]; };
 // Per slot: the last pass that read it (for least-recently-used eviction).
@@ -82,6 +89,16 @@ void request(uint brickIndex, bool lookahead) {
   if ((old & bit) != 0u) return;
   uint at = atomicAdd(requestCount, 1u);
   if (at < uRequestCapacity) requests[at] = brickIndex | (lookahead ? 0x80000000u : 0u);
+}
+
+// Grows the surface rectangle to hold `pixel`. Reads first: the rectangle only grows, so a stale read
+// costs at most an atomic that changes nothing, and most pixels are inside it already (an atomic per
+// pixel would queue every hit pixel of the frame on these four words).
+void noteSurfacePixel(ivec2 pixel) {
+  if (pixel.x < surfaceMinX) atomicMin(surfaceMinX, pixel.x);
+  if (pixel.y < surfaceMinY) atomicMin(surfaceMinY, pixel.y);
+  if (pixel.x > surfaceMaxX) atomicMax(surfaceMaxX, pixel.x);
+  if (pixel.y > surfaceMaxY) atomicMax(surfaceMaxY, pixel.y);
 }
 
 // Slab test of the ray against a box; returns (tNear, tFar).
@@ -265,4 +282,5 @@ void main() {
   vec3 color = uSurfaceColor * (0.15 + 0.85 * diffuse);
   imageStore(uColor, pixel, vec4(color, 1.0));
   imageStore(uNormalDepth, pixel, vec4(n, hit.t));
+  noteSurfacePixel(pixel);
 }

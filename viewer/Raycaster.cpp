@@ -82,10 +82,10 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   uploadedSlots_ = std::make_unique<GlBuffer>(kUploadBatch * sizeof(uint32_t));
   pageTable_ = std::make_unique<GlBuffer>(bricksInBox * sizeof(uint32_t));
   nodeTable_ = std::make_unique<GlBuffer>(residency_->nodeEntries().size() * sizeof(uint32_t));
-  requests_ = std::make_unique<GlBuffer>((1 + std::size_t(requestCapacity_)) * sizeof(uint32_t));
+  requests_ = std::make_unique<GlBuffer>((kRequestsHeaderWords + std::size_t(requestCapacity_)) * sizeof(uint32_t));
   requestBits_ = std::make_unique<GlBuffer>((bricksInBox / 32 + 1) * sizeof(uint32_t));
   requestBits_->clear();
-  requestCountReadback_ = std::make_unique<GlReadbackBuffer>(sizeof(uint32_t));
+  passResultsReadback_ = std::make_unique<GlReadbackBuffer>(kRequestsHeaderWords * sizeof(uint32_t));
   if (options.timeGpu) passTimer_ = std::make_unique<GpuInterval>();
   slotUse_ = std::make_unique<GlBuffer>(slots * sizeof(uint32_t));
   slotUse_->clear();
@@ -161,6 +161,10 @@ void Raycaster::restartRays(int width, int height) {
     resume_ = GlTexture2D(GL_R32F, width, height);
   }
   firstPass_ = true;  // every ray starts at t = 0; the first pass writes every pixel's resume value
+  // No surface pixel yet: min column and row past any pixel, max ones before any.
+  const int32_t noSurface[4] = {std::numeric_limits<int32_t>::max(), std::numeric_limits<int32_t>::max(), -1, -1};
+  requests_->write(noSurface, sizeof noSurface, sizeof(uint32_t));
+  surfaceRect_ = PixelRect{};
 }
 
 Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn) {
@@ -229,7 +233,12 @@ Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int widt
   checkGl("raycasting pass");
   PassResult result;
   // Waits for the pass: every command before the copy (the pass included) has completed after it.
-  std::memcpy(&result.requested, requestCountReadback_->read(*requests_, sizeof(uint32_t)), sizeof(uint32_t));
+  uint32_t header[kRequestsHeaderWords];
+  std::memcpy(header, passResultsReadback_->read(*requests_, sizeof header), sizeof header);
+  result.requested = header[0];
+  int32_t surface[4];
+  std::memcpy(surface, header + 1, sizeof surface);
+  surfaceRect_ = surface[2] >= surface[0] ? PixelRect{surface[0], surface[1], surface[2] + 1, surface[3] + 1} : PixelRect{};
   requestBitsDirty_ = result.requested != 0;
   if (passTimer_) result.gpuSeconds = passTimer_->seconds();
   return result;
@@ -238,7 +247,7 @@ Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int widt
 std::vector<glm::ivec3> Raycaster::requestedBricks(uint32_t requestCount) const {
   const uint32_t n = std::min(requestCount, requestCapacity_);
   std::vector<uint32_t> raw(n);
-  requests_->read(raw.data(), n * sizeof(uint32_t), sizeof(uint32_t));
+  requests_->read(raw.data(), n * sizeof(uint32_t), kRequestsHeaderWords * sizeof(uint32_t));
   // The bricks rays stopped at come first: loading them guarantees progress; look-ahead ones follow.
   std::vector<glm::ivec3> bricks;
   bricks.reserve(n);

@@ -22,6 +22,7 @@
 #include "Camera.h"
 #include "GlProgram.h"
 #include "GpuTimer.h"
+#include "PixelRect.h"
 #include "Residency.h"
 #include "io/BrickCache.h"
 #include "io/BrickStore.h"
@@ -99,6 +100,9 @@ class Raycaster {
   FrameImages readImages() const;
   // The colour image (RGBA32F, premultiplied, row 0 at the top) for drawing on screen.
   const GlTexture2D& colorTexture() const { return color_; }
+  // The pixels of the colour image that show the surface (A = 1), as of the last pass; the rest shows
+  // the background. Empty when no ray hit.
+  PixelRect surfaceRect() const { return surfaceRect_; }
 
   uint32_t slotCount() const { return residency_->slotCount(); }
   const io::BrickCache& hostCache() const { return *hostCache_; }
@@ -122,6 +126,8 @@ class Raycaster {
     uint32_t requested = 0;  // bricks the pass's rays asked for
     double gpuSeconds = 0.0;
   };
+  // The Requests buffer (shaders/raycast.comp) starts with the count and the surface rectangle.
+  static constexpr std::size_t kRequestsHeaderWords = 5;
   PassResult dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn);
   std::vector<glm::ivec3> requestedBricks(uint32_t requestCount) const;
   uint32_t upload(const std::vector<LoadedBrick>& loaded, std::vector<uint32_t>& slotLastUse);
@@ -134,6 +140,7 @@ class Raycaster {
   uint32_t pass_ = 0;
   bool firstPass_ = true;          // the next pass starts every ray at the eye (no resume image read)
   bool requestBitsDirty_ = false;  // the last pass requested bricks: their bits need clearing
+  PixelRect surfaceRect_;
   uint32_t requestCapacity_ = 0;
   uint64_t bricksUploaded_ = 0;
   std::unique_ptr<Residency> residency_;
@@ -154,7 +161,7 @@ class Raycaster {
     GLint resolution, eye, forward, right, up, indexFromWorld, normalFromIndex, iso, brickMin, brickDims, nodeDims,
         pass, firstPass, firstColumn, columnOffset, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir;
   } uniforms_{};
-  std::unique_ptr<GlReadbackBuffer> requestCountReadback_;
+  std::unique_ptr<GlReadbackBuffer> passResultsReadback_;
   std::unique_ptr<GpuInterval> passTimer_;
   std::unique_ptr<BrickPool> pool_;
   std::unique_ptr<GlBuffer> slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;

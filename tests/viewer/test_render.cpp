@@ -46,6 +46,27 @@ int expectSameImage(const render::FrameImages& reference, const render::FrameIma
   return hits;
 }
 
+// The rectangle of pixels in columns from `firstColumn` on that show the surface (A = 1).
+render::PixelRect surfacePixels(const render::FrameImages& image, int firstColumn = 0) {
+  render::PixelRect r;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = firstColumn; x < image.width; ++x)
+      if (image.rgba[(std::size_t(y) * image.width + x) * 4 + 3] > 0.5f) r = render::united(r, {x, y, x + 1, y + 1});
+  return r;
+}
+
+std::string describe(const render::PixelRect& r) {
+  return "[" + std::to_string(r.x0) + "," + std::to_string(r.x1) + ") x [" + std::to_string(r.y0) + "," +
+         std::to_string(r.y1) + ")";
+}
+
+// Raycaster::surfaceRect() is exactly the rectangle of the image's surface pixels.
+void expectSurfaceRect(const render::Raycaster& raycaster, int firstColumn, const std::string& what) {
+  const render::PixelRect expected = surfacePixels(raycaster.readImages(), firstColumn);
+  EXPECT_TRUE(raycaster.surfaceRect() == expected)
+      << what << ": surfaceRect " << describe(raycaster.surfaceRect()) << ", image's surface pixels " << describe(expected);
+}
+
 class Render : public GlSuite {};
 
 // f = |x - c|^2 / R^2 is quadratic, so the prefiltered spline reproduces it exactly and the
@@ -276,6 +297,8 @@ TEST_F(Render, ProgressiveStepsReachTheBlockingImage) {
     render::StepStats s;
     for (steps = 1; steps <= 100000; ++steps) {
       s = raycaster.step(cam, w, h, 0.0);
+      // Over the passes of a view the rectangle grows with the image's surface pixels.
+      expectSurfaceRect(raycaster, 0, "step " + std::to_string(steps));
       if (steps == 1) EXPECT_TRUE(s.restarted) << "a new view starts the rays over";
       else EXPECT_FALSE(s.restarted) << "step " << steps;
       if (s.complete) break;
@@ -332,7 +355,11 @@ TEST_F(Render, CoveredColumnsAreNotRaycast) {
   while (!s.complete && ++steps < 100000) s = raycaster.step(camera, w, h, 0.0, covered);
   ASSERT_TRUE(s.complete);
   const render::FrameImages stepped = raycaster.readImages();
+  expectSurfaceRect(raycaster, covered, "steps beside the cover");
   const render::FrameImages full = renderFile(blobs, camera, w, h, options.iso, options);
+  raycaster.render(camera, w, h);
+  expectSurfaceRect(raycaster, 0, "render()");
+  EXPECT_FALSE(raycaster.surfaceRect().empty());
   int uncoveredHits = 0, coveredChanged = 0, coveredWouldChange = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
