@@ -14,7 +14,7 @@ case "$mode" in demo|test|build) ;; *) echo "setup.sh: unknown mode '$mode' (val
 packages=(build-essential cmake pkg-config ccache python3
   libopenvdb-dev libboost-dev libboost-iostreams-dev libtbb-dev zlib1g-dev
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers
-  libglfw3-dev libglm-dev libopenexr-dev libpng-dev libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev
+  libglfw3-dev libglm-dev libopenexr-dev libpng-dev libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev libx11-dev libxrandr-dev
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev xvfb xauth)
 
 missing=()

@@ -8,7 +8,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba32f) uniform readonly image2D uImage;   // row 0 at the top
 layout(binding = 1, rgba8) uniform writeonly image2D uDisplay;  // row 0 at the bottom
 uniform vec3 uBackground;                                       // linear
-uniform int uColumnOffset;  // the dispatch's first column (columns left of it are not drawn)
+uniform ivec2 uRegionMin, uRegionMax;  // the pixels drawn, [min, max), rows from the bottom
 
 float srgbFromLinear(float v) {
   return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(max(v, 0.0), 1.0 / 2.4) - 0.055;
@@ -16,8 +16,8 @@ float srgbFromLinear(float v) {
 
 void main() {
   ivec2 size = imageSize(uImage);
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(uColumnOffset, 0);
-  if (any(greaterThanEqual(pixel, size))) return;
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + uRegionMin;
+  if (any(greaterThanEqual(pixel, uRegionMax))) return;
   vec4 c = imageLoad(uImage, ivec2(pixel.x, size.y - 1 - pixel.y));
   vec3 linear = c.rgb + (1.0 - c.a) * uBackground;
   imageStore(uDisplay, pixel,

@@ -9,6 +9,7 @@
 #include <array>
 
 #include "GlProgram.h"
+#include "PixelRect.h"
 
 namespace fcc::render {
 
@@ -19,14 +20,19 @@ class Presenter {
   Presenter(const Presenter&) = delete;
   Presenter& operator=(const Presenter&) = delete;
 
-  // Fills the bound draw framebuffer's lower-left image.width() x image.height() pixels with `image`,
-  // except the first `firstColumn` columns (covered by the opaque panel, which is drawn there next):
-  // fewer pixels through the raster path, which is slow on compute GPUs.
-  void draw(const GlTexture2D& image, const glm::vec3& backgroundLinear, int firstColumn = 0);
+  // Draws the pixels of `image` inside `region` (rows from the top, as the image's) into the bound
+  // draw framebuffer's lower-left image.width() x image.height() pixels, leaving the others as they
+  // are: fewer pixels through the raster path, which is slow on compute GPUs. The viewer leaves out
+  // the columns under its opaque panel and what its back buffer already shows (RedrawTracker.h).
+  void draw(const GlTexture2D& image, const glm::vec3& backgroundLinear, const PixelRect& region);
+  // All of `image`.
+  void draw(const GlTexture2D& image, const glm::vec3& backgroundLinear) {
+    draw(image, backgroundLinear, PixelRect{0, 0, image.width(), image.height()});
+  }
 
  private:
   GlProgram program_;
-  GLint backgroundLocation_ = -1, columnOffsetLocation_ = -1;  // looked up once
+  GLint backgroundLocation_ = -1, regionMinLocation_ = -1, regionMaxLocation_ = -1;  // looked up once
   std::array<GLint, 3> group_{};                               // the compute shader's work group
   GlTexture2D display_;     // RGBA8, the encoded image
   GLuint readFramebuffer_ = 0;  // wraps display_ as the blit's source

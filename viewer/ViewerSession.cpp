@@ -100,7 +100,7 @@ void ViewerSession::updateStats(const StepStats& step) {
   stats_.complete = step.complete;
 }
 
-void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight) {
+void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int bufferAge) {
   handleInput(windowHeight);
   drawPanel(windowHeight);
   if (settings_.showHelp) drawHelp();
@@ -111,7 +111,40 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight) {
   const StepStats step = raycaster_.step(camera_, fbWidth, fbHeight, kUploadSecondsPerFrame, covered);
   updateStats(step);
   drawStreamingLine(windowHeight);
-  presenter_.draw(raycaster_.colorTexture(), settings_.background, covered);
+  const FrameLook look{fbWidth, fbHeight, std::clamp(covered, 0, fbWidth), settings_.background};
+  const PixelRect surface = raycaster_.surfaceRect();
+  presenter_.draw(raycaster_.colorTexture(), settings_.background, redraw_.region(look, surface, bufferAge));
+  redraw_.drawn(look, surface);
+  drawnLook_ = look;
+}
+
+void ViewerSession::imguiDrawn(const ImDrawData& drawData) {
+  // Each command draws inside its clip rectangle and the bounding box of its vertices (one pixel
+  // more for rounding); ImGui's coordinates are window units from the top left.
+  const ImVec2 origin = drawData.DisplayPos, scale = drawData.FramebufferScale;
+  PixelRect overlay;
+  for (int n = 0; n < drawData.CmdListsCount; ++n) {
+    const ImDrawList& list = *drawData.CmdLists[n];
+    for (const ImDrawCmd& cmd : list.CmdBuffer) {
+      if (cmd.UserCallback || cmd.ElemCount == 0) continue;
+      const PixelRect clip{int(std::floor((cmd.ClipRect.x - origin.x) * scale.x)),
+                           int(std::floor((cmd.ClipRect.y - origin.y) * scale.y)),
+                           int(std::ceil((cmd.ClipRect.z - origin.x) * scale.x)),
+                           int(std::ceil((cmd.ClipRect.w - origin.y) * scale.y))};
+      // The panel's own commands stay left of the image: no need to look at their vertices.
+      if (intersected(clip, drawnLook_.imageArea()).empty()) continue;
+      ImVec2 lo(cmd.ClipRect.z, cmd.ClipRect.w), hi(cmd.ClipRect.x, cmd.ClipRect.y);
+      for (unsigned i = cmd.IdxOffset; i < cmd.IdxOffset + cmd.ElemCount; ++i) {
+        const ImVec2 p = list.VtxBuffer[int(cmd.VtxOffset + list.IdxBuffer[int(i)])].pos;
+        lo = ImVec2(std::min(lo.x, p.x), std::min(lo.y, p.y));
+        hi = ImVec2(std::max(hi.x, p.x), std::max(hi.y, p.y));
+      }
+      const PixelRect drawn{int(std::floor((lo.x - origin.x) * scale.x)) - 1, int(std::floor((lo.y - origin.y) * scale.y)) - 1,
+                            int(std::ceil((hi.x - origin.x) * scale.x)) + 1, int(std::ceil((hi.y - origin.y) * scale.y)) + 1};
+      overlay = united(overlay, intersected(clip, drawn));
+    }
+  }
+  redraw_.overlaid(overlay);
 }
 
 }  // namespace fcc::render

@@ -15,6 +15,9 @@
 #include "DatasetSummary.h"
 #include "Presenter.h"
 #include "Raycaster.h"
+#include "RedrawTracker.h"
+
+struct ImDrawData;
 
 namespace fcc::render {
 
@@ -53,8 +56,13 @@ class ViewerSession {
   // One frame into the bound framebuffer of fbWidth x fbHeight pixels; the window is windowHeight
   // high in ImGui's coordinates (they differ on high-DPI screens). Reads this frame's mouse
   // and keys from ImGui (where the panel does not take them), builds the panel, steps the
-  // raycaster within the upload budget and draws its image.
-  void frame(int fbWidth, int fbHeight, int windowHeight);
+  // raycaster within the upload budget and draws its image: only what changed since the frame
+  // `bufferAge` frames ago, which the framebuffer still holds (1: the previous frame; 0: unknown,
+  // draw everything; see RedrawTracker.h).
+  void frame(int fbWidth, int fbHeight, int windowHeight, int bufferAge = 0);
+  // After ImGui's draw data for the frame has been drawn: where it covered the image, which a later
+  // frame then draws again. (Not calling it makes later frames draw the whole image.)
+  void imguiDrawn(const ImDrawData& drawData);
 
   // True once the frame is complete and no brick is streaming (screenshots wait for it).
   bool settled() const { return stats_.complete && stats_.streaming == 0; }
@@ -85,6 +93,8 @@ class ViewerSession {
 
   Raycaster raycaster_;
   Presenter presenter_;
+  RedrawTracker redraw_;
+  FrameLook drawnLook_;  // of the frame drawn last
   Camera camera_, initialCamera_;
   ViewerSettings settings_;
   ViewerStats stats_;

@@ -64,6 +64,7 @@ ViewerWindow::ViewerWindow(const WindowOptions& options) : options_(options) {
                 "); use `fccvdb render` for headless images");
   }
   glfwMakeContextCurrent(window_);
+  bufferAge_ = std::make_unique<WindowBufferAge>(window_);
   // Automation renders as fast as it can; interactively, frames follow the display.
   glfwSwapInterval(options.screenshot.empty() ? 1 : 0);
 
@@ -142,10 +143,11 @@ void ViewerWindow::run(ViewerSession& session, const std::function<void(const st
     if (!ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false))
       glfwSetWindowShouldClose(window_, GLFW_TRUE);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    session.frame(fbWidth, fbHeight, winHeight);
+    session.frame(fbWidth, fbHeight, winHeight, bufferAge_->age());
     ImGui::Render();
     glViewport(0, 0, fbWidth, fbHeight);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    session.imguiDrawn(*ImGui::GetDrawData());
     ++frames;
     if (session.takeScreenshotRequest()) {
       const std::string stem = timestampedStem();

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "ViewerSession.h"
+#include "WindowBufferAge.h"
 
 struct GLFWwindow;
 
@@ -44,6 +45,7 @@ class ViewerWindow {
   WindowOptions options_;
   GLFWwindow* window_ = nullptr;
   bool imguiReady_ = false;
+  std::unique_ptr<WindowBufferAge> bufferAge_;
 };
 
 }  // namespace fcc::render

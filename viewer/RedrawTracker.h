@@ -1,0 +1,51 @@
+// Which part of the image area a frame must draw, given what the window's back buffer still holds
+// from an earlier frame (its buffer age: GLX_EXT_buffer_age / EGL_EXT_buffer_age; 1 for an
+// offscreen target that is drawn over in place). Outside the surface, the image is the background,
+// so between two frames that look alike (same size, panel and background) the pixels that differ lie
+// where the surface is now, where it was in the older frame, and where something was drawn over the
+// image then (ImGui's windows and text). Why bother: on compute GPUs every pixel written through the
+// raster path is slow (H200: 0.15 ms for a 1080p window, 10% of a frame; docs/BENCHMARKS.md).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <deque>
+
+#include "PixelRect.h"
+
+namespace fcc::render {
+
+// What every background pixel of a frame depends on.
+struct FrameLook {
+  int width = 0, height = 0;  // the image (and window) in pixels
+  int firstColumn = 0;        // columns left of it are under the opaque panel, drawn by ImGui
+  glm::vec3 background{0.0f};
+  bool operator==(const FrameLook& o) const {
+    return width == o.width && height == o.height && firstColumn == o.firstColumn && background == o.background;
+  }
+  bool operator!=(const FrameLook& o) const { return !(*this == o); }
+  PixelRect imageArea() const { return {firstColumn, 0, width, height}; }  // what the image covers
+};
+
+class RedrawTracker {
+ public:
+  // Frames remembered: an older back buffer is drawn whole.
+  static constexpr int kHistory = 4;
+
+  // The part of look.imageArea() to draw for a frame that looks like `look`, with the surface inside
+  // `surface`, into a back buffer holding the frame drawn `bufferAge` frames ago (0: unknown).
+  PixelRect region(const FrameLook& look, const PixelRect& surface, int bufferAge) const;
+  // Records the frame just drawn. Until overlaid() says what was drawn over its image, all of it counts.
+  void drawn(const FrameLook& look, const PixelRect& surface);
+  // What was drawn over the image of the frame drawn last (rows from the top, window pixels).
+  void overlaid(const PixelRect& overlay);
+
+ private:
+  struct Frame {
+    FrameLook look;
+    PixelRect surface, overlay;
+  };
+  std::deque<Frame> frames_;  // newest first
+};
+
+}  // namespace fcc::render
