@@ -167,7 +167,7 @@ void Raycaster::restartRays(int width, int height) {
   surfaceRect_ = PixelRect{};
 }
 
-Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn) {
+void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn) {
   // firstColumn is in [0, width]: step() clamps it (its key holds the clamped value), render() passes 0.
   ++pass_;
   // Only the count: entries past it are never read (clearing the whole 256 KiB list cost time per
@@ -231,6 +231,9 @@ Raycaster::PassResult Raycaster::dispatchPass(const CameraFrame& frame, int widt
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                   GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   checkGl("raycasting pass");
+}
+
+Raycaster::PassResult Raycaster::collectPass() {
   PassResult result;
   // Waits for the pass: every command before the copy (the pass included) has completed after it.
   uint32_t header[kRequestsHeaderWords];
@@ -299,7 +302,8 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
   stats.bricksNeeded = residency_->neededCount();
   for (;;) {
     ++stats.passes;
-    const PassResult pass = dispatchPass(frame, width, height, 0);
+    dispatchPass(frame, width, height, 0);
+    const PassResult pass = collectPass();
     stats.gpuSeconds += pass.gpuSeconds;
     const uint32_t requested = pass.requested;
     if (requested == 0) break;
@@ -322,10 +326,17 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
 }
 
 StepStats Raycaster::step(const Camera& camera, int width, int height, double uploadSeconds, int coveredColumns) {
+  startStep(camera, width, height, uploadSeconds, coveredColumns);
+  return finishStep();
+}
+
+void Raycaster::startStep(const Camera& camera, int width, int height, double uploadSeconds, int coveredColumns) {
   if (width <= 0 || height <= 0)
     throw ValueError("image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+  if (stepStarted_) throw Error("renderer: startStep() twice without finishStep()");
   const CameraFrame frame = cameraFrame(camera, double(width) / double(height));
-  StepStats stats;
+  StepStats& stats = startedStep_;
+  stats = StepStats{};
   coveredColumns = std::clamp(coveredColumns, 0, width);
   const StepKey key{frame, width, height, coveredColumns, settings_};
   if (!(key.frame.eye == stepKey_.frame.eye && key.frame.forward == stepKey_.frame.forward &&
@@ -350,21 +361,24 @@ StepStats Raycaster::step(const Camera& camera, int width, int height, double up
   } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < uploadSeconds);
   if (stats.uploaded) uploadPageTable();
 
-  if (stepComplete_) {
-    stats.complete = true;
-    stats.streaming = loader_->pending();
-    return stats;
-  }
+  stepStarted_ = true;
+  if (stepComplete_) return;
   stats.dispatched = true;
-  const PassResult pass = dispatchPass(frame, width, height, coveredColumns);
-  stats.requested = pass.requested;
-  stats.gpuSeconds = pass.gpuSeconds;
-  if (stats.requested == 0) {
-    stepComplete_ = true;
-    stats.complete = true;
-  } else {
-    loader_->request(requestedBricks(stats.requested));
+  dispatchPass(frame, width, height, coveredColumns);
+}
+
+StepStats Raycaster::finishStep() {
+  if (!stepStarted_) throw Error("renderer: finishStep() without startStep()");
+  stepStarted_ = false;
+  StepStats stats = startedStep_;
+  if (stats.dispatched) {
+    const PassResult pass = collectPass();
+    stats.requested = pass.requested;
+    stats.gpuSeconds = pass.gpuSeconds;
+    if (stats.requested == 0) stepComplete_ = true;
+    else loader_->request(requestedBricks(stats.requested));
   }
+  stats.complete = stepComplete_;
   stats.streaming = loader_->pending();
   return stats;
 }

@@ -97,6 +97,11 @@ class Raycaster {
   // background. Never waits for the file. The first `coveredColumns` columns are hidden under
   // something opaque (the viewer's panel): no rays are cast there and the image keeps what it had.
   StepStats step(const Camera& camera, int width, int height, double uploadSeconds, int coveredColumns = 0);
+  // step() in two halves, so that the caller can work on the CPU while the pass runs on the GPU (the
+  // viewer builds its panel): startStep() does everything up to the pass's dispatch, finishStep()
+  // waits for the pass and queues the bricks its rays asked for. Calls alternate.
+  void startStep(const Camera& camera, int width, int height, double uploadSeconds, int coveredColumns = 0);
+  StepStats finishStep();
   FrameImages readImages() const;
   // The colour image (RGBA32F, premultiplied, row 0 at the top) for drawing on screen.
   const GlTexture2D& colorTexture() const { return color_; }
@@ -128,7 +133,8 @@ class Raycaster {
   };
   // The Requests buffer (shaders/raycast.comp) starts with the count and the surface rectangle.
   static constexpr std::size_t kRequestsHeaderWords = 5;
-  PassResult dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn);
+  void dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn);
+  PassResult collectPass();  // waits for the pass dispatched last and reads what it tells the host
   std::vector<glm::ivec3> requestedBricks(uint32_t requestCount) const;
   uint32_t upload(const std::vector<LoadedBrick>& loaded, std::vector<uint32_t>& slotLastUse);
   std::vector<uint32_t> readSlotUse() const;
@@ -155,6 +161,8 @@ class Raycaster {
   } stepKey_;
   uint64_t settings_ = 1;  // bumped by every change of the isovalue or an option
   bool stepComplete_ = false;
+  bool stepStarted_ = false;  // startStep() ran, finishStep() has not
+  StepStats startedStep_;     // what startStep() did
   GlProgram program_, slotBoundsProgram_;
   // raycast.comp's uniform locations, looked up once.
   struct Uniforms {

@@ -13,7 +13,6 @@
 namespace fcc::render {
 namespace {
 
-constexpr float kPanelWidth = 330.0f;  // before the font scale
 
 std::string mib(double bytes) {
   char text[32];
@@ -49,7 +48,6 @@ void usageBar(const char* label, double used, double budget) {
 void ViewerSession::drawPanel(int windowHeight) {
   if (!settings_.showPanel) return;
   const float scale = ImGui::GetIO().FontGlobalScale;
-  panelWidth_ = kPanelWidth * scale;
   ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
   ImGui::SetNextWindowSize(ImVec2(panelWidth_, float(windowHeight)));
   // Opaque: the raycaster casts no rays under it (ViewerSession::frame).

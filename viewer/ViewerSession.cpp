@@ -102,13 +102,17 @@ void ViewerSession::updateStats(const StepStats& step) {
 
 void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int bufferAge) {
   handleInput(windowHeight);
-  drawPanel(windowHeight);
-  if (settings_.showHelp) drawHelp();
-  applySettings();
+  panelWidth_ = kPanelWidth * ImGui::GetIO().FontGlobalScale;
   // The panel is opaque: the columns wholly under it get no rays and no image (on the H200 the
   // image's blit alone costs 0.17 ms at 1080p). Framebuffer pixels per window unit: fbHeight / windowHeight.
   const int covered = windowHeight > 0 ? int(std::floor(panelWidth() * float(fbHeight) / float(windowHeight))) : 0;
-  const StepStats step = raycaster_.step(camera_, fbWidth, fbHeight, kUploadSecondsPerFrame, covered);
+  // The panel is built while the GPU runs the pass (about 0.1 ms of CPU time, 7% of a 1080p frame on
+  // the H200): what it changes takes effect from the next frame on.
+  raycaster_.startStep(camera_, fbWidth, fbHeight, kUploadSecondsPerFrame, covered);
+  drawPanel(windowHeight);
+  if (settings_.showHelp) drawHelp();
+  const StepStats step = raycaster_.finishStep();
+  applySettings();
   updateStats(step);
   drawStreamingLine(windowHeight);
   const FrameLook look{fbWidth, fbHeight, std::clamp(covered, 0, fbWidth), settings_.background};

@@ -82,6 +82,7 @@ class ViewerSession {
   float panelWidth() const { return settings_.showPanel ? panelWidth_ : 0.0f; }
   // The upload time budget per frame (seconds), so a frame's uploads do not stall the UI.
   static constexpr double kUploadSecondsPerFrame = 0.004;
+  static constexpr float kPanelWidth = 330.0f;  // window units, before the font scale
 
  private:
   void handleInput(int windowHeight);
