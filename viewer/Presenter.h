@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <vector>
 
 #include "GlProgram.h"
 #include "PixelRect.h"
@@ -25,6 +26,10 @@ class Presenter {
   // are: fewer pixels through the raster path, which is slow on compute GPUs. The viewer leaves out
   // the columns under its opaque panel and what its back buffer already shows (RedrawTracker.h).
   void draw(const GlTexture2D& image, const glm::vec3& backgroundLinear, const PixelRect& region);
+  // Each region in turn (where they overlap, pixels are drawn twice, the same each time).
+  void draw(const GlTexture2D& image, const glm::vec3& backgroundLinear, const std::vector<PixelRect>& regions) {
+    for (const PixelRect& r : regions) draw(image, backgroundLinear, r);
+  }
   // All of `image`.
   void draw(const GlTexture2D& image, const glm::vec3& backgroundLinear) {
     draw(image, backgroundLinear, PixelRect{0, 0, image.width(), image.height()});

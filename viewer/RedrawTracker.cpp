@@ -2,21 +2,38 @@
 
 namespace fcc::render {
 
-PixelRect RedrawTracker::region(const FrameLook& look, const PixelRect& surface, int bufferAge) const {
+std::vector<PixelRect> RedrawTracker::regions(const FrameLook& look, const PixelRect& surface, int bufferAge) const {
   const PixelRect all = look.imageArea();
-  if (bufferAge <= 0 || bufferAge > int(frames_.size())) return all;
+  if (all.empty()) return {};
+  if (bufferAge <= 0 || bufferAge > int(frames_.size())) return {all};
   const Frame& held = frames_[std::size_t(bufferAge - 1)];
-  if (held.look != look) return all;
-  return intersected(united(united(held.surface, held.overlay), surface), all);
+  if (held.look != look) return {all};
+  std::vector<PixelRect> out;
+  const PixelRect surfaces = intersected(united(held.surface, surface), all);
+  if (!surfaces.empty()) out.push_back(surfaces);
+  for (const PixelRect& overlay : held.overlays)
+    if (united(surfaces, overlay) != surfaces) out.push_back(overlay);
+  return out;
 }
 
 void RedrawTracker::drawn(const FrameLook& look, const PixelRect& surface) {
-  frames_.push_front(Frame{look, surface, look.imageArea()});
+  frames_.push_front(Frame{look, surface, {look.imageArea()}});
   if (frames_.size() > std::size_t(kHistory)) frames_.pop_back();
 }
 
-void RedrawTracker::overlaid(const PixelRect& overlay) {
-  if (!frames_.empty()) frames_.front().overlay = overlay;
+void RedrawTracker::overlaid(const std::vector<PixelRect>& overlays) {
+  if (frames_.empty()) return;
+  const PixelRect all = frames_.front().look.imageArea();
+  std::vector<PixelRect>& kept = frames_.front().overlays;
+  kept.clear();
+  PixelRect bounds;
+  for (const PixelRect& r : overlays) {
+    const PixelRect inside = intersected(r, all);
+    if (inside.empty()) continue;
+    kept.push_back(inside);
+    bounds = united(bounds, inside);
+  }
+  if (kept.size() > kMaxOverlays) kept = {bounds};
 }
 
 }  // namespace fcc::render

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include <deque>
+#include <vector>
 
 #include "PixelRect.h"
 
@@ -32,18 +33,24 @@ class RedrawTracker {
   // Frames remembered: an older back buffer is drawn whole.
   static constexpr int kHistory = 4;
 
-  // The part of look.imageArea() to draw for a frame that looks like `look`, with the surface inside
-  // `surface`, into a back buffer holding the frame drawn `bufferAge` frames ago (0: unknown).
-  PixelRect region(const FrameLook& look, const PixelRect& surface, int bufferAge) const;
+  // The parts of look.imageArea() to draw for a frame that looks like `look`, with the surface inside
+  // `surface`, into a back buffer holding the frame drawn `bufferAge` frames ago (0: unknown):
+  // rectangles, which may overlap: around the surface now and then, and around each thing drawn over
+  // the image then (kept apart: the panel's antialiased edge or a line of text would stretch one
+  // rectangle around the surface to the image's full height or width).
+  std::vector<PixelRect> regions(const FrameLook& look, const PixelRect& surface, int bufferAge) const;
   // Records the frame just drawn. Until overlaid() says what was drawn over its image, all of it counts.
   void drawn(const FrameLook& look, const PixelRect& surface);
   // What was drawn over the image of the frame drawn last (rows from the top, window pixels).
-  void overlaid(const PixelRect& overlay);
+  void overlaid(const std::vector<PixelRect>& overlays);
+  // More overlay rectangles than this in a frame are drawn as their bounding box.
+  static constexpr std::size_t kMaxOverlays = 8;
 
  private:
   struct Frame {
     FrameLook look;
-    PixelRect surface, overlay;
+    PixelRect surface;
+    std::vector<PixelRect> overlays;  // inside look.imageArea()
   };
   std::deque<Frame> frames_;  // newest first
 };

@@ -117,16 +117,17 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   drawStreamingLine(windowHeight);
   const FrameLook look{fbWidth, fbHeight, std::clamp(covered, 0, fbWidth), settings_.background};
   const PixelRect surface = raycaster_.surfaceRect();
-  presenter_.draw(raycaster_.colorTexture(), settings_.background, redraw_.region(look, surface, bufferAge));
+  presenter_.draw(raycaster_.colorTexture(), settings_.background, redraw_.regions(look, surface, bufferAge));
   redraw_.drawn(look, surface);
   drawnLook_ = look;
 }
 
 void ViewerSession::imguiDrawn(const ImDrawData& drawData) {
-  // Each command draws inside its clip rectangle and the bounding box of its vertices (one pixel
-  // more for rounding); ImGui's coordinates are window units from the top left.
+  // Each command draws inside its clip rectangle and the bounding box of its vertices (antialiased
+  // edges are vertices too; a pixel is drawn when its centre is covered); ImGui's coordinates are
+  // window units from the top left.
   const ImVec2 origin = drawData.DisplayPos, scale = drawData.FramebufferScale;
-  PixelRect overlay;
+  std::vector<PixelRect> overlays;
   for (int n = 0; n < drawData.CmdListsCount; ++n) {
     const ImDrawList& list = *drawData.CmdLists[n];
     for (const ImDrawCmd& cmd : list.CmdBuffer) {
@@ -143,12 +144,16 @@ void ViewerSession::imguiDrawn(const ImDrawData& drawData) {
         lo = ImVec2(std::min(lo.x, p.x), std::min(lo.y, p.y));
         hi = ImVec2(std::max(hi.x, p.x), std::max(hi.y, p.y));
       }
-      const PixelRect drawn{int(std::floor((lo.x - origin.x) * scale.x)) - 1, int(std::floor((lo.y - origin.y) * scale.y)) - 1,
-                            int(std::ceil((hi.x - origin.x) * scale.x)) + 1, int(std::ceil((hi.y - origin.y) * scale.y)) + 1};
-      overlay = united(overlay, intersected(clip, drawn));
+      const PixelRect drawn{int(std::floor((lo.x - origin.x) * scale.x)), int(std::floor((lo.y - origin.y) * scale.y)),
+                            int(std::ceil((hi.x - origin.x) * scale.x)), int(std::ceil((hi.y - origin.y) * scale.y))};
+      const PixelRect r = intersected(intersected(clip, drawn), drawnLook_.imageArea());
+      if (r.empty()) continue;
+      // Consecutive commands of a window usually overlap: one rectangle for them.
+      if (!overlays.empty() && !intersected(overlays.back(), r).empty()) overlays.back() = united(overlays.back(), r);
+      else overlays.push_back(r);
     }
   }
-  redraw_.overlaid(overlay);
+  redraw_.overlaid(overlays);
 }
 
 }  // namespace fcc::render
