@@ -106,6 +106,15 @@ GlProgram GlProgram::compute(std::string_view source, std::string_view name) {
   return p;
 }
 
+GlProgram GlProgram::graphics(std::string_view vertexSource, std::string_view fragmentSource, std::string_view name) {
+  GlProgram p;
+  p.name_ = std::string(name);
+  p.id_ = linkStages({compileStage(GL_VERTEX_SHADER, "vertex", vertexSource, p.name_),
+                      compileStage(GL_FRAGMENT_SHADER, "fragment", fragmentSource, p.name_)},
+                     "program '" + p.name_ + "'");
+  return p;
+}
+
 GlProgram::GlProgram(GlProgram&& other) noexcept
     : id_(std::exchange(other.id_, 0)), name_(std::move(other.name_)) {}
 
@@ -126,7 +135,7 @@ void GlProgram::use() const { glUseProgram(id_); }
 
 GLint GlProgram::uniformLocation(const char* uniform) const {
   const GLint location = glGetUniformLocation(id_, uniform);
-  if (location < 0) throw GlError("compute shader '" + name_ + "' has no active uniform '" + uniform + "'");
+  if (location < 0) throw GlError("shader program '" + name_ + "' has no active uniform '" + uniform + "'");
   return location;
 }
 
@@ -204,6 +213,7 @@ GlReadbackBuffer::GlReadbackBuffer(std::size_t bytes) : bytes_(bytes) {
 }
 
 GlReadbackBuffer::~GlReadbackBuffer() {
+  if (fence_) glDeleteSync(fence_);
   if (id_) {
     glUnmapNamedBuffer(id_);
     glDeleteBuffers(1, &id_);
@@ -211,14 +221,26 @@ GlReadbackBuffer::~GlReadbackBuffer() {
 }
 
 const void* GlReadbackBuffer::read(const GlBuffer& source, std::size_t bytes, std::size_t offset) {
+  copy(source, bytes, offset);
+  return wait();
+}
+
+void GlReadbackBuffer::copy(const GlBuffer& source, std::size_t bytes, std::size_t offset) {
   if (bytes > bytes_ || offset + bytes > source.size())
     throw GlError("reading back " + std::to_string(bytes) + " bytes at " + std::to_string(offset) + " of a " +
                   std::to_string(source.size()) + "-byte buffer into " + std::to_string(bytes_));
+  if (fence_) glDeleteSync(fence_);
   glCopyNamedBufferSubData(source.id(), id_, GLintptr(offset), 0, GLsizeiptr(bytes));
-  GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-  GLenum status = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
-  while (status == GL_TIMEOUT_EXPIRED) status = glClientWaitSync(fence, 0, 1'000'000'000);
-  glDeleteSync(fence);
+  fence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  glFlush();  // submitted now: the GPU gets on with it while the CPU does other work
+}
+
+const void* GlReadbackBuffer::wait() {
+  if (!fence_) throw GlError("waiting for a read-back that was never started");
+  GLenum status = glClientWaitSync(fence_, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
+  while (status == GL_TIMEOUT_EXPIRED) status = glClientWaitSync(fence_, 0, 1'000'000'000);
+  glDeleteSync(fence_);
+  fence_ = nullptr;
   if (status == GL_WAIT_FAILED) throw GlError("waiting for a read-back failed");
   checkGl("reading back a buffer");
   return mapped_;

@@ -35,6 +35,8 @@ class GlProgram {
   // Compiles and links one compute shader. `name` labels errors. Throws GlError: "compiling compute
   // shader '<name>' failed:\n<info log>" (or linking).
   static GlProgram compute(std::string_view source, std::string_view name = "compute shader");
+  // Compiles and links a vertex and a fragment shader (errors as compute()).
+  static GlProgram graphics(std::string_view vertexSource, std::string_view fragmentSource, std::string_view name);
 
   GlProgram() = default;
   GlProgram(GlProgram&& other) noexcept;
@@ -103,8 +105,13 @@ class GlReadbackBuffer {
   ~GlReadbackBuffer();
   // Copies `bytes` of `source` from `offset` and waits until the copy is done; returns the bytes.
   const void* read(const GlBuffer& source, std::size_t bytes, std::size_t offset = 0);
+  // read() in two halves, so the CPU can go on while the GPU gets there: copy() queues the copy
+  // (after every command so far), wait() waits for it and returns the bytes.
+  void copy(const GlBuffer& source, std::size_t bytes, std::size_t offset = 0);
+  const void* wait();
 
  private:
+  GLsync fence_ = nullptr;
   GLuint id_ = 0;
   std::size_t bytes_ = 0;
   const void* mapped_ = nullptr;

@@ -1,49 +1,64 @@
 #include "Presenter.h"
 
+#include <cstdint>
+
 #include "embedded_shaders.h"
 
 namespace fcc::render {
+namespace {
+// A PassResults block (shaders/present.vert) without a surface: last column before the first.
+constexpr int32_t kNoSurface[5] = {0, 0, 0, -1, -1};
+}  // namespace
 
-Presenter::Presenter() {
-  program_ = GlProgram::compute(embedded::shaders("shaders/present.comp"), "shaders/present.comp");
+Presenter::Presenter() : noSurface_(sizeof kNoSurface, kNoSurface) {
+  program_ = GlProgram::graphics(embedded::shaders("shaders/present.vert"), embedded::shaders("shaders/present.frag"),
+                                 "shaders/present.vert + present.frag");
+  rectsLocation_ = program_.uniformLocation("uRects");
+  uniteSurfaceLocation_ = program_.uniformLocation("uUniteSurface");
+  clipLocation_ = program_.uniformLocation("uClip");
+  sizeLocation_ = program_.uniformLocation("uSize");
   backgroundLocation_ = program_.uniformLocation("uBackground");
-  regionMinLocation_ = program_.uniformLocation("uRegionMin");
-  regionMaxLocation_ = program_.uniformLocation("uRegionMax");
-  group_ = program_.localSize();
-  glCreateFramebuffers(1, &readFramebuffer_);
-  checkGl("creating the presenter's framebuffer");
+  glCreateVertexArrays(1, &vertexArray_);
+  checkGl("creating the presenter");
 }
 
 Presenter::~Presenter() {
-  if (readFramebuffer_) glDeleteFramebuffers(1, &readFramebuffer_);
+  if (vertexArray_) glDeleteVertexArrays(1, &vertexArray_);
 }
 
-void Presenter::draw(const GlTexture2D& image, const glm::vec3& backgroundLinear, const PixelRect& region) {
+void Presenter::draw(const GlTexture2D& image, const glm::vec3& backgroundLinear, const std::vector<PixelRect>& regions,
+                     const PixelRect& clip, const GlBuffer* passResults) {
   const int width = image.width(), height = image.height();
-  if (width <= 0 || height <= 0) return;
-  if (display_.width() != width || display_.height() != height) {
-    display_ = GlTexture2D(GL_RGBA8, width, height);
-    glNamedFramebufferTexture(readFramebuffer_, GL_COLOR_ATTACHMENT0, display_.id(), 0);
-    if (glCheckNamedFramebufferStatus(readFramebuffer_, GL_READ_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError("presenter: the display image's framebuffer is incomplete");
+  if (width <= 0 || height <= 0 || regions.empty()) return;
+  std::vector<glm::ivec4> rects;
+  for (const PixelRect& r : regions) rects.emplace_back(r.x0, r.y0, r.x1, r.y1);
+  if (rects.size() > kMaxRects) {
+    PixelRect bounds;
+    for (std::size_t i = 1; i < regions.size(); ++i) bounds = united(bounds, regions[i]);
+    rects.resize(2);
+    rects[1] = glm::ivec4(bounds.x0, bounds.y0, bounds.x1, bounds.y1);
   }
-  const PixelRect r = intersected(region, PixelRect{0, 0, width, height});
-  if (r.empty()) return;
-  // The framebuffer's rows count from the bottom.
-  const glm::ivec2 lo(r.x0, height - r.y1), hi(r.x1, height - r.y0);
-  glProgramUniform3fv(program_.id(), backgroundLocation_, 1, &backgroundLinear.x);
-  glProgramUniform2i(program_.id(), regionMinLocation_, lo.x, lo.y);
-  glProgramUniform2i(program_.id(), regionMaxLocation_, hi.x, hi.y);
+  const GLuint p = program_.id();
+  glProgramUniform4iv(p, rectsLocation_, GLsizei(rects.size()), &rects[0].x);
+  glProgramUniform1i(p, uniteSurfaceLocation_, passResults ? 1 : 0);
+  glProgramUniform4i(p, clipLocation_, clip.x0, clip.y0, clip.x1, clip.y1);
+  glProgramUniform2i(p, sizeLocation_, width, height);
+  glProgramUniform3fv(p, backgroundLocation_, 1, &backgroundLinear.x);
+  (passResults ? *passResults : noSurface_).bindBase(GL_SHADER_STORAGE_BUFFER, 0);
   image.bindImage(0, GL_READ_ONLY);
-  display_.bindImage(1, GL_WRITE_ONLY);
-  program_.use();
-  glDispatchCompute(GLuint((hi.x - lo.x + group_[0] - 1) / group_[0]), GLuint((hi.y - lo.y + group_[1] - 1) / group_[1]), 1);
-  glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
 
-  GLint drawFramebuffer = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
-  glBlitNamedFramebuffer(readFramebuffer_, GLuint(drawFramebuffer), lo.x, lo.y, hi.x, hi.y, lo.x, lo.y, hi.x, hi.y,
-                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glViewport(0, 0, width, height);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  program_.use();
+  glBindVertexArray(vertexArray_);
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(rects.size()));
+  glBindVertexArray(0);
   checkGl("drawing the rendered image");
 }
 

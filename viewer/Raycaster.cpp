@@ -231,13 +231,14 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                   GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   checkGl("raycasting pass");
+  passResultsReadback_->copy(*requests_, kRequestsHeaderWords * sizeof(uint32_t));
 }
 
 Raycaster::PassResult Raycaster::collectPass() {
   PassResult result;
   // Waits for the pass: every command before the copy (the pass included) has completed after it.
   uint32_t header[kRequestsHeaderWords];
-  std::memcpy(header, passResultsReadback_->read(*requests_, sizeof header), sizeof header);
+  std::memcpy(header, passResultsReadback_->wait(), sizeof header);
   result.requested = header[0];
   int32_t surface[4];
   std::memcpy(surface, header + 1, sizeof surface);

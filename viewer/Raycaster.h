@@ -108,6 +108,11 @@ class Raycaster {
   // The pixels of the colour image that show the surface (A = 1), as of the last pass; the rest shows
   // the background. Empty when no ray hit.
   PixelRect surfaceRect() const { return surfaceRect_; }
+  // The same on the GPU, where a pass leaves it, for drawing before the pass's results are read back
+  // (startStep() then finishStep()): the 32-bit ints first column, first row, last column, last row
+  // (last < first: no surface) from byte kSurfaceRectOffset of this buffer.
+  const GlBuffer& passResults() const { return *requests_; }
+  static constexpr std::size_t kSurfaceRectOffset = sizeof(uint32_t);
 
   uint32_t slotCount() const { return residency_->slotCount(); }
   const io::BrickCache& hostCache() const { return *hostCache_; }

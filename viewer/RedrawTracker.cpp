@@ -2,17 +2,14 @@
 
 namespace fcc::render {
 
-std::vector<PixelRect> RedrawTracker::regions(const FrameLook& look, const PixelRect& surface, int bufferAge) const {
+std::vector<PixelRect> RedrawTracker::regions(const FrameLook& look, int bufferAge) const {
   const PixelRect all = look.imageArea();
-  if (all.empty()) return {};
   if (bufferAge <= 0 || bufferAge > int(frames_.size())) return {all};
   const Frame& held = frames_[std::size_t(bufferAge - 1)];
   if (held.look != look) return {all};
-  std::vector<PixelRect> out;
-  const PixelRect surfaces = intersected(united(held.surface, surface), all);
-  if (!surfaces.empty()) out.push_back(surfaces);
+  std::vector<PixelRect> out{intersected(held.surface, all)};
   for (const PixelRect& overlay : held.overlays)
-    if (united(surfaces, overlay) != surfaces) out.push_back(overlay);
+    if (united(out[0], overlay) != out[0]) out.push_back(overlay);
   return out;
 }
 

@@ -33,12 +33,13 @@ class RedrawTracker {
   // Frames remembered: an older back buffer is drawn whole.
   static constexpr int kHistory = 4;
 
-  // The parts of look.imageArea() to draw for a frame that looks like `look`, with the surface inside
-  // `surface`, into a back buffer holding the frame drawn `bufferAge` frames ago (0: unknown):
-  // rectangles, which may overlap: around the surface now and then, and around each thing drawn over
-  // the image then (kept apart: the panel's antialiased edge or a line of text would stretch one
-  // rectangle around the surface to the image's full height or width).
-  std::vector<PixelRect> regions(const FrameLook& look, const PixelRect& surface, int bufferAge) const;
+  // What to draw of look.imageArea() for a frame that looks like `look`, into a back buffer holding
+  // the frame drawn `bufferAge` frames ago (0: unknown): rectangles, which may overlap. The first is
+  // where the surface was then: it is to be united with where the surface is now (on the GPU, see
+  // Presenter.h). Each of the others is around something drawn over the image then (kept apart: the
+  // panel's antialiased edge or a line of text would stretch one rectangle around the surface to
+  // the image's full height or width). Unknown or different buffers get {look.imageArea()}.
+  std::vector<PixelRect> regions(const FrameLook& look, int bufferAge) const;
   // Records the frame just drawn. Until overlaid() says what was drawn over its image, all of it counts.
   void drawn(const FrameLook& look, const PixelRect& surface);
   // What was drawn over the image of the frame drawn last (rows from the top, window pixels).

@@ -2,6 +2,7 @@
 
 #define GLFW_INCLUDE_NONE  // key codes only; GL comes from libepoxy
 #include <GLFW/glfw3.h>
+#include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
 #include <algorithm>
@@ -103,26 +104,30 @@ void ViewerSession::updateStats(const StepStats& step) {
 void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int bufferAge) {
   handleInput(windowHeight);
   panelWidth_ = kPanelWidth * ImGui::GetIO().FontGlobalScale;
-  // The panel is opaque: the columns wholly under it get no rays and no image (on the H200 the
-  // image's blit alone costs 0.17 ms at 1080p). Framebuffer pixels per window unit: fbHeight / windowHeight.
+  // The panel is opaque: the columns wholly under it get no rays and no image. Framebuffer pixels
+  // per window unit: fbHeight / windowHeight.
   const int covered = windowHeight > 0 ? int(std::floor(panelWidth() * float(fbHeight) / float(windowHeight))) : 0;
-  // The panel is built while the GPU runs the pass (about 0.1 ms of CPU time, 7% of a 1080p frame on
-  // the H200): what it changes takes effect from the next frame on.
+  const FrameLook look{fbWidth, fbHeight, std::clamp(covered, 0, fbWidth), settings_.background};
+  // The whole frame is queued behind the pass before the CPU waits for the pass's results: the
+  // panel is built while the pass runs, and the GPU goes on to the image and the panel without
+  // waiting for the CPU (on the H200, waiting first cost 0.1-0.2 ms a frame, 7-13% at 1080p). So
+  // panel edits take effect from the next frame on, and the streaming line tells the last frame's.
   raycaster_.startStep(camera_, fbWidth, fbHeight, kUploadSecondsPerFrame, covered);
   drawPanel(windowHeight);
   if (settings_.showHelp) drawHelp();
+  drawStreamingLine(windowHeight);
+  presenter_.draw(raycaster_.colorTexture(), settings_.background, redraw_.regions(look, bufferAge), look.imageArea(),
+                  &raycaster_.passResults());
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   const StepStats step = raycaster_.finishStep();
+  redraw_.drawn(look, raycaster_.surfaceRect());
+  noteOverlays(*ImGui::GetDrawData(), look.imageArea());
   applySettings();
   updateStats(step);
-  drawStreamingLine(windowHeight);
-  const FrameLook look{fbWidth, fbHeight, std::clamp(covered, 0, fbWidth), settings_.background};
-  const PixelRect surface = raycaster_.surfaceRect();
-  presenter_.draw(raycaster_.colorTexture(), settings_.background, redraw_.regions(look, surface, bufferAge));
-  redraw_.drawn(look, surface);
-  drawnLook_ = look;
 }
 
-void ViewerSession::imguiDrawn(const ImDrawData& drawData) {
+void ViewerSession::noteOverlays(const ImDrawData& drawData, const PixelRect& imageArea) {
   // Each command draws inside its clip rectangle and the bounding box of its vertices (antialiased
   // edges are vertices too; a pixel is drawn when its centre is covered); ImGui's coordinates are
   // window units from the top left.
@@ -137,7 +142,7 @@ void ViewerSession::imguiDrawn(const ImDrawData& drawData) {
                            int(std::ceil((cmd.ClipRect.z - origin.x) * scale.x)),
                            int(std::ceil((cmd.ClipRect.w - origin.y) * scale.y))};
       // The panel's own commands stay left of the image: no need to look at their vertices.
-      if (intersected(clip, drawnLook_.imageArea()).empty()) continue;
+      if (intersected(clip, imageArea).empty()) continue;
       ImVec2 lo(cmd.ClipRect.z, cmd.ClipRect.w), hi(cmd.ClipRect.x, cmd.ClipRect.y);
       for (unsigned i = cmd.IdxOffset; i < cmd.IdxOffset + cmd.ElemCount; ++i) {
         const ImVec2 p = list.VtxBuffer[int(cmd.VtxOffset + list.IdxBuffer[int(i)])].pos;
@@ -146,7 +151,7 @@ void ViewerSession::imguiDrawn(const ImDrawData& drawData) {
       }
       const PixelRect drawn{int(std::floor((lo.x - origin.x) * scale.x)), int(std::floor((lo.y - origin.y) * scale.y)),
                             int(std::ceil((hi.x - origin.x) * scale.x)), int(std::ceil((hi.y - origin.y) * scale.y))};
-      const PixelRect r = intersected(intersected(clip, drawn), drawnLook_.imageArea());
+      const PixelRect r = intersected(intersected(clip, drawn), imageArea);
       if (r.empty()) continue;
       // Consecutive commands of a window usually overlap: one rectangle for them.
       if (!overlays.empty() && !intersected(overlays.back(), r).empty()) overlays.back() = united(overlays.back(), r);

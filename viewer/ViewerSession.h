@@ -1,7 +1,7 @@
 // One dataset open in the interactive viewer: the camera and the panel's settings, the progressive
 // raycaster, and what is drawn each frame. Window-system free: the window (viewer/ViewerWindow.h)
-// or an offscreen target (`fccvdb bench view`) calls frame() between ImGui::NewFrame() and
-// ImGui::Render(), with the target framebuffer bound.
+// or an offscreen target (`fccvdb bench view`) calls frame() after ImGui::NewFrame(), with the
+// target framebuffer bound; frame() renders ImGui's frame (ImGui::Render(), the OpenGL 3 backend).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -56,13 +56,10 @@ class ViewerSession {
   // One frame into the bound framebuffer of fbWidth x fbHeight pixels; the window is windowHeight
   // high in ImGui's coordinates (they differ on high-DPI screens). Reads this frame's mouse
   // and keys from ImGui (where the panel does not take them), builds the panel, steps the
-  // raycaster within the upload budget and draws its image: only what changed since the frame
-  // `bufferAge` frames ago, which the framebuffer still holds (1: the previous frame; 0: unknown,
-  // draw everything; see RedrawTracker.h).
+  // raycaster within the upload budget, draws its image (only what changed since the frame
+  // `bufferAge` frames ago, which the framebuffer still holds: 1 the previous frame, 0 unknown, so
+  // everything; see RedrawTracker.h) and then ImGui's windows over it.
   void frame(int fbWidth, int fbHeight, int windowHeight, int bufferAge = 0);
-  // After ImGui's draw data for the frame has been drawn: where it covered the image, which a later
-  // frame then draws again. (Not calling it makes later frames draw the whole image.)
-  void imguiDrawn(const ImDrawData& drawData);
 
   // True once the frame is complete and no brick is streaming (screenshots wait for it).
   bool settled() const { return stats_.complete && stats_.streaming == 0; }
@@ -91,11 +88,12 @@ class ViewerSession {
   void drawPanel(int windowHeight);  // viewer/ViewerPanel.cpp
   void drawHelp();
   void drawStreamingLine(int windowHeight);
+  // Where ImGui's draw data covered the image: a later frame draws the image there again.
+  void noteOverlays(const ImDrawData& drawData, const PixelRect& imageArea);
 
   Raycaster raycaster_;
   Presenter presenter_;
   RedrawTracker redraw_;
-  FrameLook drawnLook_;  // of the frame drawn last
   Camera camera_, initialCamera_;
   ViewerSettings settings_;
   ViewerStats stats_;

@@ -144,10 +144,6 @@ void ViewerWindow::run(ViewerSession& session, const std::function<void(const st
       glfwSetWindowShouldClose(window_, GLFW_TRUE);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     session.frame(fbWidth, fbHeight, winHeight, bufferAge_->age());
-    ImGui::Render();
-    glViewport(0, 0, fbWidth, fbHeight);
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    session.imguiDrawn(*ImGui::GetDrawData());
     ++frames;
     if (session.takeScreenshotRequest()) {
       const std::string stem = timestampedStem();
