@@ -80,9 +80,15 @@ struct FrameTimers {
 // kBufferAgeUnknown times a window that cannot tell (the whole image drawn every frame).
 constexpr int kBufferAgeKept = 1, kBufferAgeUnknown = 0;
 
-// One viewer frame at `camera` into the offscreen target, finished on the GPU.
+// How a frame ends. kSwap: as a buffer swap with vsync off, which submits the frame and lets the CPU
+// start the next while the GPU finishes this one (the session itself waits for each raycasting pass,
+// so the GPU never runs more than one frame behind). kFinish: glFinish after every frame, as if the
+// CPU waited for each frame to be on screen; stricter than any swap.
+enum class FrameEnd { kSwap, kFinish };
+
+// One viewer frame at `camera` into the offscreen target.
 void viewerFrame(render::ViewerSession& session, const OffscreenTarget& target, const render::Camera& camera, int width,
-                 int height, int bufferAge, FrameTimers* timers = nullptr) {
+                 int height, int bufferAge, FrameEnd end, FrameTimers* timers = nullptr) {
   session.setCamera(camera);
   ImGui::GetIO().DeltaTime = 1.0f / 60.0f;
   ImGui_ImplOpenGL3_NewFrame();
@@ -91,7 +97,8 @@ void viewerFrame(render::ViewerSession& session, const OffscreenTarget& target, 
   if (timers) timers->session.begin();
   session.frame(width, height, height, bufferAge);
   if (timers) timers->session.end();
-  glFinish();  // the frame is on screen: what a swap with vsync off waits for
+  if (end == FrameEnd::kFinish) glFinish();
+  else glFlush();
 }
 
 // Warm-up as `render()` warms up: every orbit position drawn until streaming has settled, so the
@@ -101,25 +108,26 @@ void settleOrbit(render::ViewerSession& session, const OffscreenTarget& target, 
   constexpr int kMaxFramesPerView = 10000;  // a view that never settles is a bug, not a slow disk
   for (int i = 0; i < frames; ++i) {
     int n = 0;
-    do viewerFrame(session, target, orbitStep(camera, i, frames), width, height, kBufferAgeKept);
+    do viewerFrame(session, target, orbitStep(camera, i, frames), width, height, kBufferAgeKept, FrameEnd::kFinish);
     while (!session.settled() && ++n < kMaxFramesPerView);
     if (!session.settled()) throw Error("bench view: a view did not settle in " + std::to_string(kMaxFramesPerView) + " frames");
   }
 }
 
 ViewTiming timeViewer(render::ViewerSession& session, const OffscreenTarget& target, const render::Camera& camera,
-                      int width, int height, int frames, int bufferAge, bool gpuTime) {
+                      int width, int height, int frames, int bufferAge, FrameEnd end, bool gpuTime) {
   ViewTiming t;
   std::unique_ptr<FrameTimers> timers = gpuTime ? std::make_unique<FrameTimers>() : nullptr;
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < frames; ++i) {
-    viewerFrame(session, target, orbitStep(camera, i, frames), width, height, bufferAge, timers.get());
+    viewerFrame(session, target, orbitStep(camera, i, frames), width, height, bufferAge, end, timers.get());
     t.completeFrames += session.stats().complete;
     if (timers) {
       t.passGpuMs += session.stats().passGpuMs / frames;
       t.sessionGpuMs += 1e3 * timers->session.seconds() / frames;
     }
   }
+  glFinish();  // the last frame on screen
   t.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
   return t;
 }
@@ -202,26 +210,29 @@ Command addBenchViewCommand(CLI::App& bench) {
 
             render::ViewerSession session(store, options, camera, render::summarizeDataset(store));
             settleOrbit(session, target, camera, width, height, args->frames);
-            const ViewTiming withPanel =
-                timeViewer(session, target, camera, width, height, args->frames, kBufferAgeKept, args->gpuTime);
-            const ViewTiming wholeImage =
-                timeViewer(session, target, camera, width, height, args->frames, kBufferAgeUnknown, args->gpuTime);
+            const ViewTiming withPanel = timeViewer(session, target, camera, width, height, args->frames, kBufferAgeKept,
+                                                    FrameEnd::kSwap, args->gpuTime);
+            const ViewTiming finishing = timeViewer(session, target, camera, width, height, args->frames, kBufferAgeKept,
+                                                    FrameEnd::kFinish, args->gpuTime);
+            const ViewTiming wholeImage = timeViewer(session, target, camera, width, height, args->frames,
+                                                     kBufferAgeUnknown, FrameEnd::kSwap, args->gpuTime);
             session.settings().showPanel = false;
             // The columns the panel covered need rays (and maybe bricks) now: settle them too.
             settleOrbit(session, target, camera, width, height, args->frames);
-            const ViewTiming noPanel =
-                timeViewer(session, target, camera, width, height, args->frames, kBufferAgeKept, args->gpuTime);
+            const ViewTiming noPanel = timeViewer(session, target, camera, width, height, args->frames, kBufferAgeKept,
+                                                  FrameEnd::kSwap, args->gpuTime);
 
             const double ratio = withPanel.ms / renderMs;
             if (args->json) {
               std::printf("{\"device\": %s, \"file\": %s, \"res\": [%d, %d], \"frames\": %d, \"render_ms\": %s, "
-                          "\"view_panel_ms\": %s, \"view_panel_whole_image_ms\": %s, \"view_no_panel_ms\": %s, "
-                          "\"present_ms\": %s, \"ratio\": %s, \"complete_frames_panel\": %d, "
-                          "\"complete_frames_no_panel\": %d}\n",
+                          "\"view_panel_ms\": %s, \"view_panel_finish_ms\": %s, \"view_panel_whole_image_ms\": %s, "
+                          "\"view_no_panel_ms\": %s, \"present_ms\": %s, \"ratio\": %s, \"ratio_finish\": %s, "
+                          "\"complete_frames_panel\": %d, \"complete_frames_no_panel\": %d}\n",
                           jsonString(gl.renderer()).c_str(), jsonString(args->flags.file).c_str(), width, height,
                           args->frames, jsonNumber(renderMs).c_str(), jsonNumber(withPanel.ms).c_str(),
-                          jsonNumber(wholeImage.ms).c_str(), jsonNumber(noPanel.ms).c_str(), jsonNumber(presentMs).c_str(),
-                          jsonNumber(ratio).c_str(), withPanel.completeFrames, noPanel.completeFrames);
+                          jsonNumber(finishing.ms).c_str(), jsonNumber(wholeImage.ms).c_str(), jsonNumber(noPanel.ms).c_str(),
+                          jsonNumber(presentMs).c_str(), jsonNumber(ratio).c_str(), jsonNumber(finishing.ms / renderMs).c_str(),
+                          withPanel.completeFrames, noPanel.completeFrames);
               return 0;
             }
             std::printf("device: %s\nfile:   %s, %dx%d, %d frames per orbit\n", gl.renderer().c_str(),
@@ -229,8 +240,9 @@ Command addBenchViewCommand(CLI::App& bench) {
             std::printf("render (complete frames):  %8.3f ms\n", renderMs);
             std::printf("viewer with panel:         %8.3f ms (%d of %d frames complete), %.3f x render\n",
                         withPanel.ms, withPanel.completeFrames, args->frames, ratio);
-            std::printf("viewer with panel, drawing the whole image every frame (buffer age unknown): %.3f ms, %.3f x "
-                        "render\n",
+            std::printf("  the same, glFinish after every frame: %8.3f ms, %.3f x render\n", finishing.ms,
+                        finishing.ms / renderMs);
+            std::printf("  the same, the whole image drawn every frame (buffer age unknown): %.3f ms, %.3f x render\n",
                         wholeImage.ms, wholeImage.ms / renderMs);
             std::printf("viewer without panel:      %8.3f ms (%d of %d frames complete)\n", noPanel.ms,
                         noPanel.completeFrames, args->frames);
