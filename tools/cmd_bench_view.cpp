@@ -5,9 +5,12 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "BenchOrbit.h"
 #include "Command.h"
@@ -132,6 +135,22 @@ ViewTiming timeViewer(render::ViewerSession& session, const OffscreenTarget& tar
   return t;
 }
 
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+std::string listed(const std::vector<double>& values) {
+  std::string out;
+  char text[32];
+  for (double v : values) {
+    std::snprintf(text, sizeof text, "%s%.3f", out.empty() ? "" : " ", v);
+    out += text;
+  }
+  return out;
+}
+
 // The image drawn over the background alone, the same image each time.
 struct PresentTiming {
   double ms = 0.0, gpuMs = 0.0;
@@ -174,6 +193,7 @@ Command addBenchViewCommand(CLI::App& bench) {
   struct Args {
     RenderFlags flags;
     int frames = 120;
+    int rounds = 3;
     bool json = false;
     bool gpuTime = false;
   };
@@ -183,6 +203,9 @@ Command addBenchViewCommand(CLI::App& bench) {
       "view", "The viewer's frame time with and without its panel against complete raycaster frames (offscreen)");
   addRenderFlags(*app, args->flags);
   app->add_option("--frames", args->frames, "Timed frames per variant (one orbit)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app->add_option("--rounds", args->rounds, "Rounds of timings; each figure is the median over them")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app->add_flag("--gpu-time", args->gpuTime,
@@ -200,29 +223,45 @@ Command addBenchViewCommand(CLI::App& bench) {
             const OffscreenTarget target(width, height);
             const HeadlessImGui imgui(width, height);
 
-            // Warm caches first (one orbit each), then the same orbit timed three ways.
+            // Warm caches first (one orbit each), then the same orbit timed several ways, in rounds
+            // that alternate render and viewer: on the H200 one orbit's time varies by up to 8% from
+            // run to run, so each figure is the median over the rounds, and so is each ratio.
             render::Raycaster raycaster(store, options);
             timeRender(raycaster, camera, width, height, args->frames);
-            const RenderTiming renderTiming = timeRender(raycaster, camera, width, height, args->frames);
-            const double renderMs = renderTiming.ms;
             const PresentTiming present = timePresent(raycaster, target, width, height, args->frames);
             const double presentMs = present.ms;
-
             render::ViewerSession session(store, options, camera, render::summarizeDataset(store));
             settleOrbit(session, target, camera, width, height, args->frames);
-            const ViewTiming withPanel = timeViewer(session, target, camera, width, height, args->frames, kBufferAgeKept,
-                                                    FrameEnd::kSwap, args->gpuTime);
-            const ViewTiming finishing = timeViewer(session, target, camera, width, height, args->frames, kBufferAgeKept,
-                                                    FrameEnd::kFinish, args->gpuTime);
-            const ViewTiming wholeImage = timeViewer(session, target, camera, width, height, args->frames,
-                                                     kBufferAgeUnknown, FrameEnd::kSwap, args->gpuTime);
+
+            std::vector<double> renderRounds, panelRounds, finishRounds, wholeRounds, ratioRounds, finishRatioRounds;
+            RenderTiming renderTiming;
+            ViewTiming withPanel, finishing, wholeImage;
+            for (int round = 0; round < args->rounds; ++round) {
+              renderTiming = timeRender(raycaster, camera, width, height, args->frames);
+              withPanel = timeViewer(session, target, camera, width, height, args->frames, kBufferAgeKept,
+                                     FrameEnd::kSwap, args->gpuTime);
+              finishing = timeViewer(session, target, camera, width, height, args->frames, kBufferAgeKept,
+                                     FrameEnd::kFinish, args->gpuTime);
+              wholeImage = timeViewer(session, target, camera, width, height, args->frames, kBufferAgeUnknown,
+                                      FrameEnd::kSwap, args->gpuTime);
+              renderRounds.push_back(renderTiming.ms);
+              panelRounds.push_back(withPanel.ms);
+              finishRounds.push_back(finishing.ms);
+              wholeRounds.push_back(wholeImage.ms);
+              ratioRounds.push_back(withPanel.ms / renderTiming.ms);
+              finishRatioRounds.push_back(finishing.ms / renderTiming.ms);
+            }
+            const double renderMs = median(renderRounds);
+            withPanel.ms = median(panelRounds);
+            finishing.ms = median(finishRounds);
+            wholeImage.ms = median(wholeRounds);
             session.settings().showPanel = false;
             // The columns the panel covered need rays (and maybe bricks) now: settle them too.
             settleOrbit(session, target, camera, width, height, args->frames);
             const ViewTiming noPanel = timeViewer(session, target, camera, width, height, args->frames, kBufferAgeKept,
                                                   FrameEnd::kSwap, args->gpuTime);
 
-            const double ratio = withPanel.ms / renderMs;
+            const double ratio = median(ratioRounds), ratioFinish = median(finishRatioRounds);
             if (args->json) {
               std::printf("{\"device\": %s, \"file\": %s, \"res\": [%d, %d], \"frames\": %d, \"render_ms\": %s, "
                           "\"view_panel_ms\": %s, \"view_panel_finish_ms\": %s, \"view_panel_whole_image_ms\": %s, "
@@ -231,17 +270,17 @@ Command addBenchViewCommand(CLI::App& bench) {
                           jsonString(gl.renderer()).c_str(), jsonString(args->flags.file).c_str(), width, height,
                           args->frames, jsonNumber(renderMs).c_str(), jsonNumber(withPanel.ms).c_str(),
                           jsonNumber(finishing.ms).c_str(), jsonNumber(wholeImage.ms).c_str(), jsonNumber(noPanel.ms).c_str(),
-                          jsonNumber(presentMs).c_str(), jsonNumber(ratio).c_str(), jsonNumber(finishing.ms / renderMs).c_str(),
+                          jsonNumber(presentMs).c_str(), jsonNumber(ratio).c_str(), jsonNumber(ratioFinish).c_str(),
                           withPanel.completeFrames, noPanel.completeFrames);
               return 0;
             }
-            std::printf("device: %s\nfile:   %s, %dx%d, %d frames per orbit\n", gl.renderer().c_str(),
-                        args->flags.file.c_str(), width, height, args->frames);
+            std::printf("device: %s\nfile:   %s, %dx%d, %d frames per orbit; medians of %d rounds (ratios %s)\n",
+                        gl.renderer().c_str(), args->flags.file.c_str(), width, height, args->frames, args->rounds,
+                        listed(ratioRounds).c_str());
             std::printf("render (complete frames):  %8.3f ms\n", renderMs);
             std::printf("viewer with panel:         %8.3f ms (%d of %d frames complete), %.3f x render\n",
                         withPanel.ms, withPanel.completeFrames, args->frames, ratio);
-            std::printf("  the same, glFinish after every frame: %8.3f ms, %.3f x render\n", finishing.ms,
-                        finishing.ms / renderMs);
+            std::printf("  the same, glFinish after every frame: %8.3f ms, %.3f x render\n", finishing.ms, ratioFinish);
             std::printf("  the same, the whole image drawn every frame (buffer age unknown): %.3f ms, %.3f x render\n",
                         wholeImage.ms, wholeImage.ms / renderMs);
             std::printf("viewer without panel:      %8.3f ms (%d of %d frames complete)\n", noPanel.ms,
