@@ -2,9 +2,6 @@
 // camera orbit, drawn offscreen through EGL, against the raycaster's own complete frames (as `bench
 // render` times them) on the same orbit: the "within 10% of bench render" figure, on a GPU
 // machine without a display.
-#include <backends/imgui_impl_opengl3.h>
-#include <imgui.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -20,51 +17,15 @@
 #include "viewer/DatasetSummary.h"
 #include "viewer/EglContext.h"
 #include "viewer/GpuTimer.h"
+#include "viewer/HeadlessViewer.h"
 #include "viewer/Presenter.h"
 #include "viewer/ViewerSession.h"
 
 namespace fcc::cli {
 namespace {
 
-// An offscreen RGBA8 framebuffer standing in for the window.
-class OffscreenTarget {
- public:
-  OffscreenTarget(int width, int height) {
-    glCreateRenderbuffers(1, &color_);
-    glNamedRenderbufferStorage(color_, GL_RGBA8, width, height);
-    glCreateFramebuffers(1, &framebuffer_);
-    glNamedFramebufferRenderbuffer(framebuffer_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
-    if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError("bench view: the offscreen framebuffer is incomplete");
-  }
-  ~OffscreenTarget() {
-    glDeleteFramebuffers(1, &framebuffer_);
-    glDeleteRenderbuffers(1, &color_);
-  }
-  void bind() const { glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_); }
-
- private:
-  GLuint framebuffer_ = 0, color_ = 0;
-};
-
-// ImGui with its OpenGL 3 backend and no platform backend: display size and time are set by hand.
-class HeadlessImGui {
- public:
-  HeadlessImGui(int width, int height) {
-    ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(float(width), float(height));
-    if (!ImGui_ImplOpenGL3_Init("#version 450")) {
-      ImGui::DestroyContext();
-      throw GlError("bench view: Dear ImGui's OpenGL 3 backend did not initialise (its loader needs libGL.so.1)");
-    }
-  }
-  ~HeadlessImGui() {
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui::DestroyContext();
-  }
-};
+using render::HeadlessImGui;
+using render::OffscreenTarget;
 
 struct ViewTiming {
   double ms = 0.0;
@@ -93,9 +54,7 @@ enum class FrameEnd { kSwap, kFinish };
 void viewerFrame(render::ViewerSession& session, const OffscreenTarget& target, const render::Camera& camera, int width,
                  int height, int bufferAge, FrameEnd end, FrameTimers* timers = nullptr) {
   session.setCamera(camera);
-  ImGui::GetIO().DeltaTime = 1.0f / 60.0f;
-  ImGui_ImplOpenGL3_NewFrame();
-  ImGui::NewFrame();
+  HeadlessImGui::newFrame();
   target.bind();
   if (timers) timers->session.begin();
   session.frame(width, height, height, bufferAge);

@@ -120,6 +120,9 @@ void ViewerSession::drawPanel(int windowHeight) {
     char rate[32];
     std::snprintf(rate, sizeof rate, "%.1f MiB/s", stats_.uploadMiBPerSecond);
     row("uploads", rate);
+    char drawn[32];
+    std::snprintf(drawn, sizeof drawn, "%.0f%% of the image", 100.0 * stats_.imageDrawnFraction);
+    row("drawn", drawn);
   }
   ImGui::TextDisabled("H or F1: help");
   ImGui::PopItemWidth();

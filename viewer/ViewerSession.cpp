@@ -116,11 +116,13 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   drawPanel(windowHeight);
   if (settings_.showHelp) drawHelp();
   drawStreamingLine(windowHeight);
-  presenter_.draw(raycaster_.colorTexture(), settings_.background, redraw_.regions(look, bufferAge), look.imageArea(),
-                  &raycaster_.passResults());
+  std::vector<PixelRect> regions = redraw_.regions(look, bufferAge);
+  presenter_.draw(raycaster_.colorTexture(), settings_.background, regions, look.imageArea(), &raycaster_.passResults());
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   const StepStats step = raycaster_.finishStep();
+  regions.front() = intersected(united(regions.front(), raycaster_.surfaceRect()), look.imageArea());  // as drawn
+  stats_.imageDrawnFraction = look.imageArea().empty() ? 0.0 : double(coveredArea(regions)) / double(look.imageArea().area());
   redraw_.drawn(look, raycaster_.surfaceRect());
   noteOverlays(*ImGui::GetDrawData(), look.imageArea());
   applySettings();

@@ -45,6 +45,9 @@ struct ViewerStats {
   bool complete = false;         // the image is final for this view
   double uploadMiBPerSecond = 0.0;
   double passGpuMs = 0.0;        // the last raycasting pass on the GPU (RenderOptions::timeGpu; else 0)
+  // Pixels the last frame drew of the image beside the panel, as a fraction of them: below 1 where
+  // the back buffer's age is known (RedrawTracker.h).
+  double imageDrawnFraction = 0.0;
 };
 
 class ViewerSession {

@@ -11,6 +11,7 @@
 #include "io/VdbFile.h"
 #include "sparse/FccBuilder.h"
 #include "sparse/SampleField.h"
+#include "tests/tools/RunCommand.h"
 #include "tests/viewer/GlTestSuite.h"
 #include "viewer/Raycaster.h"
 
@@ -44,6 +45,23 @@ inline render::FrameImages renderFile(const std::string& path, const render::Cam
   const render::FrameStats s = raycaster.render(camera, width, height);
   if (stats) *stats = s;
   return raycaster.readImages();
+}
+
+// Sparse blobs of 96^3 (307 bricks), a camera that sees most of them, and a pool of a few dozen
+// slots (by layout), so a frame needs several passes and bricks are evicted and reloaded.
+inline constexpr std::size_t kSmallPoolBytes = std::size_t(1) << 20;
+
+inline std::string writeSmallBlobs(const TempDir& dir) {
+  const std::string path = dir / "blobs.vdb";
+  EXPECT_EQ(test::runFccvdb("synth blobs " + path + " --dims 96,96,96 --quiet").status, 0);
+  return path;
+}
+
+inline render::Camera smallBlobsCamera() {
+  render::Camera camera;
+  camera.eye = glm::dvec3(160.0, 120.0, 140.0);
+  camera.lookat = glm::dvec3(48.0);
+  return camera;
 }
 
 }  // namespace fcc::test

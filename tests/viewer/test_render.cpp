@@ -22,6 +22,9 @@ using test::GlSuite;
 using test::renderFile;
 using test::TempDir;
 using test::writeFccFile;
+using test::kSmallPoolBytes;
+using test::smallBlobsCamera;
+using test::writeSmallBlobs;
 
 // Tolerances of the exactness test (the numbers): depth in voxels, normals in degrees.
 constexpr double kDepthTolVoxels = 1e-3;
@@ -259,23 +262,6 @@ TEST_F(Render, SmallCachesGiveTheSameImageWithinTheirBudgets) {
   std::printf("peak RSS: tiny %ld KiB, blobs %ld KiB (+%.1f MiB; budgets 2 x %.0f MiB, data %.1f MiB)\n",
               baseline.peakRssKiB, large.peakRssKiB, growthMiB, budgetMiB, decodedMiB);
   EXPECT_LT(growthMiB, 2.0 * budgetMiB + slackMiB);
-}
-
-// Sparse blobs of 96^3 (307 bricks), a camera that sees most of them, and a pool of a few dozen
-// slots (by layout), so a frame needs several passes and bricks are evicted and reloaded.
-constexpr std::size_t kSmallPoolBytes = std::size_t(1) << 20;
-
-std::string writeSmallBlobs(const TempDir& dir) {
-  const std::string path = dir / "blobs.vdb";
-  EXPECT_EQ(test::runFccvdb("synth blobs " + path + " --dims 96,96,96 --quiet").status, 0);
-  return path;
-}
-
-render::Camera smallBlobsCamera() {
-  render::Camera camera;
-  camera.eye = glm::dvec3(160.0, 120.0, 140.0);
-  camera.lookat = glm::dvec3(48.0);
-  return camera;
 }
 
 // The viewer's progressive frames: step() with no upload time budget (one batch a step) reaches the
