@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <deque>
 #include <vector>
 
@@ -40,10 +41,13 @@ class RedrawTracker {
   // panel's antialiased edge or a line of text would stretch one rectangle around the surface to
   // the image's full height or width). Unknown or different buffers get {look.imageArea()}.
   std::vector<PixelRect> regions(const FrameLook& look, int bufferAge) const;
-  // Records the frame just drawn. Until overlaid() says what was drawn over its image, all of it counts.
-  void drawn(const FrameLook& look, const PixelRect& surface);
-  // What was drawn over the image of the frame drawn last (rows from the top, window pixels).
-  void overlaid(const std::vector<PixelRect>& overlays);
+  // True if the back buffer already shows the user interface `uiHash` stands for (a hash of ImGui's
+  // draw data), drawn by a frame that looks like `look` with nothing over the image: then only the
+  // panel's columns hold it, which the image never touches, and ImGui need not draw again.
+  bool holdsUi(const FrameLook& look, int bufferAge, uint64_t uiHash) const;
+  // Records the frame just drawn: its look, where its surface was, what was drawn over its image
+  // (rows from the top, window pixels; clipped to the image) and the hash of its user interface.
+  void drawn(const FrameLook& look, const PixelRect& surface, const std::vector<PixelRect>& overlays, uint64_t uiHash);
   // More overlay rectangles than this in a frame are drawn as their bounding box.
   static constexpr std::size_t kMaxOverlays = 8;
 
@@ -52,7 +56,9 @@ class RedrawTracker {
     FrameLook look;
     PixelRect surface;
     std::vector<PixelRect> overlays;  // inside look.imageArea()
+    uint64_t uiHash = 0;
   };
+  const Frame* held(const FrameLook& look, int bufferAge) const;  // null: unknown or another look
   std::deque<Frame> frames_;  // newest first
 };
 

@@ -50,11 +50,14 @@ void ViewerSession::drawPanel(int windowHeight) {
   const float scale = ImGui::GetIO().FontGlobalScale;
   ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
   ImGui::SetNextWindowSize(ImVec2(panelWidth_, float(windowHeight)));
-  // Opaque: the raycaster casts no rays under it (ViewerSession::frame).
+  // Opaque: the raycaster casts no rays under it (ViewerSession::frame). No border: it would reach a
+  // pixel or two into the image, and then the panel would count as drawn over the image every frame.
   ImGui::SetNextWindowBgAlpha(1.0f);
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0.0f);
   ImGui::Begin("fccvdb", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoSavedSettings);
+  ImGui::PopStyleVar();
   ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);  // room for the labels
 
   if (ImGui::CollapsingHeader("Isosurface", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -121,7 +124,7 @@ void ViewerSession::drawPanel(int windowHeight) {
     std::snprintf(rate, sizeof rate, "%.1f MiB/s", stats_.uploadMiBPerSecond);
     row("uploads", rate);
     char drawn[32];
-    std::snprintf(drawn, sizeof drawn, "%.0f%% of the image", 100.0 * stats_.imageDrawnFraction);
+    std::snprintf(drawn, sizeof drawn, "%.0f%% of the image", 100.0 * stats_.imageDrawnAverage);
     row("drawn", drawn);
   }
   ImGui::TextDisabled("H or F1: help");

@@ -7,13 +7,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <functional>
+#include <string_view>
 
+#include "ImGuiDrawData.h"
 #include "OrbitControls.h"
 #include "io/ImageOutput.h"
 
 namespace fcc::render {
 namespace {
 constexpr double kRateWindowSeconds = 0.5;
+
 }  // namespace
 
 ViewerSession::ViewerSession(const io::BrickStore& store, const RenderOptions& options, const Camera& initialCamera,
@@ -71,7 +76,7 @@ void ViewerSession::applySettings() {
   if (settings_.lightInCamera != o.lightInCamera) raycaster_.setLightInCamera(settings_.lightInCamera);
 }
 
-void ViewerSession::updateStats(const StepStats& step) {
+void ViewerSession::updateStats(const StepStats& step, double imageDrawn, bool uiDrawn) {
   // Frame time and upload rate over windows of about kRateWindowSeconds: steady numbers to read,
   // and a slow first frame (shader compilation) does not linger in them.
   const auto now = std::chrono::steady_clock::now();
@@ -81,6 +86,7 @@ void ViewerSession::updateStats(const StepStats& step) {
     firstFrame_ = false;
   } else {
     ++framesInWindow_;
+    imageDrawnInWindow_ += imageDrawn;
   }
   const double window = std::chrono::duration<double>(now - rateWindowStart_).count();
   if (window >= kRateWindowSeconds && framesInWindow_ > 0) {
@@ -89,9 +95,13 @@ void ViewerSession::updateStats(const StepStats& step) {
     const uint64_t uploaded = raycaster_.bricksUploaded() - uploadedAtWindowStart_;
     stats_.uploadMiBPerSecond = double(uploaded) * double(raycaster_.slotBytes()) / double(1 << 20) / window;
     uploadedAtWindowStart_ = raycaster_.bricksUploaded();
+    stats_.imageDrawnAverage = imageDrawnInWindow_ / framesInWindow_;
     rateWindowStart_ = now;
     framesInWindow_ = 0;
+    imageDrawnInWindow_ = 0.0;
   }
+  stats_.imageDrawn = imageDrawn;
+  stats_.uiDrawn = uiDrawn;
   stats_.resident = raycaster_.residentCount();
   stats_.needed = raycaster_.neededCount();
   stats_.missing = raycaster_.missingCount();
@@ -116,51 +126,21 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   drawPanel(windowHeight);
   if (settings_.showHelp) drawHelp();
   drawStreamingLine(windowHeight);
+  ImGui::Render();
+  ImDrawData* ui = ImGui::GetDrawData();
+  const std::vector<PixelRect> overlays = overlaysOf(*ui, look.imageArea());
+  const uint64_t uiHash = hashOf(*ui);
   std::vector<PixelRect> regions = redraw_.regions(look, bufferAge);
   presenter_.draw(raycaster_.colorTexture(), settings_.background, regions, look.imageArea(), &raycaster_.passResults());
-  ImGui::Render();
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  // A panel the back buffer already shows, with nothing over the image, is not drawn again (on the
+  // H200 ImGui's draw lists cost 0.04 ms a frame, mostly the panel's background).
+  const bool uiShown = overlays.empty() && redraw_.holdsUi(look, bufferAge, uiHash);
+  if (!uiShown) ImGui_ImplOpenGL3_RenderDrawData(ui);
   const StepStats step = raycaster_.finishStep();
   regions.front() = intersected(united(regions.front(), raycaster_.surfaceRect()), look.imageArea());  // as drawn
-  stats_.imageDrawnFraction = look.imageArea().empty() ? 0.0 : double(coveredArea(regions)) / double(look.imageArea().area());
-  redraw_.drawn(look, raycaster_.surfaceRect());
-  noteOverlays(*ImGui::GetDrawData(), look.imageArea());
+  redraw_.drawn(look, raycaster_.surfaceRect(), overlays, uiHash);
   applySettings();
-  updateStats(step);
-}
-
-void ViewerSession::noteOverlays(const ImDrawData& drawData, const PixelRect& imageArea) {
-  // Each command draws inside its clip rectangle and the bounding box of its vertices (antialiased
-  // edges are vertices too; a pixel is drawn when its centre is covered); ImGui's coordinates are
-  // window units from the top left.
-  const ImVec2 origin = drawData.DisplayPos, scale = drawData.FramebufferScale;
-  std::vector<PixelRect> overlays;
-  for (int n = 0; n < drawData.CmdListsCount; ++n) {
-    const ImDrawList& list = *drawData.CmdLists[n];
-    for (const ImDrawCmd& cmd : list.CmdBuffer) {
-      if (cmd.UserCallback || cmd.ElemCount == 0) continue;
-      const PixelRect clip{int(std::floor((cmd.ClipRect.x - origin.x) * scale.x)),
-                           int(std::floor((cmd.ClipRect.y - origin.y) * scale.y)),
-                           int(std::ceil((cmd.ClipRect.z - origin.x) * scale.x)),
-                           int(std::ceil((cmd.ClipRect.w - origin.y) * scale.y))};
-      // The panel's own commands stay left of the image: no need to look at their vertices.
-      if (intersected(clip, imageArea).empty()) continue;
-      ImVec2 lo(cmd.ClipRect.z, cmd.ClipRect.w), hi(cmd.ClipRect.x, cmd.ClipRect.y);
-      for (unsigned i = cmd.IdxOffset; i < cmd.IdxOffset + cmd.ElemCount; ++i) {
-        const ImVec2 p = list.VtxBuffer[int(cmd.VtxOffset + list.IdxBuffer[int(i)])].pos;
-        lo = ImVec2(std::min(lo.x, p.x), std::min(lo.y, p.y));
-        hi = ImVec2(std::max(hi.x, p.x), std::max(hi.y, p.y));
-      }
-      const PixelRect drawn{int(std::floor((lo.x - origin.x) * scale.x)), int(std::floor((lo.y - origin.y) * scale.y)),
-                            int(std::ceil((hi.x - origin.x) * scale.x)), int(std::ceil((hi.y - origin.y) * scale.y))};
-      const PixelRect r = intersected(intersected(clip, drawn), imageArea);
-      if (r.empty()) continue;
-      // Consecutive commands of a window usually overlap: one rectangle for them.
-      if (!overlays.empty() && !intersected(overlays.back(), r).empty()) overlays.back() = united(overlays.back(), r);
-      else overlays.push_back(r);
-    }
-  }
-  redraw_.overlaid(overlays);
+  updateStats(step, double(coveredArea(regions)) / double(std::max<long long>(1, look.imageArea().area())), !uiShown);
 }
 
 }  // namespace fcc::render

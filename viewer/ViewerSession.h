@@ -46,8 +46,10 @@ struct ViewerStats {
   double uploadMiBPerSecond = 0.0;
   double passGpuMs = 0.0;        // the last raycasting pass on the GPU (RenderOptions::timeGpu; else 0)
   // Pixels the last frame drew of the image beside the panel, as a fraction of them: below 1 where
-  // the back buffer's age is known (RedrawTracker.h).
-  double imageDrawnFraction = 0.0;
+  // the back buffer's age is known (RedrawTracker.h); and its average over the frame-time window
+  // (what the panel shows: a figure changing every frame would make the panel change every frame).
+  double imageDrawn = 0.0, imageDrawnAverage = 0.0;
+  bool uiDrawn = false;          // ImGui drew the last frame (else the back buffer already showed it)
 };
 
 class ViewerSession {
@@ -87,12 +89,10 @@ class ViewerSession {
  private:
   void handleInput(int windowHeight);
   void applySettings();
-  void updateStats(const StepStats& step);
+  void updateStats(const StepStats& step, double imageDrawn, bool uiDrawn);
   void drawPanel(int windowHeight);  // viewer/ViewerPanel.cpp
   void drawHelp();
   void drawStreamingLine(int windowHeight);
-  // Where ImGui's draw data covered the image: a later frame draws the image there again.
-  void noteOverlays(const ImDrawData& drawData, const PixelRect& imageArea);
 
   Raycaster raycaster_;
   Presenter presenter_;
@@ -105,6 +105,7 @@ class ViewerSession {
   bool screenshotRequested_ = false;
   std::chrono::steady_clock::time_point rateWindowStart_;
   int framesInWindow_ = 0;
+  double imageDrawnInWindow_ = 0.0;
   uint64_t uploadedAtWindowStart_ = 0;
   bool firstFrame_ = true;
 };

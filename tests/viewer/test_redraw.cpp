@@ -12,9 +12,12 @@
 #include <string>
 #include <vector>
 
+#include <backends/imgui_impl_opengl3.h>
+
 #include "RenderTestSupport.h"
 #include "viewer/DatasetSummary.h"
 #include "viewer/HeadlessViewer.h"
+#include "viewer/ImGuiDrawData.h"
 #include "viewer/Presenter.h"
 #include "viewer/RedrawTracker.h"
 #include "viewer/ViewerSession.h"
@@ -46,8 +49,7 @@ TEST(RedrawTracker, UnknownOrDifferentBuffersAreDrawnWhole) {
   RedrawTracker tracker;
   const PixelRect all = kLook.imageArea();
   EXPECT_EQ(describe(tracker.regions(kLook, 1)), describe(Rects{all})) << "nothing drawn yet";
-  tracker.drawn(kLook, {40, 10, 80, 50});
-  tracker.overlaid({});
+  tracker.drawn(kLook, {40, 10, 80, 50}, {}, 1);
   EXPECT_EQ(describe(tracker.regions(kLook, 0)), describe(Rects{all})) << "age 0: the buffer's contents are unknown";
   EXPECT_EQ(describe(tracker.regions(kLook, 2)), describe(Rects{all})) << "older than any frame drawn";
   EXPECT_EQ(describe(tracker.regions(kLook, 1)), describe(Rects{{40, 10, 80, 50}}));
@@ -62,26 +64,35 @@ TEST(RedrawTracker, UnknownOrDifferentBuffersAreDrawnWhole) {
   EXPECT_EQ(describe(tracker.regions(other, 1)), describe(Rects{other.imageArea()})) << "another size";
 }
 
-TEST(RedrawTracker, AFrameWhoseOverlaysWereNotToldCountsAsCoveredWhole) {
+// The panel need not be drawn again only where the back buffer shows the same one with nothing
+// over the image.
+TEST(RedrawTracker, HoldsTheUiOfTheSameLookAndHashWithoutOverlays) {
   RedrawTracker tracker;
-  tracker.drawn(kLook, {40, 10, 80, 50});
-  const std::vector<PixelRect> regions = tracker.regions(kLook, 1);
-  EXPECT_EQ(render::coveredArea(regions), kLook.imageArea().area()) << describe(regions);
+  EXPECT_FALSE(tracker.holdsUi(kLook, 1, 7)) << "nothing drawn yet";
+  tracker.drawn(kLook, {40, 10, 80, 50}, {}, 7);
+  EXPECT_TRUE(tracker.holdsUi(kLook, 1, 7));
+  EXPECT_FALSE(tracker.holdsUi(kLook, 1, 8)) << "another user interface";
+  EXPECT_FALSE(tracker.holdsUi(kLook, 0, 7)) << "unknown buffer";
+  EXPECT_FALSE(tracker.holdsUi(kLook, 2, 7)) << "older than any frame drawn";
+  FrameLook other = kLook;
+  other.firstColumn = 29;
+  EXPECT_FALSE(tracker.holdsUi(other, 1, 7)) << "another look";
+  tracker.drawn(kLook, {40, 10, 80, 50}, {{150, 20, 160, 30}}, 7);
+  EXPECT_FALSE(tracker.holdsUi(kLook, 1, 7)) << "the image was drawn over: it is drawn again, and so must the UI be";
+  EXPECT_TRUE(tracker.holdsUi(kLook, 2, 7));
 }
 
 TEST(RedrawTracker, OverlaysAreKeptApartAndClippedToTheImage) {
   RedrawTracker tracker;
-  tracker.drawn(kLook, {100, 40, 150, 80});
   // The panel's antialiased edge, a window inside the surface's rectangle, a line of text.
-  tracker.overlaid({{0, 0, 32, 100}, {120, 50, 130, 60}, {160, 90, 190, 99}});
+  tracker.drawn(kLook, {100, 40, 150, 80}, {{0, 0, 32, 100}, {120, 50, 130, 60}, {160, 90, 190, 99}}, 1);
   EXPECT_EQ(describe(tracker.regions(kLook, 1)), describe(Rects{{100, 40, 150, 80}, {30, 0, 32, 100}, {160, 90, 190, 99}}));
 }
 
 TEST(RedrawTracker, AgeCountsFramesBack) {
   RedrawTracker tracker;
   for (int i = 0; i < RedrawTracker::kHistory + 2; ++i) {
-    tracker.drawn(kLook, {40 + i, 10, 80 + i, 50});
-    tracker.overlaid({});
+    tracker.drawn(kLook, {40 + i, 10, 80 + i, 50}, {}, 1);
   }
   const int last = RedrawTracker::kHistory + 1;
   for (int age = 1; age <= RedrawTracker::kHistory; ++age) {
@@ -93,10 +104,9 @@ TEST(RedrawTracker, AgeCountsFramesBack) {
 
 TEST(RedrawTracker, ManyOverlaysBecomeTheirBoundingBox) {
   RedrawTracker tracker;
-  tracker.drawn(kLook, {});
   std::vector<PixelRect> many;
   for (int i = 0; i < int(RedrawTracker::kMaxOverlays) + 1; ++i) many.push_back({40 + 10 * i, 5, 45 + 10 * i, 8});
-  tracker.overlaid(many);
+  tracker.drawn(kLook, {}, many, 1);
   EXPECT_EQ(describe(tracker.regions(kLook, 1)), describe(Rects{{}, {40, 5, 45 + 10 * int(RedrawTracker::kMaxOverlays), 8}}));
 }
 
@@ -104,6 +114,63 @@ TEST(PixelRect, CoveredAreaCountsOverlapsOnce) {
   EXPECT_EQ(render::coveredArea({}), 0);
   EXPECT_EQ(render::coveredArea({{0, 0, 10, 10}, {5, 5, 15, 15}}), 175);
   EXPECT_EQ(render::coveredArea({{0, 0, 10, 10}, {2, 2, 4, 4}, {20, 0, 21, 3}, {}}), 103);
+}
+
+// ImGui frames without a renderer (the font atlas built by hand): a fixed window with a line of text
+// and, optionally, a second window over the image.
+class ImGuiFrames : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(400.0f, 200.0f);
+    unsigned char* pixels = nullptr;
+    int width = 0, height = 0;
+    io.Fonts->GetTexDataAsRGBA32(&pixels, &width, &height);
+    io.Fonts->SetTexID(ImTextureID(intptr_t(1)));
+  }
+  void TearDown() override { ImGui::DestroyContext(); }
+  static const ImDrawData& frame(const char* text, bool popup = false) {
+    ImGui::GetIO().DeltaTime = 1.0f / 60.0f;
+    ImGui::NewFrame();
+    ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
+    ImGui::SetNextWindowSize(ImVec2(100.0f, 200.0f));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0.0f);
+    ImGui::Begin("panel", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoSavedSettings);
+    ImGui::PopStyleVar();
+    ImGui::TextUnformatted(text);
+    ImGui::End();
+    if (popup) {
+      ImGui::SetNextWindowPos(ImVec2(150.0f, 50.0f));
+      ImGui::SetNextWindowSize(ImVec2(60.0f, 40.0f));
+      ImGui::Begin("over the image", nullptr, ImGuiWindowFlags_NoSavedSettings);
+      ImGui::End();
+    }
+    ImGui::Render();
+    return *ImGui::GetDrawData();
+  }
+};
+
+TEST_F(ImGuiFrames, EqualDrawDataHashesEqualAndAnyChangeShows) {
+  frame("1.23 ms");  // ImGui settles its windows over the first frames
+  frame("1.23 ms");
+  const uint64_t a = render::hashOf(frame("1.23 ms"));
+  EXPECT_EQ(render::hashOf(frame("1.23 ms")), a);
+  EXPECT_NE(render::hashOf(frame("1.25 ms")), a) << "another digit: same vertex count, other texture coordinates";
+  EXPECT_NE(render::hashOf(frame("1.23 ms", true)), a) << "another window";
+}
+
+TEST_F(ImGuiFrames, OverlaysAreWhatIsDrawnOverTheImage) {
+  const PixelRect image{100, 0, 400, 200};
+  for (int i = 0; i < 3; ++i) frame("text", true);
+  EXPECT_EQ(describe(render::overlaysOf(frame("text"), image)), describe(Rects{}))
+      << "a borderless panel of 100 columns stays left of the image";
+  const std::vector<PixelRect> over = render::overlaysOf(frame("text", true), image);
+  ASSERT_EQ(over.size(), 1u) << describe(over);
+  EXPECT_EQ(render::coveredArea({over[0], {150, 50, 210, 90}}), over[0].area())
+      << "the window over the image, [150,210)x[50,90), is inside " << describe(over[0]);
+  EXPECT_LE(over[0].area(), 64 * 44) << describe(over[0]) << " is more than its border (2 pixels) around the window";
 }
 
 class Presenter : public GlSuite {};
@@ -190,7 +257,8 @@ class ViewerRedraw : public GlSuite {};
 // Three sessions on one dataset go through the same views: one draws the whole image every frame
 // (buffer age 0), one draws into a target it keeps (age 1), one alternates two targets (age 2). Once
 // a view has settled, the image beside the panel is the same in all three: nothing is left behind
-// of the surface in an earlier view, of the help window, or of the streaming line.
+// of the surface in an earlier view, of the help window, or of the streaming line. (The panels
+// differ: they show each session's own frame times.)
 TEST_F(ViewerRedraw, KeptBackBuffersEndEachViewLikeWholeRedraws) {
   TempDir dir;
   const std::string blobs = test::writeSmallBlobs(dir);
@@ -216,17 +284,46 @@ TEST_F(ViewerRedraw, KeptBackBuffersEndEachViewLikeWholeRedraws) {
     for (int i = 0; i < std::max(age, 1); ++i) v.targets.push_back(std::make_unique<render::OffscreenTarget>(w, h));
     viewers.push_back(std::move(v));
   }
+  double partialFraction = 1.0;
+  int uiKept = 0;  // frames of the sessions with kept buffers that left the panel as it was
+  const render::OffscreenTarget scratch(w, h);
+  const int panelColumns = int(std::floor(render::ViewerSession::kPanelWidth * 0.5f));
+  // Where a frame left the panel as the buffer had it, the panel is what drawing this frame's
+  // ImGui draw lists gives (the panel is opaque: over anything).
+  const auto expectPanelAsDrawn = [&](const render::OffscreenTarget& target, int view) {
+    const std::vector<unsigned char> kept = target.readRgba();
+    scratch.bind();
+    glClearColor(0.0f, 1.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    const std::vector<unsigned char> drawn = scratch.readRgba();
+    int differing = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < panelColumns; ++x)
+        for (int c = 0; c < 4; ++c) differing += kept[(std::size_t(y) * w + x) * 4 + c] != drawn[(std::size_t(y) * w + x) * 4 + c];
+    EXPECT_EQ(differing, 0) << "view " << view << ": the panel left in the buffer is not this frame's";
+  };
+  int currentView = 0;
   const auto frame = [&](Viewer& v) {
     render::HeadlessImGui::newFrame();
     v.targets[std::size_t(v.frames) % v.targets.size()]->bind();
     // The first frame into each target finds it undefined.
     v.session->frame(w, h, h, v.frames < int(v.targets.size()) ? 0 : v.bufferAge);
     ++v.frames;
+    if (v.bufferAge > 0) {
+      partialFraction = std::min(partialFraction, v.session->stats().imageDrawn);
+      if (!v.session->stats().uiDrawn) {
+        ++uiKept;
+        expectPanelAsDrawn(v.last(), currentView);
+      }
+    } else {
+      EXPECT_TRUE(v.session->stats().uiDrawn) << "a buffer of unknown age needs the panel drawn";
+    }
   };
 
   const int firstCompared = int(std::ceil(render::ViewerSession::kPanelWidth * 0.5f)) + 3;  // past the panel's edge
-  double partialFraction = 1.0;
   for (int view = 0; view < 6; ++view) {
+    currentView = view;
     render::Camera camera = start;
     const double angle = 0.15 * view;  // radians about the vertical through the look-at point
     // Views 2-4 from afar: the surface's rectangle shrinks, so what the near views showed, the help
@@ -245,7 +342,6 @@ TEST_F(ViewerRedraw, KeptBackBuffersEndEachViewLikeWholeRedraws) {
       frame(v);  // the streaming line of the last frame is gone (it tells the previous frame's figures)
       frame(v);
       ASSERT_TRUE(v.session->settled()) << "view " << view;
-      if (v.bufferAge > 0) partialFraction = std::min(partialFraction, v.session->stats().imageDrawnFraction);
     }
     const std::vector<unsigned char> expected = viewers[0].last().readRgba();
     for (std::size_t k = 1; k < viewers.size(); ++k) {
@@ -265,6 +361,9 @@ TEST_F(ViewerRedraw, KeptBackBuffersEndEachViewLikeWholeRedraws) {
     }
   }
   EXPECT_LT(partialFraction, 0.9) << "the kept buffers never drew less than the whole image: nothing was tested";
+  EXPECT_GT(uiKept, 0) << "the kept buffers always drew the panel again: its skipping was not tested";
+  std::printf("least image drawn by a frame into a kept buffer: %.1f%%; frames leaving the panel as it was: %d\n",
+              100.0 * partialFraction, uiKept);
 }
 
 }  // namespace
