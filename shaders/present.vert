@@ -3,10 +3,11 @@
 // strip of four vertices. Rectangles are [x0, x1) x [y0, y1) in pixels with rows from the top, as
 // the raycaster's images. Instance 0 may be united with the surface rectangle the raycasting passes
 // leave in their results buffer (viewer/Raycaster.h, passResults()), so drawing needs no read-back.
-// Everything is clipped to uClip.
+// Everything is clipped to uClip. The rectangle is read as a uniform block, bound to the buffer's
+// first bytes: OpenGL 4.5 need not offer storage blocks to vertex shaders.
 #define FCC_MAX_PRESENT_RECTS 16
 
-layout(std430, binding = 0) readonly buffer PassResults {
+layout(std140, binding = 0) uniform PassResults {  // std140 packs these scalars as raycast.comp does
   uint requestCount;
   int surfaceMinX, surfaceMinY, surfaceMaxX, surfaceMaxY;  // last < first: no surface
 };

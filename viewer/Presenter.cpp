@@ -2,12 +2,14 @@
 
 #include <cstdint>
 
+#include "Raycaster.h"
 #include "embedded_shaders.h"
 
 namespace fcc::render {
 namespace {
 // A PassResults block (shaders/present.vert) without a surface: last column before the first.
 constexpr int32_t kNoSurface[5] = {0, 0, 0, -1, -1};
+static_assert(sizeof kNoSurface == Raycaster::kPassResultsHeaderBytes, "present.vert reads a pass's results header");
 }  // namespace
 
 Presenter::Presenter() : noSurface_(sizeof kNoSurface, kNoSurface) {
@@ -44,7 +46,8 @@ void Presenter::draw(const GlTexture2D& image, const glm::vec3& backgroundLinear
   glProgramUniform4i(p, clipLocation_, clip.x0, clip.y0, clip.x1, clip.y1);
   glProgramUniform2i(p, sizeLocation_, width, height);
   glProgramUniform3fv(p, backgroundLocation_, 1, &backgroundLinear.x);
-  (passResults ? *passResults : noSurface_).bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  const GlBuffer& results = passResults ? *passResults : noSurface_;
+  glBindBufferRange(GL_UNIFORM_BUFFER, 0, results.id(), 0, GLsizeiptr(sizeof kNoSurface));
   image.bindImage(0, GL_READ_ONLY);
 
   glViewport(0, 0, width, height);

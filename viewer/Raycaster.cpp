@@ -227,9 +227,10 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   glDispatchCompute(GLuint((columns + group.x - 1) / group.x), GLuint((height + group.y - 1) / group.y), 1);
   if (passTimer_) passTimer_->end();
   firstPass_ = false;
-  // Texture fetch too: the viewer samples the colour image the pass wrote with imageStore.
+  // For the read-backs (buffer update, texture update) and the viewer's presenter, which reads the
+  // surface rectangle as a uniform block and the colour image with imageLoad.
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                  GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+                  GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
   checkGl("raycasting pass");
   passResultsReadback_->copy(*requests_, kRequestsHeaderWords * sizeof(uint32_t));
 }
@@ -293,6 +294,7 @@ uint32_t Raycaster::upload(const std::vector<LoadedBrick>& loaded, std::vector<u
 }
 
 FrameStats Raycaster::render(const Camera& camera, int width, int height) {
+  if (stepStarted_) throw Error("renderer: render() between startStep() and finishStep()");
   if (width <= 0 || height <= 0)
     throw ValueError("image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   const auto start = std::chrono::steady_clock::now();

@@ -109,10 +109,10 @@ class Raycaster {
   // the background. Empty when no ray hit.
   PixelRect surfaceRect() const { return surfaceRect_; }
   // The same on the GPU, where a pass leaves it, for drawing before the pass's results are read back
-  // (startStep() then finishStep()): the 32-bit ints first column, first row, last column, last row
-  // (last < first: no surface) from byte kSurfaceRectOffset of this buffer.
+  // (startStep() then finishStep()): after the request count (uint32), the int32s first column,
+  // first row, last column, last row (last < first: no surface); kPassResultsHeaderBytes in all.
   const GlBuffer& passResults() const { return *requests_; }
-  static constexpr std::size_t kSurfaceRectOffset = sizeof(uint32_t);
+  static constexpr std::size_t kPassResultsHeaderBytes = 5 * sizeof(uint32_t);
 
   uint32_t slotCount() const { return residency_->slotCount(); }
   const io::BrickCache& hostCache() const { return *hostCache_; }
@@ -137,7 +137,7 @@ class Raycaster {
     double gpuSeconds = 0.0;
   };
   // The Requests buffer (shaders/raycast.comp) starts with the count and the surface rectangle.
-  static constexpr std::size_t kRequestsHeaderWords = 5;
+  static constexpr std::size_t kRequestsHeaderWords = kPassResultsHeaderBytes / sizeof(uint32_t);
   void dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn);
   PassResult collectPass();  // waits for the pass dispatched last and reads what it tells the host
   std::vector<glm::ivec3> requestedBricks(uint32_t requestCount) const;

@@ -46,7 +46,7 @@ class RedrawTracker {
   // panel's columns hold it, which the image never touches, and ImGui need not draw again.
   bool holdsUi(const FrameLook& look, int bufferAge, uint64_t uiHash) const;
   // Records the frame just drawn: its look, where its surface was, what was drawn over its image
-  // (rows from the top, window pixels; clipped to the image) and the hash of its user interface.
+  // (framebuffer pixels, rows from the top; clipped to the image) and the hash of its user interface.
   void drawn(const FrameLook& look, const PixelRect& surface, const std::vector<PixelRect>& overlays, uint64_t uiHash);
   // More overlay rectangles than this in a frame are drawn as their bounding box.
   static constexpr std::size_t kMaxOverlays = 8;

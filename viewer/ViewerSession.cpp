@@ -131,10 +131,13 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   const std::vector<PixelRect> overlays = overlaysOf(*ui, look.imageArea());
   const uint64_t uiHash = hashOf(*ui);
   std::vector<PixelRect> regions = redraw_.regions(look, bufferAge);
-  presenter_.draw(raycaster_.colorTexture(), settings_.background, regions, look.imageArea(), &raycaster_.passResults());
+  // The look's background, as the regions assume: a panel edit made this frame shows from the next.
+  presenter_.draw(raycaster_.colorTexture(), look.background, regions, look.imageArea(), &raycaster_.passResults());
   // A panel the back buffer already shows, with nothing over the image, is not drawn again (on the
-  // H200 ImGui's draw lists cost 0.04 ms a frame, mostly the panel's background).
-  const bool uiShown = overlays.empty() && redraw_.holdsUi(look, bufferAge, uiHash);
+  // H200 ImGui's draw lists cost 0.04 ms a frame, mostly the panel's background). Only while the
+  // OpenGL backend does nothing else in RenderDrawData: from ImGui 1.92 it uploads textures there.
+  constexpr bool kUiMaySkip = IMGUI_VERSION_NUM < 19200;
+  const bool uiShown = kUiMaySkip && overlays.empty() && redraw_.holdsUi(look, bufferAge, uiHash);
   if (!uiShown) ImGui_ImplOpenGL3_RenderDrawData(ui);
   const StepStats step = raycaster_.finishStep();
   regions.front() = intersected(united(regions.front(), raycaster_.surfaceRect()), look.imageArea());  // as drawn

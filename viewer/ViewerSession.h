@@ -17,8 +17,6 @@
 #include "Raycaster.h"
 #include "RedrawTracker.h"
 
-struct ImDrawData;
-
 namespace fcc::render {
 
 // What the panel edits.

@@ -131,7 +131,7 @@ class ImGuiFrames : public ::testing::Test {
     io.Fonts->SetTexID(ImTextureID(intptr_t(1)));
   }
   void TearDown() override { ImGui::DestroyContext(); }
-  static const ImDrawData& frame(const char* text, bool popup = false) {
+  static const ImDrawData& frame(const char* text, bool windowOverImage = false) {
     ImGui::GetIO().DeltaTime = 1.0f / 60.0f;
     ImGui::NewFrame();
     ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
@@ -141,7 +141,7 @@ class ImGuiFrames : public ::testing::Test {
     ImGui::PopStyleVar();
     ImGui::TextUnformatted(text);
     ImGui::End();
-    if (popup) {
+    if (windowOverImage) {
       ImGui::SetNextWindowPos(ImVec2(150.0f, 50.0f));
       ImGui::SetNextWindowSize(ImVec2(60.0f, 40.0f));
       ImGui::Begin("over the image", nullptr, ImGuiWindowFlags_NoSavedSettings);
@@ -225,12 +225,16 @@ TEST_F(Presenter, DrawsExactlyTheRectanglesAndTheSurfaceRectangle) {
     const GlBuffer* passResults;
     PixelRect grownFirst;
   };
+  std::vector<PixelRect> noFirst = regions;
+  noFirst[0] = PixelRect{};
   for (const Case& c : {Case{"with the surface rectangle", &passResults, {5, 4, 60, 40}},
-                        Case{"without", nullptr, regions[0]}}) {
+                        Case{"without", nullptr, regions[0]},
+                        Case{"with the surface rectangle alone in the first", &passResults, {50, 30, 60, 40}}}) {
     part.bind();
     glClearColor(1.0f, 0.0f, 1.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
-    presenter.draw(image, background, regions, clip, c.passResults);
+    const bool alone = c.grownFirst == PixelRect{50, 30, 60, 40};
+    presenter.draw(image, background, alone ? noFirst : regions, clip, c.passResults);
     const std::vector<unsigned char> drawn = part.readRgba();
     int drawnPixels = 0;
     for (int y = 0; y < h; ++y)
@@ -321,7 +325,6 @@ TEST_F(ViewerRedraw, KeptBackBuffersEndEachViewLikeWholeRedraws) {
     }
   };
 
-  const int firstCompared = int(std::ceil(render::ViewerSession::kPanelWidth * 0.5f)) + 3;  // past the panel's edge
   for (int view = 0; view < 6; ++view) {
     currentView = view;
     render::Camera camera = start;
@@ -348,7 +351,7 @@ TEST_F(ViewerRedraw, KeptBackBuffersEndEachViewLikeWholeRedraws) {
       const std::vector<unsigned char> got = viewers[k].last().readRgba();
       int differing = 0, firstX = -1, firstY = -1;
       for (int y = 0; y < h; ++y)
-        for (int x = firstCompared; x < w; ++x)
+        for (int x = panelColumns; x < w; ++x)
           for (int c = 0; c < 4; ++c) {
             const std::size_t i = (std::size_t(y) * w + x) * 4 + c;
             if (got[i] != expected[i]) {
