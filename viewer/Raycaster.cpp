@@ -85,7 +85,8 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   requests_ = std::make_unique<GlBuffer>((kRequestsHeaderWords + std::size_t(requestCapacity_)) * sizeof(uint32_t));
   requestBits_ = std::make_unique<GlBuffer>((bricksInBox / 32 + 1) * sizeof(uint32_t));
   requestBits_->clear();
-  passResultsReadback_ = std::make_unique<GlReadbackBuffer>(kRequestsHeaderWords * sizeof(uint32_t));
+  passResultsReadback_ =
+      std::make_unique<GlReadbackBuffer>((kRequestsHeaderWords + options_.requestsReadBack) * sizeof(uint32_t));
   if (options.timeGpu) passTimer_ = std::make_unique<GpuInterval>();
   slotUse_ = std::make_unique<GlBuffer>(slots * sizeof(uint32_t));
   slotUse_->clear();
@@ -232,14 +233,19 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                   GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
   checkGl("raycasting pass");
-  passResultsReadback_->copy(*requests_, kRequestsHeaderWords * sizeof(uint32_t));
+  // The header and the first requests in one copy: reading requests later, from the buffer itself,
+  // would wait for whatever the viewer has queued after the pass meanwhile.
+  passResultsReadback_->copy(*requests_,
+                             (kRequestsHeaderWords + std::min(options_.requestsReadBack, requestCapacity_)) *
+                                 sizeof(uint32_t));
 }
 
 Raycaster::PassResult Raycaster::collectPass() {
   PassResult result;
   // Waits for the pass: every command before the copy (the pass included) has completed after it.
+  passResults_ = static_cast<const uint32_t*>(passResultsReadback_->wait());
   uint32_t header[kRequestsHeaderWords];
-  std::memcpy(header, passResultsReadback_->wait(), sizeof header);
+  std::memcpy(header, passResults_, sizeof header);
   result.requested = header[0];
   int32_t surface[4];
   std::memcpy(surface, header + 1, sizeof surface);
@@ -251,8 +257,12 @@ Raycaster::PassResult Raycaster::collectPass() {
 
 std::vector<glm::ivec3> Raycaster::requestedBricks(uint32_t requestCount) const {
   const uint32_t n = std::min(requestCount, requestCapacity_);
-  std::vector<uint32_t> raw(n);
-  requests_->read(raw.data(), n * sizeof(uint32_t), kRequestsHeaderWords * sizeof(uint32_t));
+  const uint32_t copied = std::min(n, options_.requestsReadBack);
+  std::vector<uint32_t> raw(passResults_ + kRequestsHeaderWords, passResults_ + kRequestsHeaderWords + copied);
+  if (n > copied) {  // a heavy streaming pass: the rest straight from the buffer
+    raw.resize(n);
+    requests_->read(raw.data() + copied, (n - copied) * sizeof(uint32_t), (kRequestsHeaderWords + copied) * sizeof(uint32_t));
+  }
   // The bricks rays stopped at come first: loading them guarantees progress; look-ahead ones follow.
   std::vector<glm::ivec3> bricks;
   bricks.reserve(n);
@@ -311,7 +321,8 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
     const uint32_t requested = pass.requested;
     if (requested == 0) break;
     if (stats.passes >= kMaxPasses) throw Error("renderer: the frame did not complete in " + std::to_string(kMaxPasses) + " passes");
-    loader_->request(requestedBricks(requested));
+    lastRequests_ = requestedBricks(requested);
+    loader_->request(lastRequests_);
     std::vector<uint32_t> slotUse = readSlotUse();
     uint64_t uploaded = 0;
     for (;;) {
@@ -379,7 +390,7 @@ StepStats Raycaster::finishStep() {
     stats.requested = pass.requested;
     stats.gpuSeconds = pass.gpuSeconds;
     if (stats.requested == 0) stepComplete_ = true;
-    else loader_->request(requestedBricks(stats.requested));
+    else loader_->request(lastRequests_ = requestedBricks(stats.requested));
   }
   stats.complete = stepComplete_;
   stats.streaming = loader_->pending();

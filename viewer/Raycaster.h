@@ -41,6 +41,9 @@ struct RenderOptions {
   int lookahead = 2;       // bricks a stopped ray requests beyond its first missing one
   bool finiteDifferenceNormals = false;  // central differences instead of the analytic gradient
   bool timeGpu = false;    // time every raycasting pass on the GPU (FrameStats::gpuSeconds; benchmarks)
+  // Requested bricks read back with a pass's header (16 KiB); a pass asking for more reads the rest
+  // from the buffer itself, which waits for anything queued after the pass. (Tests lower it.)
+  uint32_t requestsReadBack = 4096;
   glm::vec3 surfaceColor{0.85f, 0.72f, 0.52f};
   // Direction towards the light in camera space: x right, y up, z towards the viewer.
   glm::vec3 lightInCamera{0.3f, 0.6f, 1.0f};
@@ -122,6 +125,8 @@ class Raycaster {
   std::size_t slotBytes() const;  // GPU bytes one resident brick costs (data and cell bounds)
   std::size_t poolBytes() const;  // slotCount() * slotBytes()
   uint64_t bricksUploaded() const { return bricksUploaded_; }  // since construction
+  // The bricks the last pass that asked for any asked for, stopping rays' first (tests, statistics).
+  const std::vector<glm::ivec3>& lastRequests() const { return lastRequests_; }
   uint64_t bricksDecoded() const { return loader_->loadedCount(); }
   const RenderOptions& options() const { return options_; }  // layout always set: the one in use
   // Settings that change without reloading anything (benchmarks and the viewer).
@@ -140,7 +145,7 @@ class Raycaster {
   static constexpr std::size_t kRequestsHeaderWords = kPassResultsHeaderBytes / sizeof(uint32_t);
   void dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn);
   PassResult collectPass();  // waits for the pass dispatched last and reads what it tells the host
-  std::vector<glm::ivec3> requestedBricks(uint32_t requestCount) const;
+  std::vector<glm::ivec3> requestedBricks(uint32_t requestCount) const;  // after collectPass()
   uint32_t upload(const std::vector<LoadedBrick>& loaded, std::vector<uint32_t>& slotLastUse);
   std::vector<uint32_t> readSlotUse() const;
   void uploadPageTable();
@@ -175,6 +180,8 @@ class Raycaster {
         pass, firstPass, firstColumn, columnOffset, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir;
   } uniforms_{};
   std::unique_ptr<GlReadbackBuffer> passResultsReadback_;
+  const uint32_t* passResults_ = nullptr;  // the last pass's header and first requests, as read back
+  std::vector<glm::ivec3> lastRequests_;
   std::unique_ptr<GpuInterval> passTimer_;
   std::unique_ptr<BrickPool> pool_;
   std::unique_ptr<GlBuffer> slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;

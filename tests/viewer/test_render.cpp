@@ -5,9 +5,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "RenderTestSupport.h"
@@ -262,6 +264,36 @@ TEST_F(Render, SmallCachesGiveTheSameImageWithinTheirBudgets) {
   std::printf("peak RSS: tiny %ld KiB, blobs %ld KiB (+%.1f MiB; budgets 2 x %.0f MiB, data %.1f MiB)\n",
               baseline.peakRssKiB, large.peakRssKiB, growthMiB, budgetMiB, decodedMiB);
   EXPECT_LT(growthMiB, 2.0 * budgetMiB + slackMiB);
+}
+
+// A pass's requested bricks come back with its header, up to RenderOptions::requestsReadBack; the
+// rest are read from the buffer itself. Either way the first pass of a view (from an empty pool)
+// asks for the same bricks (in any order: rays append them concurrently), and frames complete alike.
+TEST_F(Render, RequestsBeyondTheReadBackAreReadToo) {
+  TempDir dir;
+  const std::string blobs = writeSmallBlobs(dir);
+  const io::BrickStore store(blobs);
+  const render::Camera camera = smallBlobsCamera();
+  const int w = 48, h = 40;
+  render::RenderOptions options;  // a pool that holds every request (a smaller one keeps some of them)
+  options.iso = 0.3f;
+  render::RenderOptions fewReadBack = options;
+  fewReadBack.requestsReadBack = 3;
+  const auto sorted = [](std::vector<glm::ivec3> v) {
+    std::sort(v.begin(), v.end(), [](const glm::ivec3& a, const glm::ivec3& b) {
+      return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+    });
+    return v;
+  };
+  render::Raycaster all(store, options), few(store, fewReadBack);
+  const render::StepStats allStep = all.step(camera, w, h, 0.0), fewStep = few.step(camera, w, h, 0.0);
+  ASSERT_GT(allStep.requested, 3u) << "the first pass must ask for more bricks than are read back with its header";
+  EXPECT_EQ(fewStep.requested, allStep.requested);
+  EXPECT_TRUE(sorted(few.lastRequests()) == sorted(all.lastRequests()))
+      << "the first pass's requests differ (" << few.lastRequests().size() << " against " << all.lastRequests().size()
+      << " bricks)";
+  expectSameImage(renderFile(blobs, camera, w, h, options.iso, options),
+                  renderFile(blobs, camera, w, h, options.iso, fewReadBack), "3 requests read back with the header");
 }
 
 // The viewer's progressive frames: step() with no upload time budget (one batch a step) reaches the
