@@ -7,7 +7,6 @@
 // reference path its per-brick work) -> `kernel_seconds`. Medians over the repetitions. Samples are
 // 4 x the active packed voxels of the stage's input grid; `bricks` is how many bricks the stage
 // computed (leaves, their neighbours, tile borders) in one repetition.
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -16,6 +15,7 @@
 
 #include "Command.h"
 #include "JsonText.h"
+#include "Median.h"
 #include "io/VdbFile.h"
 #include "kernels/ClBrickKernels.h"
 #include "sparse/BrickBounds.h"
@@ -31,11 +31,6 @@ struct Measurement {
   double seconds = 0.0, kernelSeconds = 0.0;
   int repetitions = 0;
 };
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
-}
 
 template <class Stage>
 Measurement measure(const std::string& stageName, BrickKernels& kernels, uint64_t samples, int warmup, int repetitions,

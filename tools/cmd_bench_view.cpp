@@ -2,7 +2,6 @@
 // camera orbit, drawn offscreen through EGL, against the raycaster's own complete frames (as `bench
 // render` times them) on the same orbit: the "within 10% of bench render" figure, on a GPU
 // machine without a display.
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -12,6 +11,7 @@
 #include "BenchOrbit.h"
 #include "Command.h"
 #include "JsonText.h"
+#include "Median.h"
 #include "RenderFlags.h"
 #include "sparse/Error.h"
 #include "viewer/DatasetSummary.h"
@@ -92,12 +92,6 @@ ViewTiming timeViewer(render::ViewerSession& session, const OffscreenTarget& tar
   glFinish();  // the last frame on screen
   t.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
   return t;
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 std::string listed(const std::vector<double>& values) {

@@ -220,11 +220,6 @@ GlReadbackBuffer::~GlReadbackBuffer() {
   }
 }
 
-const void* GlReadbackBuffer::read(const GlBuffer& source, std::size_t bytes, std::size_t offset) {
-  copy(source, bytes, offset);
-  return wait();
-}
-
 void GlReadbackBuffer::copy(const GlBuffer& source, std::size_t bytes, std::size_t offset) {
   if (bytes > bytes_ || offset + bytes > source.size())
     throw GlError("reading back " + std::to_string(bytes) + " bytes at " + std::to_string(offset) + " of a " +

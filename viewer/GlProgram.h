@@ -103,10 +103,9 @@ class GlReadbackBuffer {
   GlReadbackBuffer(const GlReadbackBuffer&) = delete;
   GlReadbackBuffer& operator=(const GlReadbackBuffer&) = delete;
   ~GlReadbackBuffer();
-  // Copies `bytes` of `source` from `offset` and waits until the copy is done; returns the bytes.
-  const void* read(const GlBuffer& source, std::size_t bytes, std::size_t offset = 0);
-  // read() in two halves, so the CPU can go on while the GPU gets there: copy() queues the copy
-  // (after every command so far), wait() waits for it and returns the bytes.
+  // Reading in two halves, so the CPU can go on while the GPU gets there: copy() queues a copy of
+  // `bytes` of `source` from `offset` (after every command so far), wait() waits for it and returns
+  // the bytes (valid until the next copy()).
   void copy(const GlBuffer& source, std::size_t bytes, std::size_t offset = 0);
   const void* wait();
 

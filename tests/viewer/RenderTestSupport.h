@@ -47,6 +47,12 @@ inline render::FrameImages renderFile(const std::string& path, const render::Cam
   return raycaster.readImages();
 }
 
+// "[x0,x1)x[y0,y1)", for failure messages.
+inline std::string describe(const render::PixelRect& r) {
+  return "[" + std::to_string(r.x0) + "," + std::to_string(r.x1) + ")x[" + std::to_string(r.y0) + "," +
+         std::to_string(r.y1) + ")";
+}
+
 // Sparse blobs of 96^3 (307 bricks), a camera that sees most of them, and a pool of a few dozen
 // slots (by layout), so a frame needs several passes and bricks are evicted and reloaded.
 inline constexpr std::size_t kSmallPoolBytes = std::size_t(1) << 20;

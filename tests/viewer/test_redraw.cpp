@@ -32,10 +32,7 @@ using Rects = std::vector<PixelRect>;
 using test::GlSuite;
 using test::TempDir;
 
-std::string describe(const PixelRect& r) {
-  return "[" + std::to_string(r.x0) + "," + std::to_string(r.x1) + ")x[" + std::to_string(r.y0) + "," +
-         std::to_string(r.y1) + ")";
-}
+using test::describe;
 
 std::string describe(const std::vector<PixelRect>& rects) {
   std::string out;

@@ -27,6 +27,7 @@ using test::writeFccFile;
 using test::kSmallPoolBytes;
 using test::smallBlobsCamera;
 using test::writeSmallBlobs;
+using test::describe;
 
 // Tolerances of the exactness test (the numbers): depth in voxels, normals in degrees.
 constexpr double kDepthTolVoxels = 1e-3;
@@ -58,11 +59,6 @@ render::PixelRect surfacePixels(const render::FrameImages& image, int firstColum
     for (int x = firstColumn; x < image.width; ++x)
       if (image.rgba[(std::size_t(y) * image.width + x) * 4 + 3] > 0.5f) r = render::united(r, {x, y, x + 1, y + 1});
   return r;
-}
-
-std::string describe(const render::PixelRect& r) {
-  return "[" + std::to_string(r.x0) + "," + std::to_string(r.x1) + ") x [" + std::to_string(r.y0) + "," +
-         std::to_string(r.y1) + ")";
 }
 
 // Raycaster::surfaceRect() is exactly the rectangle of the image's surface pixels.
