@@ -3,10 +3,10 @@
 #include <openvdb/tools/Morphology.h>
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "VdbFile.h"
+#include "VdbLeafReader.h"
 #include "sparse/Error.h"
 
 namespace fcc::io {
@@ -47,22 +47,70 @@ BoundsGrid::Ptr conservativeBounds(const FccGrid& grid) {
   return bounds;
 }
 
+// The FCC grid to open among the file's grids (from their descriptors alone), and its bounds grid's
+// name if the file has one (found by name, confirmed by its fcc_bounds_of metadata once read).
+VdbGridEntry chooseFccGrid(const std::string& path, const std::string& gridName, std::string& boundsName) {
+  const std::vector<VdbGridEntry> grids = VdbLeafReader::listGrids(path);
+  std::string names;
+  for (const VdbGridEntry& g : grids) names += (names.empty() ? "" : ", ") + g.name + " (" + g.type + ")";
+  const VdbGridEntry* chosen = nullptr;
+  for (const VdbGridEntry& g : grids) {
+    if (!gridName.empty() && g.name != gridName) continue;
+    if (g.type == kFccTreeTypeName) {
+      chosen = &g;
+      break;
+    }
+    if (!gridName.empty())
+      throw InputError(path + ": grid '" + gridName + "' is a " + g.type + " grid, not an FCC grid; run `fccvdb convert " +
+                       path + " OUT.vdb` first");
+  }
+  if (!chosen && !gridName.empty()) throw InputError(path + ": no grid named '" + gridName + "'; grids: " + names);
+  if (!chosen)
+    throw InputError(path + ": holds no FCC grid (grids: " + (names.empty() ? "none" : names) + "); run `fccvdb convert " +
+                     path + " OUT.vdb` first");
+  boundsName.clear();
+  for (const VdbGridEntry& g : grids)
+    if (g.name == boundsGridName(chosen->name) && g.type == openvdb::Vec2STree::treeType()) boundsName = g.name;
+  return *chosen;
+}
+
+// The bounds grid, read whole by OpenVDB (it is 1/512 of the data); null if it is not the grid's.
+BoundsGrid::Ptr readBounds(const std::string& path, const std::string& boundsName, const std::string& fccName) {
+  if (boundsName.empty()) return nullptr;
+  initializeVdb();
+  openvdb::io::File file(path);
+  file.setCopyMaxBytes(0);
+  file.open(/*delayLoad=*/false);  // nothing mapped
+  auto bounds = openvdb::gridPtrCast<BoundsGrid>(file.readGrid(boundsName));
+  file.close();
+  const auto of = bounds ? bounds->getMetadata<openvdb::StringMetadata>(meta::kBoundsOf) : nullptr;
+  return of && of->value() == fccName ? bounds : nullptr;
+}
+
 }  // namespace
 
 BrickStore::BrickStore(const std::string& path, const std::string& gridName) : path_(path) {
-  guardVdbFile(path, GuardDepth::Topology);
-  initializeVdb();
-  openvdb::GridPtrVecPtr grids;
+  std::string boundsName;
+  const VdbGridEntry entry = chooseFccGrid(path, gridName, boundsName);
+  const std::vector<std::string> fccTypes{kFccTreeTypeName};
+  // OpenVDB parses the FCC grid's topology and the bounds grid: first in a child, which a damaged file
+  // may crash. Leaf buffers are ours (VdbLeafReader validates them before decoding).
+  guardVdbRead(path, [&] {
+    VdbLeafReader probe(path, entry.name, fccTypes);
+    (void)readBounds(path, boundsName, entry.name);
+  });
   try {
-    openvdb::io::File file(path);
-    file.setCopyMaxBytes(0);  // map the file itself rather than a temporary copy of it
-    file.open(/*delayLoad=*/true);
-    grids = file.getGrids();
-    file.close();  // delay-loaded buffers keep their own mapping of the file
+    reader_ = std::make_shared<VdbLeafReader>(path, entry.name, fccTypes);
+    bounds_ = readBounds(path, boundsName, entry.name);
+  } catch (const InputError&) {
+    throw;
   } catch (const std::exception& e) {
     throw InputError(path + ": OpenVDB cannot read it: " + e.what());
   }
-  grid_ = findFccGrid(path, *grids, gridName);
+  grid_ = openvdb::gridPtrCast<FccGrid>(reader_->grid());
+  if (!grid_ || !isFccGrid(*grid_))
+    throw InputError(path + ": grid '" + entry.name + "' is a Vec4 grid without the FCC metadata (lattice = fcc), not an FCC grid; "
+                     "run `fccvdb convert` on its Cartesian source");
   if (storesSamples(*grid_))
     throw InputError(path + ": grid '" + grid_->getName() +
                      "' stores raw samples (converted with --no-prefilter); the renderer needs spline "
@@ -70,13 +118,8 @@ BrickStore::BrickStore(const std::string& path, const std::string& gridName) : p
   background_ = grid_->background()[0];
   worldFromIndex_ = affineWorldFromIndex(grid_->transform(), path);
 
-  bounds_ = findBoundsGrid(*grids, grid_->getName());
-  if (bounds_) {
-    bounds_->tree().readNonresidentBuffers();  // small: 1/512 of the data; the guard read it already
-    boundsFromFile_ = true;
-  } else {
-    bounds_ = conservativeBounds(*grid_);
-  }
+  boundsFromFile_ = bounds_ != nullptr;
+  if (!bounds_) bounds_ = conservativeBounds(*grid_);
 
   activeBrickBox_ = bounds_->evalActiveVoxelBoundingBox();
   valueMin_ = valueMax_ = background_;
@@ -119,17 +162,13 @@ openvdb::Vec4f BrickStore::constantValue(const glm::ivec3& brick) const {
 }
 
 bool BrickStore::readBrick(const glm::ivec3& brick, BrickValues& out) const {
-  const LeafT* leaf = grid_->tree().probeConstLeaf(leafOrigin(brick));
+  const std::optional<size_t> leaf = reader_->leafIndexAt(leafOrigin(brick));
   if (!leaf) {
     out.fill(constantValue(brick));
     return false;
   }
-  // Copying a buffer that is still out of core copies only its file position; reading the copy
-  // decodes into the copy and leaves the tree's leaf out of core.
-  const LeafT::Buffer copy(leaf->buffer());
-  const openvdb::Vec4f* values = copy.data();
-  if (!values) throw InputError(path_ + ": cannot decode the brick at packed voxel " + std::to_string(brick.x * kBrickPackedDim) + "," + std::to_string(brick.y * kBrickPackedDim) + "," + std::to_string(brick.z * kBrickPackedDim));
-  std::memcpy(out.data(), values, sizeof(BrickValues));
+  static_assert(sizeof(BrickValues) == LeafT::SIZE * 4 * sizeof(float), "Vec4f packs four floats");
+  reader_->readLeaf(*leaf, reinterpret_cast<float*>(out.data()));
   return true;
 }
 

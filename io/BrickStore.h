@@ -1,7 +1,6 @@
-// An FCC grid opened out of core. OpenVDB's delayed-loading tree is kept only as the index (which
-// bricks exist, tile values, the transform); a brick's values are decoded on demand into the caller's
-// memory and never retained by OpenVDB. (Debian's OpenVDB 10.0.1 keeps a delay-loaded leaf buffer
-// once it is read; decoding a *copy* of the still-unread buffer leaves the tree's leaf untouched.)
+// An FCC grid opened out of core: its topology (which bricks exist, tile values, the transform) and
+// bounds grid in memory, each brick's values read from the file on demand by our own reader
+// (VdbLeafReader: pread, validated, nothing mapped) into the caller's memory.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -9,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "sparse/BrickBounds.h"
@@ -16,13 +16,15 @@
 
 namespace fcc::io {
 
+class VdbLeafReader;
+
 // The 8^3 packed voxels of one brick in OpenVDB's leaf order: z fastest, index (x * 8 + y) * 8 + z.
 using BrickValues = std::array<openvdb::Vec4f, kBrickPackedDim * kBrickPackedDim * kBrickPackedDim>;
 
 class BrickStore {
  public:
-  // Opens `gridName` (empty: the first FCC grid) of `path` with delayed loading, after a guarded read
-  // of its topology (io/VdbFile.h). Its bounds grid is read fully (it is 1/512 of the data); a file
+  // Opens `gridName` (empty: the first FCC grid) of `path`, after a guarded read of its topology
+  // (io/VdbFile.h). Its bounds grid is read fully (it is 1/512 of the data); a file
   // without one gets conservative bounds (every brick near data, the whole value range).
   // Throws InputError for a file without an FCC grid (saying to run convert), one that stores raw
   // samples, or a transform that is not affine.
@@ -43,7 +45,8 @@ class BrickStore {
   float valueMax() const { return valueMax_; }
 
   // The brick's packed voxels: the leaf's values if it has one (decoded from the file), else the
-  // tile value or the background everywhere. Thread-safe. Returns true if it was a leaf.
+  // tile value or the background everywhere. Thread-safe. Returns true if it was a leaf. InputError
+  // naming the file and the brick if the leaf's bytes are damaged.
   bool readBrick(const glm::ivec3& brick, BrickValues& out) const;
   // True if brick has a leaf in the file (its values need decoding).
   bool hasLeaf(const glm::ivec3& brick) const;
@@ -52,6 +55,7 @@ class BrickStore {
 
  private:
   std::string path_;
+  std::shared_ptr<const VdbLeafReader> reader_;
   FccGrid::Ptr grid_;
   BoundsGrid::Ptr bounds_;
   bool boundsFromFile_ = false;

@@ -5,10 +5,13 @@
 
 #include "AtomicOutput.h"
 #include "VdbFile.h"
+#include "VdbLeafReader.h"
+#include "VdbSourceField.h"
 #include "sparse/BrickBounds.h"
 #include "sparse/CubicBSpline.h"
 #include "sparse/Error.h"
 #include "sparse/FccBuilder.h"
+#include "sparse/StreamedBuild.h"
 
 namespace fcc::io {
 namespace {
@@ -91,10 +94,19 @@ class VdbSubsampleField : public SampleField {
 };
 
 openvdb::math::Transform::Ptr transformOf(const DenseVolume& v, double latticeSpacingInVoxels) {
-  auto xform = openvdb::math::Transform::createLinearTransform();
-  xform->preScale(openvdb::Vec3d(v.spacing.x, v.spacing.y, v.spacing.z) * latticeSpacingInVoxels);
-  xform->postTranslate(openvdb::Vec3d(v.origin.x, v.origin.y, v.origin.z));
-  return xform;
+  if (v.direction == glm::dmat3(1.0)) {  // axis-aligned: a scale and a translation
+    auto xform = openvdb::math::Transform::createLinearTransform();
+    xform->preScale(openvdb::Vec3d(v.spacing.x, v.spacing.y, v.spacing.z) * latticeSpacingInVoxels);
+    xform->postTranslate(openvdb::Vec3d(v.origin.x, v.origin.y, v.origin.z));
+    return xform;
+  }
+  // OpenVDB maps row vectors (p * M): row a is where index axis a goes, the last row the origin.
+  openvdb::math::Mat4d m = openvdb::math::Mat4d::identity();
+  for (int a = 0; a < 3; ++a) {
+    for (int r = 0; r < 3; ++r) m[a][r] = v.direction[a][r] * v.spacing[a] * latticeSpacingInVoxels;
+    m[3][a] = v.origin[a];
+  }
+  return openvdb::math::Transform::createLinearTransform(m);
 }
 
 DenseVolume readDense(const std::string& input, Format format, const ConvertOptions& options) {
@@ -106,6 +118,8 @@ DenseVolume readDense(const std::string& input, Format format, const ConvertOpti
       return readRaw(input, *options.raw);
     case Format::Nrrd: return readNrrd(input);
     case Format::Nifti: return readNifti(input);
+    case Format::Dicom: return readDicom(input);
+    case Format::MetaImage: return readMetaImage(input);
     case Format::Vdb: break;
   }
   throw Error("internal: not a dense format");
@@ -161,11 +175,23 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   provenance.coefficients = options.prefilter;
   ConvertSummary summary;
 
-  openvdb::FloatGrid::Ptr sourceGrid;
+  openvdb::FloatGrid::Ptr sourceGrid;          // the whole source grid (in memory, or resampling)
+  std::shared_ptr<const VdbLeafReader> reader;  // or its topology, leaves read on demand
   DenseVolume dense;
   openvdb::math::Transform::Ptr xform;
   float background = options.background.value_or(0.0f);
-  if (format == Format::Vdb) {
+  if (format == Format::Vdb && !resample && !options.inMemory) {
+    const std::vector<std::string> floatTrees{openvdb::FloatTree::treeType()};
+    // OpenVDB parses the header and topology: first in a child, which may crash on a damaged file.
+    guardVdbRead(input, [&] { VdbLeafReader probe(input, options.gridName, floatTrees); });
+    reader = std::make_shared<VdbLeafReader>(input, options.gridName, floatTrees);
+    const auto& topology = static_cast<const openvdb::FloatGrid&>(*reader->grid());
+    provenance.sourceGrid = summary.gridName = topology.getName();
+    provenance.levelSet = topology.getGridClass() == openvdb::GRID_LEVEL_SET;
+    background = options.background.value_or(topology.background());
+    summary.inputVoxels = topology.activeVoxelCount();
+    xform = topology.transform().copy();
+  } else if (format == Format::Vdb) {
     sourceGrid = readFloatGrid(input, options.gridName);
     provenance.sourceGrid = summary.gridName = sourceGrid->getName();
     provenance.levelSet = sourceGrid->getGridClass() == openvdb::GRID_LEVEL_SET;
@@ -192,6 +218,8 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     if (!(h > 0.0) || !std::isfinite(h)) throw ValueError("--samples/--scale give no valid lattice spacing");
     field = std::make_unique<DenseResampleField>(dense, background, h);
     xform->preScale(h);
+  } else if (reader) {
+    field = std::make_unique<VdbSourceField>(reader, background);
   } else if (sourceGrid) {
     field = std::make_unique<VdbSubsampleField>(*sourceGrid, background);
   } else {
@@ -200,25 +228,45 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   BuildOptions build;
   build.prefilter = options.prefilter;
   build.tolerance = options.tolerance;
-  BuildResult built = buildFccGrid(*field, build, interrupter);
-  FccGrid& grid = *built.grid;
-  grid.setTransform(xform);
-  grid.setName(summary.gridName);
-  provenance.sampleMin = built.sampleMin;
-  provenance.sampleMax = built.sampleMax;
-  setFccMetadata(grid, provenance);
-  grid.setSaveFloatAsHalf(options.half);
-  summary.activeSamples = grid.activeVoxelCount() * 4;
-  summary.bricks = grid.tree().leafCount();
+  auto describe = [&](FccGrid& grid, float sampleMin, float sampleMax) {
+    grid.setTransform(xform);
+    grid.setName(summary.gridName);
+    provenance.sampleMin = sampleMin;
+    provenance.sampleMax = sampleMax;
+    setFccMetadata(grid, provenance);
+    grid.setSaveFloatAsHalf(options.half);
+    summary.activeSamples = grid.activeVoxelCount() * 4;
+    summary.bricks = grid.tree().leafCount();
+  };
 
+  if (options.inMemory) {
+    BuildResult built = buildFccGrid(*field, build, interrupter);
+    describe(*built.grid, built.sampleMin, built.sampleMax);
+    openvdb::GridCPtrVec grids{built.grid};
+    if (options.bounds) {
+      // Bounds of the spline the renderer evaluates: of the prefiltered coefficients for a samples grid.
+      BoundsGrid::Ptr bounds =
+          computeBrickBounds(*coefficientsOf(valuesAsStored(built.grid), options.preprocess), options.preprocess);
+      summary.boundsBricks = bounds->activeVoxelCount();
+      grids.push_back(bounds);
+    }
+    writeVdbAtomically(output, grids, options.overwrite, input);
+    return summary;
+  }
+
+  const FccBlockBuilder builder(*field, build);
+  StreamedBuildOptions streamed;
+  streamed.half = options.half;
+  streamed.kernels = options.preprocess;
+  const StreamedBuild built = buildFccGridStreamed(builder, streamed, interrupter);
+  describe(*built.grid, built.sampleMin, built.sampleMax);
   openvdb::GridCPtrVec grids{built.grid};
   if (options.bounds) {
-    // Bounds of the spline the renderer evaluates: of the prefiltered coefficients for a samples grid.
-    BoundsGrid::Ptr bounds =
-        computeBrickBounds(*coefficientsOf(valuesAsStored(built.grid), options.preprocess), options.preprocess);
+    const BoundsGrid::Ptr bounds = boundsGridOf(built.bounds, *built.grid);
     summary.boundsBricks = bounds->activeVoxelCount();
     grids.push_back(bounds);
   }
+  // The grid's tree builds its leaves' values while it is written, from `field`, alive until then.
   writeVdbAtomically(output, grids, options.overwrite, input);
   return summary;
 }

@@ -27,6 +27,10 @@ struct ConvertOptions {
   std::optional<RawLayout> raw;       // raw input layout (required for raw files)
   bool bounds = true;                 // compute the bounds grid and store it beside the FCC grid
   BrickKernels* preprocess = nullptr; // who computes it (null: the C++/TBB reference)
+  // The reference path the streamed conversion is tested against: the whole source and output in
+  // memory (buildFccGrid, then computeBrickBounds). Without it, the output is built twice and never
+  // held (StreamedBuild.h), and a .vdb source is read leaf by leaf (VdbSourceField.h).
+  bool inMemory = false;
 };
 
 struct ConvertSummary {

@@ -1,5 +1,8 @@
 #include "DenseVolume.h"
 
+#include <filesystem>
+#include <fstream>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -79,6 +82,14 @@ Format detectFormat(const std::string& path) {
   if (endsWith(name, ".vdb")) return Format::Vdb;
   if (endsWith(name, ".nrrd") || endsWith(name, ".nhdr")) return Format::Nrrd;
   if (endsWith(name, ".nii") || endsWith(name, ".nii.gz")) return Format::Nifti;
+  if (endsWith(name, ".mha") || endsWith(name, ".mhd")) return Format::MetaImage;
+  if (endsWith(name, ".dcm") || endsWith(name, ".ima")) return Format::Dicom;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return Format::Dicom;
+  // DICOM Part 10 files: a 128-byte preamble, then "DICM"; their names often have no extension.
+  char marker[4] = {};
+  std::ifstream in(path, std::ios::binary);
+  if (in.seekg(128) && in.read(marker, 4) && std::string(marker, 4) == "DICM") return Format::Dicom;
   return Format::Raw;
 }
 

@@ -16,6 +16,9 @@ struct DenseVolume {
   glm::ivec3 dims{0};       // voxels, x fastest, then y, then z
   glm::dvec3 spacing{1.0};  // world units per voxel along x, y, z
   glm::dvec3 origin{0.0};   // world position of voxel (0,0,0)
+  // World directions of the index axes (columns, unit length): world = origin + direction * (spacing * ijk).
+  // Identity unless the format records an orientation (DICOM, MetaImage).
+  glm::dmat3 direction{1.0};
   std::vector<float> values;  // dims.x*dims.y*dims.z values
 
   // Position of voxel (i, j, k) in `values`, x fastest.
@@ -67,9 +70,17 @@ DenseVolume readNrrd(const std::string& path);
 // translation if sform_code > 0, else qoffset if qform_code > 0, else 0. Orientation is not kept.
 DenseVolume readNifti(const std::string& path);
 
-enum class Format { Vdb, Raw, Nrrd, Nifti };
+// Reads through ITK's ImageIO layer (io/ItkReader.cpp): a DICOM series (a folder of slices, or one
+// slice: the series it belongs to in its folder; sorted by position, GDCM applying the rescale slope and
+// intercept) or a MetaImage (.mha, or .mhd with its data file). Spacing, origin and direction from the
+// headers; every sample as float.
+DenseVolume readDicom(const std::string& path);
+DenseVolume readMetaImage(const std::string& path);
 
-// By extension, case-insensitive: .vdb, .nrrd/.nhdr, .nii/.nii.gz; anything else is Raw.
+enum class Format { Vdb, Raw, Nrrd, Nifti, Dicom, MetaImage };
+
+// By extension, case-insensitive: .vdb, .nrrd/.nhdr, .nii/.nii.gz, .mha/.mhd, .dcm/.ima; a folder or a
+// file with DICOM's "DICM" marker is DICOM; anything else is Raw.
 Format detectFormat(const std::string& path);
 
 }  // namespace fcc::io

@@ -46,6 +46,10 @@ void readInChild(const std::string& path, GuardDepth depth) {
 }  // namespace
 
 void guardVdbFile(const std::string& path, GuardDepth depth) {
+  guardVdbRead(path, [&] { readInChild(path, depth); });
+}
+
+void guardVdbRead(const std::string& path, const std::function<void()>& read) {
   checkReadableVdb(path);
   struct stat st {};
   ::stat(path.c_str(), &st);
@@ -60,7 +64,7 @@ void guardVdbFile(const std::string& path, GuardDepth depth) {
     ::close(fds[0]);
     std::string message;
     try {
-      readInChild(path, depth);
+      read();
       ::_exit(0);
     } catch (const std::exception& e) {
       message = e.what();

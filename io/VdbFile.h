@@ -5,6 +5,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,11 @@ enum class GuardDepth { Everything, Topology };
 // Throws InputError naming the file if it is missing, not a .vdb, or if OpenVDB fails, crashes or
 // takes longer than the time limit while reading it (to `depth`) in a child process.
 void guardVdbFile(const std::string& path, GuardDepth depth = GuardDepth::Everything);
+
+// The same guard around any reading: `read` runs in a child process with the time limit; its crash,
+// hang or exception becomes an InputError naming the file. For parsing done by OpenVDB (topology),
+// which this process then repeats once the child came through.
+void guardVdbRead(const std::string& path, const std::function<void()>& read);
 
 struct GridInfo {
   std::string name;

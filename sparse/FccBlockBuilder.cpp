@@ -23,24 +23,80 @@ FccBlockBuilder::FccBlockBuilder(const SampleField& field, const BuildOptions& o
                                openvdb::Coord(blockMax.x, blockMax.y, blockMax.z));
 }
 
+SiteBox FccBlockBuilder::sampleBox(const openvdb::Coord& block) const {
+  const int halo = options_.prefilter ? 1 : 0;
+  const glm::ivec3 leafOrigin = glm::ivec3(block.x(), block.y(), block.z()) * kLeafDim;  // packed voxel
+  return SiteBox{2 * leafOrigin - halo, 2 * leafOrigin + 2 * kLeafDim - 1 + halo};
+}
+
+FccBlockBuilder::Uniform FccBlockBuilder::uniform(const openvdb::Coord& block, SampleRange* range) const {
+  Uniform u;
+  const SiteBox box = sampleBox(block);
+  float v = 0.0f;
+  if (!field_.uniformOver(box, v)) return u;
+  u.known = true;
+  if (!field_.mayHoldData(box)) {  // build() returns null before sampling
+    u.none = true;
+    return u;
+  }
+  // build() adds the samples of the block's own sites (no halo) inside the field's bounds.
+  const int halo = options_.prefilter ? 1 : 0;
+  const SiteBox own = box.expandedBy(-halo).intersection(bounds_);
+  const bool holdsASite = !own.empty() && (glm::any(glm::greaterThan(own.max, own.min)) || spline::isFccSite(own.min));
+  if (range && holdsASite) range->add(v);
+  const float background = field_.background();
+  // Every site's coefficient is the same sum of the same values: the one computed here.
+  const float c = options_.prefilter ? spline::prefilterAt(glm::ivec3(0), [&](const glm::ivec3&) { return v; }) : v;
+  u.none = std::abs(c - background) <= options_.tolerance;
+  u.value = openvdb::Vec4f(c);
+  return u;
+}
+
+std::vector<openvdb::Coord> FccBlockBuilder::blocksInSlab(int x) const {
+  std::vector<openvdb::Coord> out;
+  if (blocks_.empty() || x < blocks_.min().x() || x > blocks_.max().x()) return out;
+  const int halo = options_.prefilter ? 1 : 0;
+  const int ny = blocks_.dim().y(), nz = blocks_.dim().z();
+  // The slab's sites, and the halo a block reads beyond them.
+  SiteBox region{glm::ivec3(2 * kLeafDim * x, 2 * kLeafDim * blocks_.min().y(), 2 * kLeafDim * blocks_.min().z()),
+                 glm::ivec3(2 * kLeafDim * (x + 1) - 1, 2 * kLeafDim * (blocks_.max().y() + 1) - 1,
+                            2 * kLeafDim * (blocks_.max().z() + 1) - 1)};
+  std::vector<uint8_t> marked;
+  const bool sparse = field_.forEachDataBox(region.expandedBy(halo), [&](const SiteBox& data) {
+    if (marked.empty()) marked.assign(size_t(ny) * nz, 0);
+    // Blocks whose sample box (block sites plus halo) meets the data.
+    const SiteBox reach = data.expandedBy(halo).intersection(region);
+    if (reach.empty()) return;
+    const glm::ivec3 lo = (reach.min >> 1) >> 3, hi = (reach.max >> 1) >> 3;
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        marked[size_t(z - blocks_.min().z()) * ny + size_t(y - blocks_.min().y())] = 1;
+  });
+  for (int z = 0; z < nz; ++z)
+    for (int y = 0; y < ny; ++y)
+      if (!sparse || (!marked.empty() && marked[size_t(z) * ny + size_t(y)]))
+        out.emplace_back(x, blocks_.min().y() + y, blocks_.min().z() + z);
+  return out;
+}
+
+void FccBlockBuilder::prepare(const std::vector<openvdb::Coord>& blocks) const {
+  std::vector<SiteBox> boxes;
+  boxes.reserve(blocks.size());
+  for (const openvdb::Coord& b : blocks) boxes.push_back(sampleBox(b));
+  field_.prepare(boxes);
+}
+
 std::unique_ptr<FccBlockBuilder::Leaf> FccBlockBuilder::build(const openvdb::Coord& block, Scratch& samples,
                                                               SampleRange* range) const {
   const float background = field_.background();
-  const int halo = options_.prefilter ? 1 : 0;
   const glm::ivec3 leafOrigin = glm::ivec3(block.x(), block.y(), block.z()) * kLeafDim;  // packed voxel
-  const SiteBox siteBox{2 * leafOrigin - halo, 2 * leafOrigin + 2 * kLeafDim - 1 + halo};
+  const SiteBox siteBox = sampleBox(block);
   if (!field_.mayHoldData(siteBox)) return nullptr;
 
-  samples.side = 2 * kLeafDim + 2 * halo;
+  samples.side = siteBox.dim().x;
   samples.values.resize(size_t(samples.side) * samples.side * samples.side);
   samples.origin = siteBox.min;
-  for (int z = 0; z < samples.side; ++z)
-    for (int y = 0; y < samples.side; ++y)
-      for (int x = 0; x < samples.side; ++x) {
-        const glm::ivec3 ijk = samples.origin + glm::ivec3(x, y, z);
-        samples.values[size_t((z * samples.side + y) * samples.side + x)] =
-            spline::isFccSite(ijk) ? field_.sample(ijk) : background;
-      }
+  field_.fill(siteBox, samples.values.data());
 
   auto leaf = std::make_unique<Leaf>(openvdb::Coord(leafOrigin.x, leafOrigin.y, leafOrigin.z),
                                      openvdb::Vec4f(background), false);

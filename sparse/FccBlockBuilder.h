@@ -65,7 +65,26 @@ class FccBlockBuilder {
   // field's bounds are added to `range` (if not null). Thread-safe: one Scratch per thread.
   std::unique_ptr<Leaf> build(const openvdb::Coord& block, Scratch& scratch, SampleRange* range) const;
 
+  // What build() and the prune make of a block whose samples (halo included) are all one value,
+  // found without visiting them (SampleField::uniformOver): nothing (`none`: no leaf, the
+  // background) or a tile; `known` is false when the field cannot tell, and build() must run.
+  struct Uniform {
+    bool known = false;
+    bool none = false;
+    openvdb::Vec4f value;  // the tile, all voxels active
+  };
+  Uniform uniform(const openvdb::Coord& block, SampleRange* range) const;
+
+  // The blocks of x-slab `x` (block coordinates) that may hold active voxels, sorted: where the
+  // field has data (SampleField::forEachDataBox), else every block of blocks() in the slab.
+  std::vector<openvdb::Coord> blocksInSlab(int x) const;
+
+  // Makes the field's samples for these blocks (with the prefilter's halo) readable (SampleField::prepare).
+  void prepare(const std::vector<openvdb::Coord>& blocks) const;
+
  private:
+  SiteBox sampleBox(const openvdb::Coord& block) const;  // the sites build() reads
+
   const SampleField& field_;
   BuildOptions options_;
   SiteBox bounds_;

@@ -51,18 +51,24 @@ class SlabBuilder {
       : builder_(builder), half_(half), topology_(topology), background_(builder.background()) {}
 
   FccSlabWindow::Slab build(int x) {
-    const CoordBBox& blocks = builder_.blocks();
-    const int ny = blocks.dim().y(), count = ny * blocks.dim().z();
+    const std::vector<Coord> blocks = builder_.blocksInSlab(x);
+    builder_.prepare(blocks);
     struct Built {
       std::unique_ptr<Leaf> leaf;
       bool isTile = false;
       LeafTile tile;
     };
-    std::vector<Built> built(static_cast<size_t>(count));
-    tbb::parallel_for(tbb::blocked_range<int>(0, count, 4), [&](const tbb::blocked_range<int>& r) {
-      for (int i = r.begin(); i != r.end(); ++i) {
-        const Coord block(x, blocks.min().y() + i % ny, blocks.min().z() + i / ny);
-        Built& b = built[size_t(i)];
+    std::vector<Built> built(blocks.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 4), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        const Coord& block = blocks[i];
+        Built& b = built[i];
+        const FccBlockBuilder::Uniform uniform = builder_.uniform(block, &ranges_.local());
+        if (uniform.known) {  // a tile without visiting the block's sites
+          b.isTile = !uniform.none;
+          b.tile = {block << Leaf::LOG2DIM, uniform.value, true};
+          continue;
+        }
         b.leaf = builder_.build(block, scratch_.local(), &ranges_.local());
         if (!b.leaf) continue;
         b.isTile = prunesToTile(*b.leaf, background_, builder_.options().tolerance, b.tile);

@@ -38,9 +38,12 @@ void StreamedFccTree::writeBuffers(std::ostream& os, bool saveFloatAsHalf) const
   auto build = [&](size_t first, std::vector<std::unique_ptr<Leaf>>& out) {
     out.clear();
     out.resize(std::min(kBatchLeaves, topology.size() - first));
+    std::vector<openvdb::Coord> blocks(out.size());
+    for (size_t i = 0; i < out.size(); ++i) blocks[i] = blockOf(*topology[first + i]);
+    builder_.prepare(blocks);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i)
-        out[i] = builder_.build(blockOf(*topology[first + i]), scratch.local(), nullptr);
+        out[i] = builder_.build(blocks[i], scratch.local(), nullptr);
     });
   };
   auto write = [&](size_t first, const std::vector<std::unique_ptr<Leaf>>& leaves) {

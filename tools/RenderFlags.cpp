@@ -3,8 +3,10 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
+#include "ProgressBar.h"
 #include "Triple.h"
 #include "io/ImageOutput.h"
 #include "sparse/Error.h"
@@ -23,10 +25,24 @@ std::size_t mibToBytes(double mib) { return std::size_t(mib * 1024.0 * 1024.0); 
 
 }  // namespace
 
+std::unique_ptr<io::FccInput> openFccInput(const RenderFlags& flags, bool quiet) {
+  io::ConvertOptions options;
+  options.raw = rawLayoutFromFlags(flags.source, flags.file);
+  options.gridName = flags.grid;
+  ProgressBar progress(quiet);
+  return std::make_unique<io::FccInput>(flags.file, options, !flags.noCache, &progress,
+                                        quiet ? nullptr : +[](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+}
+
 void addRenderFlags(CLI::App& app, RenderFlags& flags) {
-  app.add_option("FILE", flags.file, "FCC .vdb file (from fccvdb convert or synth)")->required();
-  app.add_option("--grid", flags.grid, "The FCC grid to render (default: the first)");
-  app.add_option("--iso", flags.iso, "Isovalue (default: midway through the value range)");
+  app.add_option("FILE", flags.file,
+                 "FCC .vdb file (from fccvdb convert or synth), or anything convert takes (a Cartesian .vdb, NRRD, "
+                 "NIfTI, raw with --dims/--type): converted once and cached (--no-cache: a temporary file)")
+      ->required();
+  app.add_option("--grid", flags.grid, "The FCC grid to render (default: the first); for a Cartesian .vdb, the float grid to convert");
+  addRawFlags(app, flags.source);
+  app.add_flag("--no-cache", flags.noCache, "Convert a Cartesian FILE into a temporary file instead of the user cache ($XDG_CACHE_HOME/fccvdb)");
+  app.add_option("--iso", flags.iso, "Isovalue (default: 0 for a level set, else midway through the value range)");
   app.add_option("--res", flags.res, "Image size WxH")->capture_default_str();
   app.add_option("--eye", flags.eye, "Camera position X,Y,Z in world space (default: frames the data)");
   app.add_option("--lookat", flags.lookat, "Point looked at X,Y,Z (default: the data's centre)");
@@ -44,7 +60,11 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
 }
 
 float isoFromFlags(const RenderFlags& flags, const io::BrickStore& store) {
-  if (flags.iso.empty()) return 0.5f * (store.valueMin() + store.valueMax());
+  if (flags.iso.empty()) {
+    // A level set's surface is its zero crossing; anything else gets the middle of its range.
+    if (store.index().getGridClass() == openvdb::GRID_LEVEL_SET) return 0.0f;
+    return 0.5f * (store.valueMin() + store.valueMax());
+  }
   char* end = nullptr;
   const double v = std::strtod(flags.iso.c_str(), &end);
   if (end == flags.iso.c_str() || *end != '\0' || !std::isfinite(v) || !std::isfinite(float(v)))

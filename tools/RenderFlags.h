@@ -4,9 +4,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include <memory>
 #include <string>
 
+#include "SourceFlags.h"
 #include "io/BrickStore.h"
+#include "io/ConversionCache.h"
 #include "viewer/Camera.h"
 #include "viewer/Raycaster.h"
 
@@ -16,10 +19,17 @@ struct RenderFlags {
   std::string file, grid, iso, res = "1024x1024", eye, lookat, up, fov;
   double gpuCacheMiB = 0.0, hostCacheMiB = 0.0;  // 0: the defaults
   std::string layout = "auto";                   // a render::BrickLayout by name, or auto (chooseBrickLayout)
+  SourceFlags source;                            // how to read a Cartesian FILE (raw layout)
+  bool noCache = false;                          // convert a Cartesian FILE into a temporary file
 };
 
-// Registers FILE, --grid, --iso, --res, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache, --layout.
+// Registers FILE, --grid, --iso, --res, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache, --layout,
+// the raw input flags (--dims, --type, ...) and --no-cache.
 void addRenderFlags(CLI::App& app, RenderFlags& flags);
+
+// FILE as an FCC .vdb: itself, or its conversion (io/ConversionCache.h: cached, or temporary with
+// --no-cache), saying so in one line on stderr with a progress bar unless `quiet`.
+std::unique_ptr<io::FccInput> openFccInput(const RenderFlags& flags, bool quiet);
 
 // --iso (default: midway through the data's value range); ValueError if not a finite number.
 float isoFromFlags(const RenderFlags& flags, const io::BrickStore& store);

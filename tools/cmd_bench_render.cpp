@@ -74,7 +74,8 @@ Command addBenchRenderCommand(CLI::App& bench) {
   return {app, [args]() {
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
-            const io::BrickStore store(args->flags.file, args->flags.grid);
+            const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);
+            const io::BrickStore store(input->path(), args->flags.grid);
             const float iso = isoFromFlags(args->flags, store);
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;

@@ -167,7 +167,8 @@ Command addBenchViewCommand(CLI::App& bench) {
   return {app, [args]() {
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
-            const io::BrickStore store(args->flags.file, args->flags.grid);
+            const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);
+            const io::BrickStore store(input->path(), args->flags.grid);
             render::RenderOptions options = renderOptionsFromFlags(args->flags);
             options.iso = isoFromFlags(args->flags, store);
             options.timeGpu = args->gpuTime;

@@ -3,7 +3,7 @@
 
 #include "Command.h"
 #include "ProgressBar.h"
-#include "Triple.h"
+#include "SourceFlags.h"
 #include "io/Convert.h"
 #include "sparse/BrickKernels.h"
 
@@ -11,8 +11,8 @@ namespace fcc::cli {
 namespace {
 
 struct ConvertArgs {
-  std::string input, output, dims, type = "u8", endian = "little", spacing = "1,1,1", device = "auto";
-  uint64_t headerBytes = 0;
+  std::string input, output, device = "auto";
+  SourceFlags source;
   float background = 0.0f;
   bool quiet = false, noPrefilter = false;
   io::ConvertOptions options;
@@ -26,11 +26,7 @@ Command addConvertCommand(CLI::App& parent) {
   app->add_option("INPUT", args->input, "Input: .vdb (fog volume or level set), .nrrd/.nhdr, .nii/.nii.gz, or raw (anything else; needs --dims and --type)")->required();
   app->add_option("OUTPUT", args->output, "Output .vdb (written to a temporary file, then renamed)")->required();
   app->add_option("--grid", args->options.gridName, ".vdb input: the float grid to convert (default: the first float grid)");
-  app->add_option("--dims", args->dims, "Raw input: voxels per axis X,Y,Z (x fastest)")->check(tripleValidator("--dims"));
-  app->add_option("--type", args->type, "Raw input: voxel type")->check(CLI::IsMember({"u8", "i8", "u16", "i16", "u32", "i32", "f32", "f64"}))->capture_default_str();
-  app->add_option("--endian", args->endian, "Raw input: byte order")->check(CLI::IsMember({"little", "big"}))->capture_default_str();
-  app->add_option("--spacing", args->spacing, "Raw input: voxel spacing SX,SY,SZ in world units")->check(tripleValidator("--spacing"))->capture_default_str();
-  app->add_option("--header-bytes", args->headerBytes, "Raw input: bytes to skip before the voxels")->capture_default_str();
+  addRawFlags(*app, args->source);
   app->add_option("--mode", args->options.mode, "subsample: keep the even-parity voxels (exact, half the samples); resample: reconstruct the source (tricubic B-spline) on an FCC lattice of another spacing")->check(CLI::IsMember({"subsample", "resample"}))->capture_default_str();
   app->add_option("--samples", args->options.samples, "Resample: about this many FCC samples over the source's extent");
   app->add_option("--scale", args->options.scale, "Resample: lattice spacing in source voxels (instead of --samples)")->check(CLI::PositiveNumber);
@@ -45,18 +41,7 @@ Command addConvertCommand(CLI::App& parent) {
             io::ConvertOptions& o = args->options;
             o.prefilter = !args->noPrefilter;
             if (bg->count() > 0) o.background = args->background;
-            if (!args->dims.empty()) {
-              io::RawLayout raw;
-              glm::dvec3 dims, spacing;
-              parseTriple(args->dims, dims);
-              parseTriple(args->spacing, spacing);
-              raw.dims = glm::ivec3(dims);
-              raw.spacing = spacing;
-              raw.type = io::parseScalarType(args->type);
-              raw.bigEndian = args->endian == "big";
-              raw.headerBytes = args->headerBytes;
-              o.raw = raw;
-            }
+            o.raw = rawLayoutFromFlags(args->source, args->input);
             const std::unique_ptr<BrickKernels> kernels = preprocessKernels(args->device);
             o.preprocess = kernels.get();
             ProgressBar progress(args->quiet);

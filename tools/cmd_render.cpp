@@ -1,4 +1,5 @@
-// fccvdb render FILE.vdb -o OUT.(exr|png): one headless frame of the isosurface.
+// fccvdb render FILE -o OUT.(exr|png): one headless frame of the isosurface (FILE: an FCC .vdb, or any
+// input convert takes, converted once into the cache).
 #include <cstdio>
 
 #include "Command.h"
@@ -24,7 +25,8 @@ Command addRenderCommand(CLI::App& parent) {
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
             checkOutputWritable(args->output);
-            const io::BrickStore store(args->flags.file, args->flags.grid);
+            const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, args->quiet);
+            const io::BrickStore store(input->path(), args->flags.grid);
             const float iso = isoFromFlags(args->flags, store);
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;

@@ -1,10 +1,6 @@
-// fccvdb view FILE.vdb: the interactive viewer (GLFW window, Dear ImGui panel) over the brick-paged
+// fccvdb view FILE: the interactive viewer (GLFW window, Dear ImGui panel) over the brick-paged
 // renderer, streaming bricks progressively; --screenshot OUT --frames N for automation.
-#include <stdlib.h>
-#include <unistd.h>
-
 #include <cstdio>
-#include <filesystem>
 
 #include "Command.h"
 #include "RenderFlags.h"
@@ -14,40 +10,6 @@
 #include "viewer/ViewerWindow.h"
 
 namespace fcc::cli {
-namespace {
-
-// An FCC copy of a Cartesian input in the temporary directory (never beside the user's file),
-// removed when the viewer exits.
-class TemporaryFccCopy {
- public:
-  explicit TemporaryFccCopy(const std::string& input) {
-    std::string pattern = (std::filesystem::temp_directory_path() / "fccvdb-view-XXXXXX.vdb").string();
-    const int fd = ::mkstemps(pattern.data(), 4);
-    if (fd < 0) throw OutputError(pattern + ": cannot create a temporary file for the FCC copy");
-    ::close(fd);
-    path_ = pattern;
-    io::ConvertOptions options;
-    options.overwrite = true;  // the empty file mkstemps made
-    std::fprintf(stderr, "converting %s to a temporary FCC file %s\n", input.c_str(), path_.c_str());
-    try {
-      io::convertToFcc(input, path_, options);
-    } catch (...) {
-      std::filesystem::remove(path_);
-      throw;
-    }
-  }
-  ~TemporaryFccCopy() {
-    std::error_code ignored;
-    std::filesystem::remove(path_, ignored);
-  }
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
-
-}  // namespace
-
 Command addViewCommand(CLI::App& parent) {
   struct Args {
     RenderFlags flags;
@@ -67,24 +29,15 @@ Command addViewCommand(CLI::App& parent) {
   app->add_option("--frames", args->frames, "Frames before --screenshot is taken")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  app->add_flag("--convert", args->convert,
-                "Given a Cartesian volume (.vdb float grid, NRRD, NIfTI), view a temporary FCC copy of it");
+  // Cartesian inputs are converted (and cached) without being asked now; the flag stays for old scripts.
+  app->add_flag("--convert", args->convert, "Accepted for old scripts: Cartesian inputs are always converted")->group("");
   return {app, [args]() {
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
             if (!args->screenshot.empty()) checkOutputWritable(args->screenshot);
 
-            std::unique_ptr<TemporaryFccCopy> copy;
-            std::unique_ptr<io::BrickStore> store;
-            try {
-              store = std::make_unique<io::BrickStore>(args->flags.file, args->flags.grid);
-            } catch (const InputError& e) {
-              if (!args->convert)
-                throw InputError(std::string(e.what()) + "; or view a temporary FCC copy: fccvdb view " +
-                                 args->flags.file + " --convert");
-              copy = std::make_unique<TemporaryFccCopy>(args->flags.file);
-              store = std::make_unique<io::BrickStore>(copy->path(), "");
-            }
+            const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);
+            const auto store = std::make_unique<io::BrickStore>(input->path(), args->flags.grid);
             const float iso = isoFromFlags(args->flags, *store);
             render::RenderOptions options = renderOptionsFromFlags(args->flags);
             options.iso = iso;

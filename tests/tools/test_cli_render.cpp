@@ -6,7 +6,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <string>
 
@@ -49,7 +51,7 @@ TEST(CliRender, BadInputsGiveOneLineStatus1AndNoOutput) {
     std::string args, says;
   };
   const Case cases[] = {
-      {"render " + cartesian + " -o " + (dir / "a.png"), "convert"},
+      {"render " + cartesian + " -o " + (dir / "a.png") + " --dims 4,4,4", "--dims is for raw input only"},
       {"render " + vdb + " -o " + (dir / "b.png") + " --iso nan", "finite"},
       {"render " + vdb + " -o " + (dir / "c.png") + " --iso inf", "finite"},
       {"render " + vdb + " -o " + (dir / "d.png") + " --res 0x64", "--res"},
@@ -89,6 +91,74 @@ TEST(CliRender, BenchRenderJsonHasTheDocumentedKeys) {
       "assert r['fps'] > 0 and r['frame_ms'] > 0 and r['first_frame_seconds'] > 0, r\n"
       "assert r['gpu_frame_ms'] is not None and 0 < r['gpu_frame_ms'] <= 1.5 * r['frame_ms'], r\n";
   EXPECT_EQ(checkJsonWithPython(dir, r.out, check), 0) << r.out;
+}
+
+// Any input convert takes renders directly: converted once into the cache, then reused; a changed
+// source is converted again; --no-cache converts into a temporary file that does not outlive the run.
+TEST(CliRender, CartesianInputConvertsOnceIntoTheCacheAndIsReused) {
+  TempDir dir;
+  const std::string cache = dir / "cache", tmp = dir / "tmp", source = dir / "sphere.vdb";
+  std::filesystem::create_directories(tmp);
+  std::filesystem::copy_file(std::string(FCC_SHARED_DATA_DIR) + "/sphere.vdb", source);
+  const std::string env = "FCCVDB_CACHE_DIR=" + cache + " TMPDIR=" + tmp + " ";
+  auto render = [&](const std::string& input, const std::string& extra) {
+    return runShell(env + FCC_FCCVDB_EXE + " render " + input + " -o " + (dir / "out.png") + " --res 48x48" + extra);
+  };
+  auto cached = [&] {
+    int n = 0;
+    for (auto& e : std::filesystem::directory_iterator(cache)) n += e.path().extension() == ".vdb";
+    return n;
+  };
+  const CommandResult first = render(source, "");
+  if (failedForLackOfGl(first)) GTEST_SKIP() << first.err;
+  ASSERT_EQ(first.status, 0) << first.err;
+  EXPECT_THAT(first.err, HasSubstr("converting " + source + " to FCC once"));
+  EXPECT_THAT(first.err, HasSubstr("iso 0,")) << "a level set's default isovalue is 0";
+  EXPECT_EQ(cached(), 1);
+  const CommandResult second = render(source, "");
+  ASSERT_EQ(second.status, 0) << second.err;
+  EXPECT_THAT(second.err, HasSubstr("using the FCC conversion of " + source));
+  EXPECT_EQ(second.err.find("converting"), std::string::npos) << second.err;
+  EXPECT_EQ(cached(), 1);
+
+  // A new modification time is a changed source.
+  std::filesystem::last_write_time(source, std::filesystem::last_write_time(source) + std::chrono::seconds(5));
+  const CommandResult changed = render(source, "");
+  ASSERT_EQ(changed.status, 0) << changed.err;
+  EXPECT_THAT(changed.err, HasSubstr("converting"));
+  EXPECT_EQ(cached(), 2);
+
+  // The cache is bounded: with room for none, only the conversion in use stays.
+  const CommandResult bounded = runShell("FCCVDB_CACHE_MAX_MIB=0 " + env + FCC_FCCVDB_EXE + " render " + source +
+                                         " -o " + (dir / "out.png") + " --res 48x48 --iso 0.01");
+  ASSERT_EQ(bounded.status, 0) << bounded.err;
+  EXPECT_EQ(cached(), 2) << "a cache hit evicts nothing";
+
+  const CommandResult temporary = render(source, " --no-cache");
+  ASSERT_EQ(temporary.status, 0) << temporary.err;
+  EXPECT_THAT(temporary.err, HasSubstr("temporary"));
+  EXPECT_EQ(cached(), 2);
+  EXPECT_TRUE(std::filesystem::is_empty(tmp)) << "the temporary conversion is removed";
+
+  // Raw input with its layout flags, as convert takes them.
+  const std::string raw = dir / "cube.raw";
+  {
+    std::ofstream out(raw, std::ios::binary);
+    for (int k = 0; k < 16; ++k)
+      for (int j = 0; j < 16; ++j)
+        for (int i = 0; i < 16; ++i) out.put(char(i > 3 && i < 12 && j > 3 && j < 12 && k > 3 && k < 12 ? 200 : 0));
+  }
+  const CommandResult rawRender = render(raw, " --dims 16,16,16 --type u8 --iso 100");
+  ASSERT_EQ(rawRender.status, 0) << rawRender.err;
+  EXPECT_EQ(cached(), 3);
+  // Another conversion (other flags) into a cache with room for none evicts every other one.
+  const CommandResult evicting = runShell("FCCVDB_CACHE_MAX_MIB=0 " + env + FCC_FCCVDB_EXE + " render " + raw + " -o " +
+                                          (dir / "out.png") + " --res 48x48 --dims 16,16,16 --spacing 2,2,2 --iso 100");
+  ASSERT_EQ(evicting.status, 0) << evicting.err;
+  EXPECT_EQ(cached(), 1);
+  const CommandResult noDims = render(raw, "");
+  EXPECT_EQ(noDims.status, 1);
+  EXPECT_THAT(noDims.err, HasSubstr("--dims"));
 }
 
 }  // namespace

@@ -143,23 +143,21 @@ TEST(CliView, NoDisplayGivesOneLineAndStatus1) {
   EXPECT_NE(r.err.find("no display: use `fccvdb render` for headless images"), std::string::npos) << r.err;
 }
 
-TEST(CliView, CartesianInputSaysToConvertAndConvertsIntoATemporaryFile) {
+TEST(CliView, CartesianInputIsConvertedIntoTheCache) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
   TempDir dir;
-  const std::string source = dir / "sphere.vdb";
+  const std::string source = dir / "sphere.vdb", cache = dir / "cache";
   std::filesystem::copy_file(std::string(FCC_SOURCE_DIR) + "/../shared/data/sphere.vdb", source);
-  const CommandResult refused = runView(source + " --res 320x240");
-  EXPECT_EQ(refused.status, 1);
-  EXPECT_EQ(lineCount(refused.err), 1) << refused.err;
-  EXPECT_NE(refused.err.find("fccvdb convert"), std::string::npos) << refused.err;
-  EXPECT_NE(refused.err.find("--convert"), std::string::npos) << refused.err;
-
   const std::string shot = dir / "shot.png";
-  const CommandResult converted = runView(source + " --convert --iso 0 --res 320x240 --screenshot " + shot + " --frames 3");
+  const CommandResult converted = runShell("FCCVDB_CACHE_DIR=" + cache + " xvfb-run -a -s '-screen 0 1280x1024x24' " +
+                                           FCC_FCCVDB_EXE + " view " + source + " --res 320x240 --screenshot " + shot +
+                                           " --frames 3");
   ASSERT_EQ(converted.status, 0) << converted.err;
+  EXPECT_NE(converted.err.find("converting " + source + " to FCC once"), std::string::npos) << converted.err;
   Rgb8 image;
   EXPECT_TRUE(readPng(shot, image));
   EXPECT_EQ(dir.fileCount(), 2) << "nothing but the input and the screenshot beside the input";
+  EXPECT_FALSE(std::filesystem::is_empty(cache));
 }
 
 }  // namespace

@@ -1,0 +1,158 @@
+#include "ConversionCache.h"
+
+#include <fcntl.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include "VdbLeafReader.h"
+#include "sparse/Error.h"
+#include "sparse/FccGrid.h"
+
+namespace fcc::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Bumped when a conversion of the same source and flags would give another file.
+constexpr const char* kCacheFormat = "fccvdb-cache-1";
+
+uint64_t fnv1a(const std::string& s) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+// Everything the converted file depends on.
+std::string describe(const std::string& input, const ConvertOptions& o) {
+  struct stat st {};
+  if (::stat(input.c_str(), &st) != 0) throw InputError(input + ": cannot open: no such file");
+  std::ostringstream d;
+  d << kCacheFormat << '\n' << fs::canonical(input).string() << '\n' << st.st_size << ' ' << st.st_mtim.tv_sec << '.'
+    << st.st_mtim.tv_nsec << '\n' << o.mode << ' ' << o.samples << ' ' << o.scale << ' '
+    << (o.background ? std::to_string(*o.background) : "default") << ' ' << o.prefilter << ' ' << o.tolerance << ' '
+    << o.half << ' ' << o.gridName << ' ' << o.bounds;
+  if (o.raw)
+    d << " raw " << o.raw->dims.x << ',' << o.raw->dims.y << ',' << o.raw->dims.z << ' ' << int(o.raw->type) << ' '
+      << o.raw->bigEndian << ' ' << o.raw->spacing.x << ',' << o.raw->spacing.y << ',' << o.raw->spacing.z << ' '
+      << o.raw->headerBytes;
+  return d.str();
+}
+
+void touch(const std::string& path) { ::utimensat(AT_FDCWD, path.c_str(), nullptr, 0); }
+
+// Removes the least recently used conversions until the folder holds at most `maxBytes` (never `keep`).
+void evict(const fs::path& dir, uint64_t maxBytes, const std::string& keep) {
+  struct Entry {
+    fs::path path;
+    fs::file_time_type used;
+    uint64_t bytes;
+  };
+  std::vector<Entry> entries;
+  uint64_t total = 0;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    if (!e.is_regular_file(ec) || e.path().extension() != ".vdb") continue;
+    const uint64_t bytes = e.file_size(ec);
+    entries.push_back({e.path(), e.last_write_time(ec), bytes});
+    total += bytes;
+  }
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.used < b.used; });
+  for (const Entry& e : entries) {
+    if (total <= maxBytes) break;
+    if (e.path == fs::path(keep)) continue;
+    if (fs::remove(e.path, ec)) total -= e.bytes;
+  }
+}
+
+std::string temporaryPath() {
+  std::string pattern = (fs::temp_directory_path() / "fccvdb-XXXXXX.vdb").string();
+  const int fd = ::mkstemps(pattern.data(), 4);
+  if (fd < 0) throw OutputError(pattern + ": cannot create a temporary file for the FCC conversion");
+  ::close(fd);
+  return pattern;
+}
+
+}  // namespace
+
+std::string conversionCacheDir() {
+  if (const char* d = std::getenv("FCCVDB_CACHE_DIR"); d && *d) return d;
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "fccvdb").string();
+  if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / ".cache" / "fccvdb").string();
+  return (fs::temp_directory_path() / "fccvdb-cache").string();
+}
+
+uint64_t conversionCacheMaxBytes() {
+  if (const char* m = std::getenv("FCCVDB_CACHE_MAX_MIB"); m && *m) {
+    char* end = nullptr;
+    const unsigned long long mib = std::strtoull(m, &end, 10);
+    if (end != m && *end == '\0') return uint64_t(mib) << 20;
+  }
+  return uint64_t(20) << 30;
+}
+
+bool holdsFccGrid(const std::string& path) {
+  if (detectFormat(path) != Format::Vdb) return false;
+  for (const VdbGridEntry& g : VdbLeafReader::listGrids(path))
+    if (g.type == kFccTreeTypeName) return true;
+  return false;
+}
+
+FccInput::FccInput(const std::string& input, const ConvertOptions& options, bool useCache,
+                   openvdb::util::NullInterrupter* progress, void (*say)(const std::string&)) {
+  if (holdsFccGrid(input)) {
+    path_ = input;
+    return;
+  }
+  ConvertOptions o = options;
+  o.overwrite = true;
+  if (useCache) {
+    const fs::path dir = conversionCacheDir();
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw OutputError(dir.string() + ": cannot create the conversion cache folder (" + ec.message() +
+                              "); set FCCVDB_CACHE_DIR or use --no-cache");
+    char key[17];
+    std::snprintf(key, sizeof key, "%016llx", (unsigned long long)fnv1a(describe(input, o)));
+    path_ = (dir / (fs::path(input).filename().string() + "-" + key + ".vdb")).string();
+    if (fs::exists(path_)) {
+      touch(path_);
+      origin_ = Origin::CacheHit;
+      if (say) say("using the FCC conversion of " + input + " cached as " + path_);
+      return;
+    }
+    if (say) say("converting " + input + " to FCC once; cached as " + path_ + " (--no-cache: a temporary file)");
+    convertToFcc(input, path_, o, progress);
+    origin_ = Origin::Converted;
+    evict(dir, conversionCacheMaxBytes(), path_);
+    return;
+  }
+  path_ = temporaryPath();
+  origin_ = Origin::Temporary;
+  if (say) say("converting " + input + " to a temporary FCC file " + path_);
+  try {
+    convertToFcc(input, path_, o, progress);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(path_, ignored);
+    throw;
+  }
+}
+
+FccInput::~FccInput() {
+  if (origin_ != Origin::Temporary) return;
+  std::error_code ignored;
+  fs::remove(path_, ignored);
+}
+
+}  // namespace fcc::io

@@ -1,0 +1,137 @@
+// The streamed conversion (a .vdb source read leaf by leaf, tiles made without visiting their sites,
+// the output built twice and never held) writes the same file as the in-memory reference path, for
+// level sets, fog volumes with interior tiles and dense inputs, with --half, --no-prefilter and a
+// background override; and it reads each source leaf about twice, never the volume.
+#include <gtest/gtest.h>
+
+#include <openvdb/tools/LevelSetSphere.h>
+#include <openvdb/tools/LevelSetUtil.h>
+
+#include <fstream>
+
+#include "SameVdbFiles.h"
+#include "io/Convert.h"
+#include "io/VdbFile.h"
+#include "io/VdbLeafReader.h"
+#include "io/VdbSourceField.h"
+#include "sparse/FccBlockBuilder.h"
+#include "sparse/StreamedBuild.h"
+#include "tests/tools/RunCommand.h"
+
+namespace fcc::io {
+namespace {
+
+using test::TempDir;
+
+struct Variant {
+  bool prefilter = true;
+  bool half = false;
+  std::optional<float> background;
+};
+
+std::string describe(const Variant& v) {
+  std::string s = v.prefilter ? "coefficients" : "--no-prefilter";
+  if (v.half) s += " --half";
+  if (v.background) s += " --background " + std::to_string(*v.background);
+  return s;
+}
+
+void writeGrid(const std::string& path, const openvdb::GridBase::Ptr& grid) {
+  initializeVdb();
+  openvdb::io::File file(path);
+  file.write(openvdb::GridCPtrVec{grid});
+  file.close();
+}
+
+// A narrow-band level set sphere: interior tiles of -background at every level the radius allows.
+std::string writeSphere(const TempDir& dir, const std::string& name, float radius, float voxelSize,
+                        bool fog = false) {
+  initializeVdb();
+  auto grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(
+      radius * voxelSize, openvdb::Vec3f(3.3f, -1.7f, 0.6f) * voxelSize, voxelSize, 3.0f);
+  if (fog) openvdb::tools::sdfToFogVolume(*grid);  // interior: active tiles of 1
+  grid->setName(name);
+  const std::string path = dir / (name + ".vdb");
+  writeGrid(path, grid);
+  return path;
+}
+
+void expectStreamedEqualsInMemory(const TempDir& dir, const std::string& input, const ConvertOptions& base) {
+  for (const Variant v : {Variant{}, Variant{true, true, {}}, Variant{false, false, {}}, Variant{true, false, 0.25f}}) {
+    SCOPED_TRACE(input + " " + describe(v));
+    ConvertOptions o = base;
+    o.prefilter = v.prefilter;
+    o.half = v.half;
+    if (v.background) o.background = v.background;
+    o.overwrite = true;
+    const std::string streamed = dir / "streamed.vdb", inMemory = dir / "memory.vdb";
+    const ConvertSummary s = convertToFcc(input, streamed, o);
+    o.inMemory = true;
+    const ConvertSummary m = convertToFcc(input, inMemory, o);
+    EXPECT_EQ(s.activeSamples, m.activeSamples);
+    EXPECT_EQ(s.bricks, m.bricks);
+    EXPECT_EQ(s.boundsBricks, m.boundsBricks);
+    EXPECT_EQ(s.inputVoxels, m.inputVoxels);
+    test::expectSameFccFiles(inMemory, streamed);
+  }
+}
+
+TEST(ConvertStreamed, LevelSetEqualsTheInMemoryPath) {
+  TempDir dir;
+  // Radius 150 voxels: level-2 tiles (128^3) inside as well as leaf-sized ones.
+  expectStreamedEqualsInMemory(dir, writeSphere(dir, "ls", 150.0f, 0.5f), ConvertOptions{});
+}
+
+TEST(ConvertStreamed, FogVolumeWithInteriorTilesEqualsTheInMemoryPath) {
+  TempDir dir;
+  expectStreamedEqualsInMemory(dir, writeSphere(dir, "fog", 70.0f, 1.0f, true), ConvertOptions{});
+}
+
+TEST(ConvertStreamed, DenseInputEqualsTheInMemoryPath) {
+  const std::string data = FCC_SHARED_DATA_DIR;
+  if (!std::ifstream(data + "/brainsmall.den")) GTEST_SKIP() << "no " << data;
+  TempDir dir;
+  ConvertOptions o;
+  o.raw = RawLayout{{128, 128, 84}, ScalarType::U8, false, glm::dvec3(1.0), 62};
+  expectStreamedEqualsInMemory(dir, data + "/brainsmall.den", o);
+}
+
+TEST(ConvertStreamed, RealLevelSetFileEqualsTheInMemoryPath) {
+  const std::string data = FCC_SHARED_DATA_DIR;
+  if (!std::ifstream(data + "/sphere.vdb")) GTEST_SKIP() << "no " << data;
+  TempDir dir;
+  expectStreamedEqualsInMemory(dir, data + "/sphere.vdb", ConvertOptions{});
+}
+
+// The interior of a level set becomes tiles without a voxel of it visited: source leaves are decoded
+// a bounded number of times (pass 1's slab window, pass 2's batches), the output keeps the level-set
+// class, and its leaves lie along the surface only.
+TEST(ConvertStreamed, LevelSetInteriorStaysTiles) {
+  TempDir dir;
+  const std::string input = writeSphere(dir, "ls", 150.0f, 1.0f);
+  const auto reader = std::make_shared<VdbLeafReader>(input, "", std::vector<std::string>{openvdb::FloatTree::treeType()});
+  VdbSourceField field(reader, static_cast<const openvdb::FloatGrid&>(*reader->grid()).background());
+  const FccBlockBuilder builder(field, BuildOptions{});
+  const StreamedBuild built = buildFccGridStreamed(builder, StreamedBuildOptions{});
+  const size_t pass1 = field.leavesDecoded();
+  // Every source leaf is decoded in pass 1, once per slab window that needs it (at most 2: a leaf
+  // is 8 voxels wide, a slab 16).
+  EXPECT_GE(pass1, reader->leafCount());
+  EXPECT_LE(pass1, 2 * reader->leafCount());
+  // Leaves only where the band is: far fewer than the blocks of the sphere's box.
+  const double blocksInBox = std::pow(2.0 * 150.0 / 16.0, 3.0);
+  EXPECT_LT(double(built.grid->tree().leafCount()), 0.5 * blocksInBox) << built.grid->tree().leafCount();
+  // The centre (packed voxel of site (3, -2, 1)) is inside: a tile of the interior value, the
+  // prefilter of -background.
+  const openvdb::Coord centre(1, -1, 0);
+  EXPECT_LT(built.grid->tree().getValue(centre)[0], 0.0f);
+  EXPECT_LT(built.grid->tree().getValueDepth(centre), int(FccTree::DEPTH) - 1) << "the centre is a tile";
+
+  ConvertOptions o;
+  convertToFcc(input, dir / "out.vdb", o);
+  const FccGrid::Ptr out = readFccGrid(dir / "out.vdb");
+  EXPECT_EQ(out->getGridClass(), openvdb::GRID_LEVEL_SET);
+}
+
+}  // namespace
+}  // namespace fcc::io

@@ -1,0 +1,173 @@
+// DICOM series and MetaImage, read through ITK (io/ItkReader.cpp). The test writes its own inputs with
+// another library than the one that reads them: DICOM slices with GDCM's writer (CT images with
+// rescale slope and intercept, an oblique orientation, file names in shuffled order), MetaImage by hand
+// (it is a text header and raw bytes).
+#include <gdcmAttribute.h>
+#include <gdcmImageWriter.h>
+#include <gdcmMediaStorage.h>
+#include <gdcmUIDGenerator.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <random>
+
+#include "io/Convert.h"
+#include "io/DenseVolume.h"
+#include "io/VdbFile.h"
+#include "sparse/Error.h"
+#include "tests/tools/RunCommand.h"
+
+namespace fcc::io {
+namespace {
+
+using test::TempDir;
+
+constexpr int kNx = 11, kNy = 9, kNz = 7;
+const glm::dvec3 kSpacing(0.7, 0.8, 1.5);
+const glm::dvec3 kOrigin(-12.5, 4.0, 30.25);
+constexpr double kSlope = 2.0, kIntercept = -100.0;
+
+// The stored (raw) value of voxel (i, j, k).
+int16_t rawValue(int i, int j, int k) { return int16_t(3 * i + 17 * j + 101 * k - 50); }
+
+// Row and column directions of the slices (DICOM's Image Orientation (Patient)), a rotation about z.
+glm::dvec3 rowDirection() { return glm::dvec3(std::cos(0.3), std::sin(0.3), 0.0); }
+glm::dvec3 columnDirection() { return glm::dvec3(-std::sin(0.3), std::cos(0.3), 0.0); }
+
+// Slice k of the series as a CT image file.
+void writeSlice(const std::string& path, int k, const std::string& studyUid, const std::string& seriesUid) {
+  gdcm::ImageWriter writer;
+  gdcm::Image& image = writer.GetImage();
+  image.SetNumberOfDimensions(2);
+  image.SetDimension(0, kNx);
+  image.SetDimension(1, kNy);
+  image.SetPixelFormat(gdcm::PixelFormat::INT16);
+  image.SetPhotometricInterpretation(gdcm::PhotometricInterpretation::MONOCHROME2);
+  image.SetTransferSyntax(gdcm::TransferSyntax::ExplicitVRLittleEndian);
+  const glm::dvec3 normal = glm::cross(rowDirection(), columnDirection());
+  const glm::dvec3 position = kOrigin + normal * (kSpacing.z * k);
+  const double origin[3] = {position.x, position.y, position.z};
+  const double spacing[3] = {kSpacing.x, kSpacing.y, kSpacing.z};
+  const double cosines[6] = {rowDirection().x, rowDirection().y, rowDirection().z,
+                             columnDirection().x, columnDirection().y, columnDirection().z};
+  image.SetOrigin(origin);
+  image.SetSpacing(spacing);
+  image.SetDirectionCosines(cosines);
+  image.SetSlope(kSlope);
+  image.SetIntercept(kIntercept);
+  std::vector<int16_t> pixels;
+  for (int j = 0; j < kNy; ++j)
+    for (int i = 0; i < kNx; ++i) pixels.push_back(rawValue(i, j, k));
+  gdcm::DataElement data(gdcm::Tag(0x7fe0, 0x0010));
+  data.SetByteValue(reinterpret_cast<const char*>(pixels.data()), uint32_t(pixels.size() * sizeof(int16_t)));
+  image.SetDataElement(data);
+
+  gdcm::DataSet& ds = writer.GetFile().GetDataSet();
+  const gdcm::MediaStorage ct(gdcm::MediaStorage::CTImageStorage);
+  gdcm::Attribute<0x0008, 0x0016> sopClass{ct.GetString()};
+  ds.Replace(sopClass.GetAsDataElement());
+  gdcm::UIDGenerator uids;
+  gdcm::Attribute<0x0008, 0x0018> sopInstance{uids.Generate()};
+  ds.Replace(sopInstance.GetAsDataElement());
+  gdcm::Attribute<0x0008, 0x0060> modality{"CT"};
+  ds.Replace(modality.GetAsDataElement());
+  gdcm::Attribute<0x0020, 0x000d> study{studyUid};
+  ds.Replace(study.GetAsDataElement());
+  gdcm::Attribute<0x0020, 0x000e> series{seriesUid};
+  ds.Replace(series.GetAsDataElement());
+  gdcm::Attribute<0x0020, 0x0013> instance{k + 1};
+  ds.Replace(instance.GetAsDataElement());
+  writer.SetFileName(path.c_str());
+  ASSERT_TRUE(writer.Write()) << path;
+}
+
+// The series in `dir`, slice k in the file named by `order[k]` (names that sort unlike positions).
+void writeSeries(const std::filesystem::path& dir, const std::vector<int>& order) {
+  std::filesystem::create_directories(dir);
+  gdcm::UIDGenerator uids;
+  const std::string study = uids.Generate(), series = uids.Generate();
+  for (int k = 0; k < kNz; ++k) writeSlice((dir / ("slice" + std::to_string(order[size_t(k)]))).string(), k, study, series);
+}
+
+void expectTheSeries(const DenseVolume& v) {
+  ASSERT_EQ(v.dims, glm::ivec3(kNx, kNy, kNz));
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(v.spacing[a], kSpacing[a], 1e-6) << "axis " << a;
+    EXPECT_NEAR(v.origin[a], kOrigin[a], 1e-4) << "axis " << a;
+    EXPECT_NEAR(v.direction[0][a], rowDirection()[a], 1e-5);
+    EXPECT_NEAR(v.direction[1][a], columnDirection()[a], 1e-5);
+  }
+  for (int k = 0; k < kNz; ++k)
+    for (int j = 0; j < kNy; ++j)
+      for (int i = 0; i < kNx; ++i)
+        ASSERT_EQ(v.at(i, j, k), float(kSlope * rawValue(i, j, k) + kIntercept)) << i << "," << j << "," << k;
+}
+
+TEST(ItkReaders, DicomSeriesInAnyFileOrderGivesTheVolumeWithRescaleAndGeometry) {
+  TempDir dir;
+  std::vector<int> order(kNz);
+  std::iota(order.begin(), order.end(), 0);
+  writeSeries(dir / "sorted", order);
+  std::shuffle(order.begin(), order.end(), std::mt19937(7));
+  writeSeries(dir / "shuffled", order);
+  EXPECT_EQ(detectFormat(dir / "sorted"), Format::Dicom);
+  EXPECT_EQ(detectFormat(dir / "sorted/slice3"), Format::Dicom) << "by the DICM marker";
+  const DenseVolume sorted = readDicom(dir / "sorted");
+  expectTheSeries(sorted);
+  const DenseVolume shuffled = readDicom(dir / "shuffled");
+  expectTheSeries(shuffled);
+  EXPECT_EQ(sorted.values, shuffled.values);
+  // One file of the series stands for the whole series.
+  expectTheSeries(readDicom(dir / "shuffled/slice2"));
+
+  // Converted: the FCC grid's transform is the series' geometry (world = origin + R * S * ijk).
+  ConvertOptions o;
+  o.prefilter = false;
+  convertToFcc(dir / "shuffled", dir / "ct.vdb", o);
+  const FccGrid::Ptr grid = readFccGrid(dir / "ct.vdb");
+  const openvdb::Vec3d world = grid->transform().indexToWorld(openvdb::Vec3d(2.0, 3.0, 4.0));
+  const glm::dvec3 expected = kOrigin + rowDirection() * (kSpacing.x * 2.0) + columnDirection() * (kSpacing.y * 3.0) +
+                              glm::cross(rowDirection(), columnDirection()) * (kSpacing.z * 4.0);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(world[a], expected[a], 1e-6) << "axis " << a;
+}
+
+TEST(ItkReaders, MetaImageWithDetachedAndLocalData) {
+  TempDir dir;
+  std::vector<int16_t> values;
+  for (int k = 0; k < kNz; ++k)
+    for (int j = 0; j < kNy; ++j)
+      for (int i = 0; i < kNx; ++i) values.push_back(rawValue(i, j, k));
+  const std::string header = "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+                             "TransformMatrix = 1 0 0 0 1 0 0 0 1\nOffset = -12.5 4 30.25\n"
+                             "ElementSpacing = 0.7 0.8 1.5\nDimSize = 11 9 7\nElementType = MET_SHORT\n";
+  {
+    std::ofstream mha(dir / "v.mha", std::ios::binary);
+    mha << header << "ElementDataFile = LOCAL\n";
+    mha.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * 2));
+  }
+  {
+    std::ofstream(dir / "v.mhd") << header << "ElementDataFile = v.raw\n";
+    std::ofstream(dir / "v.raw", std::ios::binary).write(reinterpret_cast<const char*>(values.data()),
+                                                         std::streamsize(values.size() * 2));
+  }
+  for (const char* name : {"v.mha", "v.mhd"}) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(detectFormat(dir / name), Format::MetaImage);
+    const DenseVolume v = readMetaImage(dir / name);
+    ASSERT_EQ(v.dims, glm::ivec3(kNx, kNy, kNz));
+    EXPECT_NEAR(v.spacing.y, 0.8, 1e-9);
+    EXPECT_NEAR(v.origin.z, 30.25, 1e-9);
+    EXPECT_EQ(v.at(4, 5, 6), float(rawValue(4, 5, 6)));
+  }
+  // Damaged: the data is shorter than the header says.
+  std::filesystem::resize_file(dir / "v.raw", 100);
+  EXPECT_THROW(readMetaImage(dir / "v.mhd"), InputError);
+  EXPECT_THROW(readDicom(dir / "v.raw"), InputError);
+}
+
+}  // namespace
+}  // namespace fcc::io

@@ -1,0 +1,79 @@
+// `fccvdb convert` of a narrow-band level set streams: its peak memory follows the band (the data),
+// not the interior (constant tiles, many times larger as voxels) nor the bounding box; and the surface
+// it renders lies on the analytic sphere.
+#include <OpenEXR/ImfArray.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <gtest/gtest.h>
+#include <openvdb/tools/LevelSetSphere.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "MeasuredRun.h"
+#include "RunCommand.h"
+#include "viewer/Camera.h"
+
+namespace fcc::test {
+namespace {
+
+TEST(CliMemory, ConvertOfALevelSetFollowsTheBandAndRendersTheSphere) {
+  TempDir dir;
+  constexpr double kRadius = 400.0;  // voxels; half width 3
+  const std::string input = dir / "ls.vdb", output = dir / "ls_fcc.vdb", exr = dir / "ls.exr";
+  uint64_t bandVoxels = 0;
+  {
+    openvdb::initialize();
+    auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(float(kRadius), openvdb::Vec3f(0.0f), 1.0f, 3.0f);
+    bandVoxels = sphere->activeVoxelCount();
+    openvdb::io::File file(input);
+    file.write(openvdb::GridCPtrVec{sphere});
+    file.close();
+  }
+  const double interiorMiB = 4.0 / 3.0 * M_PI * std::pow(kRadius, 3.0) * sizeof(float) / double(1 << 20);
+  const double bandMiB = double(bandVoxels) * sizeof(float) / double(1 << 20);
+
+  const MeasuredRun run = runMeasured({"convert", input, output, "--cl-device", "reference", "--quiet"}, dir);
+  ASSERT_EQ(run.status, 0) << run.err;
+  const double peakMiB = double(run.peakRssKiB) / 1024.0;
+  std::printf("convert level-set sphere r=%g: peak RSS %.0f MiB; band %.0f MiB as floats, interior %.0f MiB as voxels\n",
+              kRadius, peakMiB, bandMiB, interiorMiB);
+  // The in-memory conversion built every interior block and held source and output whole: several
+  // times the interior's voxels. Streamed: the process, the topologies and a window of slabs.
+  EXPECT_LT(peakMiB, 320.0) << "band " << bandMiB << " MiB, interior " << interiorMiB << " MiB";
+  EXPECT_LT(peakMiB, interiorMiB / 3.0);
+
+  // The surface: every hit pixel's depth puts it on the sphere, within 0.01 voxel.
+  render::Camera camera;
+  camera.eye = glm::dvec3(300.0, 200.0, 1300.0);
+  camera.lookat = glm::dvec3(0.0);
+  camera.fovYDegrees = 40.0;
+  const int width = 48, height = 40;
+  const CommandResult r = runFccvdb("render " + output + " -o " + exr + " --res 48x40 --eye 300,200,1300 --lookat 0,0,0 " +
+                                    "--fov 40 --gpu-cache 64 --host-cache 64 --quiet");
+  if (failedForLackOfGl(r)) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
+  Imf::InputFile file(exr.c_str());
+  const Imath::Box2i dw = file.header().dataWindow();
+  ASSERT_EQ(dw.max.x - dw.min.x + 1, width);
+  Imf::Array2D<float> depth(height, width);
+  Imf::FrameBuffer fb;
+  fb.insert("Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(&depth[0][0]), sizeof(float), sizeof(float) * width));
+  file.setFrameBuffer(fb);
+  file.readPixels(dw.min.y, dw.max.y);
+  const render::CameraFrame frame = render::cameraFrame(camera, double(width) / height);
+  int hits = 0;
+  double worst = 0.0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      if (!std::isfinite(depth[y][x])) continue;
+      const glm::dvec3 p = frame.eye + pixelRay(frame, x, y, width, height) * double(depth[y][x]);
+      worst = std::max(worst, std::abs(glm::length(p) - kRadius));
+      ++hits;
+    }
+  EXPECT_GT(hits, width * height / 4);
+  EXPECT_LT(worst, 0.01) << "worst distance from the analytic sphere, in voxels, over " << hits << " hits";
+}
+
+}  // namespace
+}  // namespace fcc::test
