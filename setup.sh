@@ -12,7 +12,7 @@ mode=${1:-demo}
 case "$mode" in demo|test|build) ;; *) echo "setup.sh: unknown mode '$mode' (valid: demo, test, build)" >&2; exit 2 ;; esac
 
 packages=(build-essential cmake pkg-config ccache python3
-  libopenvdb-dev libboost-dev libboost-iostreams-dev libtbb-dev zlib1g-dev
+  libopenvdb-dev libboost-dev libboost-iostreams-dev libtbb-dev zlib1g-dev libblosc-dev
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers
   libglfw3-dev libglm-dev libopenexr-dev libpng-dev libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev libx11-dev libxrandr-dev
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev xvfb xauth)
