@@ -114,7 +114,7 @@ DenseVolume readDense(const std::string& input, Format format, const ConvertOpti
     case Format::Raw:
       if (!options.raw)
         throw ValueError(input + ": raw input needs --dims X,Y,Z and --type (valid inputs by extension: .vdb, "
-                                 ".nrrd, .nhdr, .nii, .nii.gz; anything else is raw)");
+                                 ".nrrd, .nhdr, .nii, .nii.gz, .mha, .mhd, .dcm or a DICOM folder; anything else is raw)");
       return readRaw(input, *options.raw);
     case Format::Nrrd: return readNrrd(input);
     case Format::Nifti: return readNifti(input);

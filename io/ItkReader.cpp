@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "DenseVolume.h"
 #include "sparse/Error.h"
@@ -73,6 +74,38 @@ std::vector<std::string> seriesFiles(const std::string& path) {
   return best;
 }
 
+// ITK's MetaImage reader reports data shorter than its header promises only on std::cerr and hands
+// back the image anyway; so uncompressed data is sized here first (one file, LOCAL or detached).
+void checkMetaImageDataSize(itk::MetaImageIO& io, const std::string& path) {
+  MetaImage* meta = io.GetMetaImagePointer();
+  if (!meta || meta->CompressedData()) return;  // zlib itself fails on short compressed data
+  uint64_t expected = uint64_t(io.GetComponentSize()) * io.GetNumberOfComponents();
+  for (unsigned a = 0; a < io.GetNumberOfDimensions(); ++a) expected *= io.GetDimensions(a);
+  const std::string dataFile = meta->ElementDataFileName();
+  std::error_code ec;
+  if (dataFile == "LOCAL") {
+    // The data follows the header's last line, "ElementDataFile = LOCAL".
+    std::ifstream in(path, std::ios::binary);
+    std::string head(1 << 16, '\0');
+    in.read(head.data(), std::streamsize(head.size()));
+    head.resize(size_t(in.gcount()));
+    const size_t field = head.find("ElementDataFile");
+    const size_t lineEnd = field == std::string::npos ? std::string::npos : head.find('\n', field);
+    if (lineEnd == std::string::npos) return;
+    const uint64_t available = fs::file_size(path, ec) - (lineEnd + 1);
+    if (!ec && available < expected)
+      throw InputError(path + ": holds " + std::to_string(available) + " bytes of voxel data but its header needs " +
+                       std::to_string(expected) + "; the file is truncated");
+  } else if (dataFile.find_first_of("%") == std::string::npos && dataFile != "LIST") {
+    const fs::path data = fs::path(dataFile).is_absolute() ? fs::path(dataFile) : fs::path(path).parent_path() / dataFile;
+    const uint64_t available = fs::file_size(data, ec);
+    if (ec) throw InputError(path + ": its data file " + data.string() + " cannot be opened");
+    if (available < expected)
+      throw InputError(data.string() + ": holds " + std::to_string(available) + " bytes but " + path +
+                       " says its voxels take " + std::to_string(expected) + "; the file is truncated");
+  }
+}
+
 }  // namespace
 
 DenseVolume readDicom(const std::string& path) {
@@ -97,6 +130,7 @@ DenseVolume readMetaImage(const std::string& path) {
     if (io->GetNumberOfDimensions() != 3 || io->GetNumberOfComponents() != 1)
       throw InputError(path + ": a MetaImage of " + std::to_string(io->GetNumberOfDimensions()) + " dimensions and " +
                        std::to_string(io->GetNumberOfComponents()) + " components per voxel; valid: 3-D scalar images");
+    checkMetaImageDataSize(*io, path);
     auto reader = itk::ImageFileReader<Image>::New();
     reader->SetImageIO(io);
     reader->SetFileName(path);

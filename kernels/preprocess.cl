@@ -98,6 +98,24 @@ int fcc_cell_groups(int3 q) {
   return groups;
 }
 
+// Whether every value the cell of the packed voxel at halo position h reads (its 3^3 packed-voxel
+// neighbourhood, all four channels) is one value: then the spline there is that value (partition of
+// unity), and its bounds need no BB-coefficients (air in scans, a level set's inside and outside). The
+// C++ reference makes the same test per unit cube.
+bool fcc_cell_reads_one_value(__local const float* planes, int h, float* value) {
+  float v = planes[h - FCC_DX - FCC_DY - FCC_DZ];
+  bool same = true;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        int at = h + dz * FCC_DZ + dy * FCC_DY + dx * FCC_DX;
+        same = same && planes[at] == v && planes[FCC_PLANE + at] == v && planes[2 * FCC_PLANE + at] == v &&
+               planes[3 * FCC_PLANE + at] == v;
+      }
+  *value = v;
+  return same;
+}
+
 // FCC_CELL_BB_RANGE (the host replaces this line)
 
 // bounds[brick] = (lo, hi) over the BB-coefficients of the brick's 16^3 unit cubes' pieces, as the
@@ -107,23 +125,38 @@ __kernel __attribute__((reqd_work_group_size(FCC_GROUP_SIZE, 1, 1)))
 void fcc_brick_bounds(__global const float4* pool, __global const int* neighbours,
                       __global float2* bounds) {
   __local float planes[4 * FCC_PLANE];
-  __local float2 partial[FCC_GROUP_SIZE];
+  __local float4 partial[FCC_GROUP_SIZE];
   fcc_load_halo(pool, neighbours, planes);
-  float lo = INFINITY, hi = -INFINITY;
+  // (lo, hi) over computed BB-coefficients (scaled by FCC_CUBIC_DENOM), (clo, chi) over the cells
+  // whose whole neighbourhood is one value (not scaled).
+  float lo = INFINITY, hi = -INFINITY, clo = INFINITY, chi = -INFINITY;
   for (int h = FCC_FIRST_INNER + get_local_id(0); h < FCC_HALO_VOXELS; h += FCC_GROUP_SIZE) {
     int3 q = (int3)(h % FCC_HALO_SIDE, (h / FCC_HALO_SIDE) % FCC_HALO_SIDE, h / (FCC_HALO_SIDE * FCC_HALO_SIDE)) - 1;
-    float2 r = fcc_cell_bb_range(planes, h, fcc_cell_groups(q));
+    int groups = fcc_cell_groups(q);
+    if (groups == 0) continue;
+    float uniform;  // (`constant` is an OpenCL C keyword)
+    if (fcc_cell_reads_one_value(planes, h, &uniform)) {
+      clo = min(clo, uniform);
+      chi = max(chi, uniform);
+      continue;
+    }
+    float2 r = fcc_cell_bb_range(planes, h, groups);
     lo = min(lo, r.x);
     hi = max(hi, r.y);
   }
   int lid = get_local_id(0);
-  partial[lid] = (float2)(lo, hi);
+  partial[lid] = (float4)(lo, hi, clo, chi);
   barrier(CLK_LOCAL_MEM_FENCE);
   for (int stride = FCC_GROUP_SIZE / 2; stride > 0; stride >>= 1) {
-    if (lid < stride) partial[lid] = (float2)(min(partial[lid].x, partial[lid + stride].x),
-                                              max(partial[lid].y, partial[lid + stride].y));
+    if (lid < stride) partial[lid] = (float4)(min(partial[lid].x, partial[lid + stride].x),
+                                              max(partial[lid].y, partial[lid + stride].y),
+                                              min(partial[lid].z, partial[lid + stride].z),
+                                              max(partial[lid].w, partial[lid + stride].w));
     barrier(CLK_LOCAL_MEM_FENCE);
   }
   // Scaling after the min/max is the same as before it: x * (1/24) rounds monotonically.
-  if (lid == 0) bounds[get_group_id(0)] = partial[0] * (1.0f / FCC_CUBIC_DENOM);
+  if (lid == 0) {
+    float2 computed = partial[0].xy * (1.0f / FCC_CUBIC_DENOM);
+    bounds[get_group_id(0)] = (float2)(min(computed.x, partial[0].z), max(computed.y, partial[0].w));
+  }
 }

@@ -105,16 +105,18 @@ struct HaloBlock {
           for (int c = 0; c < 4; ++c) out[c] = v[c];
         }
   }
-  // Whether every value the unit cube at `corner` reads (sites [corner - 1, corner + 2]^3) is zero:
-  // then all its BB-coefficients are exactly +0, which the reference can say without computing them
-  // (air in scans; the result is bit-identical).
-  bool cubeReadsOnlyZeros(const glm::ivec3& corner) const {
+  // Whether every value the unit cube at `corner` reads (sites [corner - 1, corner + 2]^3, through
+  // the packed voxels that hold them) is one value v: then the spline there is v (partition of unity)
+  // and the cube's bounds are (v, v) without computing its BB-coefficients (air in scans, a level
+  // set's inside and outside). The OpenCL kernel makes the same test per packed voxel.
+  bool cubeReadsOneValue(const glm::ivec3& corner, float& v) const {
     const glm::ivec3 lo = packedVoxelOfSite(corner - 1) - packedOrigin, hi = packedVoxelOfSite(corner + 2) - packedOrigin;
+    v = values[((lo.z * kHaloSide + lo.y) * kHaloSide + lo.x) * 4];
     for (int z = lo.z; z <= hi.z; ++z)
       for (int y = lo.y; y <= hi.y; ++y)
         for (int x = lo.x; x <= hi.x; ++x) {
-          const float* v = values + ((z * kHaloSide + y) * kHaloSide + x) * 4;
-          if (v[0] != 0.0f || v[1] != 0.0f || v[2] != 0.0f || v[3] != 0.0f) return false;
+          const float* c = values + ((z * kHaloSide + y) * kHaloSide + x) * 4;
+          if (c[0] != v || c[1] != v || c[2] != v || c[3] != v) return false;
         }
     return true;
   }
@@ -144,9 +146,10 @@ class ReferenceBrickKernels : public BrickKernels {
           for (int y = 0; y < kBrickSites; ++y)
             for (int x = 0; x < kBrickSites; ++x) {
               const glm::ivec3 corner = siteOrigin + glm::ivec3(x, y, z);
-              if (block->cubeReadsOnlyZeros(corner)) {
-                lo = std::min(lo, 0.0f);
-                hi = std::max(hi, 0.0f);
+              float constant;
+              if (block->cubeReadsOneValue(corner, constant)) {
+                lo = std::min(lo, constant);
+                hi = std::max(hi, constant);
                 continue;
               }
               const spline::FccRange b = spline::cubeBounds(corner, coefficientAt);

@@ -1,5 +1,6 @@
 #include "FccBlockBuilder.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "Lattice.h"
@@ -56,26 +57,29 @@ std::vector<openvdb::Coord> FccBlockBuilder::blocksInSlab(int x) const {
   std::vector<openvdb::Coord> out;
   if (blocks_.empty() || x < blocks_.min().x() || x > blocks_.max().x()) return out;
   const int halo = options_.prefilter ? 1 : 0;
-  const int ny = blocks_.dim().y(), nz = blocks_.dim().z();
   // The slab's sites, and the halo a block reads beyond them.
   SiteBox region{glm::ivec3(2 * kLeafDim * x, 2 * kLeafDim * blocks_.min().y(), 2 * kLeafDim * blocks_.min().z()),
                  glm::ivec3(2 * kLeafDim * (x + 1) - 1, 2 * kLeafDim * (blocks_.max().y() + 1) - 1,
                             2 * kLeafDim * (blocks_.max().z() + 1) - 1)};
-  std::vector<uint8_t> marked;
+  // Marked blocks as (z, y) keys: memory and time follow the data, not the slab's area.
+  std::vector<std::pair<int, int>> marked;
   const bool sparse = field_.forEachDataBox(region.expandedBy(halo), [&](const SiteBox& data) {
-    if (marked.empty()) marked.assign(size_t(ny) * nz, 0);
     // Blocks whose sample box (block sites plus halo) meets the data.
     const SiteBox reach = data.expandedBy(halo).intersection(region);
     if (reach.empty()) return;
     const glm::ivec3 lo = (reach.min >> 1) >> 3, hi = (reach.max >> 1) >> 3;
     for (int z = lo.z; z <= hi.z; ++z)
-      for (int y = lo.y; y <= hi.y; ++y)
-        marked[size_t(z - blocks_.min().z()) * ny + size_t(y - blocks_.min().y())] = 1;
+      for (int y = lo.y; y <= hi.y; ++y) marked.emplace_back(z, y);
   });
-  for (int z = 0; z < nz; ++z)
-    for (int y = 0; y < ny; ++y)
-      if (!sparse || (!marked.empty() && marked[size_t(z) * ny + size_t(y)]))
-        out.emplace_back(x, blocks_.min().y() + y, blocks_.min().z() + z);
+  if (sparse) {
+    std::sort(marked.begin(), marked.end());
+    marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
+    out.reserve(marked.size());
+    for (const auto& [z, y] : marked) out.emplace_back(x, y, z);
+    return out;
+  }
+  for (int z = blocks_.min().z(); z <= blocks_.max().z(); ++z)
+    for (int y = blocks_.min().y(); y <= blocks_.max().y(); ++y) out.emplace_back(x, y, z);
   return out;
 }
 

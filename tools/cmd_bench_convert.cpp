@@ -82,6 +82,17 @@ void readFully(const std::string& path) {
   std::printf("%llu\n", (unsigned long long)active);
 }
 
+// The level-set sphere the benchmark converts when given no input.
+void makeSphere(const std::string& path, double radius) {
+  if (path.empty()) throw ValueError("--stage make needs --keep FILE");
+  initializeVdb();
+  auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(float(radius), openvdb::Vec3f(0.0f), 1.0f, 3.0f);
+  sphere->setName("sphere");
+  openvdb::io::File file(path);
+  file.write(openvdb::GridCPtrVec{sphere});
+  file.close();
+}
+
 struct Args {
   std::string input, stage, device = "auto", keep;
   double radius = 600.0;
@@ -102,14 +113,18 @@ Command addBenchConvertCommand(CLI::App& bench) {
   app->add_option("--repetitions", args->repetitions, "Runs of each stage; the fastest is reported")
       ->check(CLI::Range(1, 20))->capture_default_str();
   app->add_flag("--json", args->printJson, "One JSON object on stdout");
-  app->add_option("--stage", args->stage, "internal: run one stage (read) in this process")->group("");
+  app->add_option("--stage", args->stage, "internal: run one stage (read, make) in this process")->group("");
   addDeviceOption(*app, args->device);
   return {app, [args]() {
             if (args->stage == "read") {
               readFully(args->input);
               return 0;
             }
-            if (!args->stage.empty()) throw ValueError("--stage " + args->stage + " is not valid (valid: read)");
+            if (args->stage == "make") {
+              makeSphere(args->keep, args->radius);
+              return 0;
+            }
+            if (!args->stage.empty()) throw ValueError("--stage " + args->stage + " is not valid (valid: read, make)");
             const std::filesystem::path tmp = std::filesystem::temp_directory_path() /
                                               ("fccvdb_bench_convert_" + std::to_string(::getpid()));
             std::filesystem::create_directories(tmp);
@@ -117,26 +132,20 @@ Command addBenchConvertCommand(CLI::App& bench) {
               std::filesystem::path dir;
               ~Cleanup() { std::error_code ec; std::filesystem::remove_all(dir, ec); }
             } cleanup{tmp};
+            const std::string err = (tmp / "stderr.txt").string(), out = (tmp / "out.vdb").string();
             std::string input = args->input;
-            double makeSeconds = 0.0;
             if (input.empty()) {
+              // In a process of its own: a child starts with its parent's peak RSS as its own
+              // (exec keeps it), so this process stays as small as it started.
               input = args->keep.empty() ? (tmp / "sphere.vdb").string() : args->keep;
-              const auto start = std::chrono::steady_clock::now();
-              initializeVdb();
-              auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(
-                  float(args->radius), openvdb::Vec3f(0.0f), 1.0f, 3.0f);
-              sphere->setName("sphere");
-              openvdb::io::File file(input);
-              file.write(openvdb::GridCPtrVec{sphere});
-              file.close();
-              makeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-              std::fprintf(stderr, "made %s: level-set sphere, radius %g voxels, %llu active voxels, %llu leaves (%.1f s)\n",
-                           input.c_str(), args->radius, (unsigned long long)sphere->activeVoxelCount(),
-                           (unsigned long long)sphere->tree().leafCount(), makeSeconds);
+              char radius[32];
+              std::snprintf(radius, sizeof radius, "%.17g", args->radius);
+              const Measured made = runSelf({"bench", "convert", "--stage", "make", "--keep", input, "--radius", radius}, err);
+              std::fprintf(stderr, "made %s: level-set sphere, radius %g voxels, half width 3 (%.1f s)\n", input.c_str(),
+                           args->radius, made.seconds);
             }
             struct stat st {};
             if (::stat(input.c_str(), &st) != 0) throw InputError(input + ": cannot open");
-            const std::string err = (tmp / "stderr.txt").string(), out = (tmp / "out.vdb").string();
             Measured read{1e30, 0}, convert{1e30, 0};
             for (int i = 0; i < args->repetitions; ++i) {
               const Measured r = runSelf({"bench", "convert", input, "--stage", "read"}, err);

@@ -1,4 +1,4 @@
-// fccvdb convert INPUT OUTPUT.vdb: Cartesian data to an FCC grid.
+// fccvdb convert INPUT OUTPUT.vdb: Cartesian data to an FCC grid (io/Convert.h: streamed).
 #include <cstdio>
 
 #include "Command.h"
@@ -22,8 +22,8 @@ struct ConvertArgs {
 
 Command addConvertCommand(CLI::App& parent) {
   auto args = std::make_shared<ConvertArgs>();
-  CLI::App* app = parent.add_subcommand("convert", "Convert a Cartesian volume (.vdb float grid, raw, NRRD, NIfTI) to an FCC grid in a .vdb file");
-  app->add_option("INPUT", args->input, "Input: .vdb (fog volume or level set), .nrrd/.nhdr, .nii/.nii.gz, or raw (anything else; needs --dims and --type)")->required();
+  CLI::App* app = parent.add_subcommand("convert", "Convert a Cartesian volume (.vdb float grid, raw, NRRD, NIfTI, MetaImage, DICOM series) to an FCC grid in a .vdb file, streamed in bounded memory");
+  app->add_option("INPUT", args->input, "Input: .vdb (fog volume or level set), .nrrd/.nhdr, .nii/.nii.gz, .mha/.mhd, a DICOM series (its folder or one of its files), or raw (anything else; needs --dims and --type)")->required();
   app->add_option("OUTPUT", args->output, "Output .vdb (written to a temporary file, then renamed)")->required();
   app->add_option("--grid", args->options.gridName, ".vdb input: the float grid to convert (default: the first float grid)");
   addRawFlags(*app, args->source);

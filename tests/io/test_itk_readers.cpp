@@ -42,9 +42,11 @@ glm::dvec3 columnDirection() { return glm::dvec3(-std::sin(0.3), std::cos(0.3), 
 void writeSlice(const std::string& path, int k, const std::string& studyUid, const std::string& seriesUid) {
   gdcm::ImageWriter writer;
   gdcm::Image& image = writer.GetImage();
-  image.SetNumberOfDimensions(2);
+  // Three dimensions (one slice): GDCM writes all three coordinates of the origin then.
+  image.SetNumberOfDimensions(3);
   image.SetDimension(0, kNx);
   image.SetDimension(1, kNy);
+  image.SetDimension(2, 1);
   image.SetPixelFormat(gdcm::PixelFormat::INT16);
   image.SetPhotometricInterpretation(gdcm::PhotometricInterpretation::MONOCHROME2);
   image.SetTransferSyntax(gdcm::TransferSyntax::ExplicitVRLittleEndian);
@@ -166,6 +168,8 @@ TEST(ItkReaders, MetaImageWithDetachedAndLocalData) {
   // Damaged: the data is shorter than the header says.
   std::filesystem::resize_file(dir / "v.raw", 100);
   EXPECT_THROW(readMetaImage(dir / "v.mhd"), InputError);
+  std::filesystem::resize_file(dir / "v.mha", std::filesystem::file_size(dir / "v.mha") - 50);
+  EXPECT_THROW(readMetaImage(dir / "v.mha"), InputError);
   EXPECT_THROW(readDicom(dir / "v.raw"), InputError);
 }
 
