@@ -6,6 +6,7 @@
 #include "AtomicOutput.h"
 #include "VdbFile.h"
 #include "VdbLeafReader.h"
+#include "VdbResampleField.h"
 #include "VdbSourceField.h"
 #include "sparse/BrickBounds.h"
 #include "sparse/CubicBSpline.h"
@@ -141,20 +142,6 @@ double spacingForSampleCount(const glm::ivec3& dims, uint64_t samples) {
   return hi;
 }
 
-DenseVolume densify(const openvdb::FloatGrid& grid) {
-  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
-  DenseVolume v;
-  const openvdb::Coord dim = box.dim();
-  v.dims = glm::ivec3(dim.x(), dim.y(), dim.z());
-  v.values.resize(size_t(v.dims.x) * v.dims.y * v.dims.z);
-  auto acc = grid.getConstAccessor();
-  for (int k = 0; k < v.dims.z; ++k)
-    for (int j = 0; j < v.dims.y; ++j)
-      for (int i = 0; i < v.dims.x; ++i)
-        v.values[v.index(i, j, k)] = acc.getValue(box.min() + openvdb::Coord(i, j, k));
-  return v;
-}
-
 }  // namespace
 
 ConvertSummary convertToFcc(const std::string& input, const std::string& output, const ConvertOptions& options,
@@ -175,12 +162,13 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   provenance.coefficients = options.prefilter;
   ConvertSummary summary;
 
-  openvdb::FloatGrid::Ptr sourceGrid;          // the whole source grid (in memory, or resampling)
+  openvdb::FloatGrid::Ptr sourceGrid;          // the whole source grid (the in-memory subsample reference)
   std::shared_ptr<const VdbLeafReader> reader;  // or its topology, leaves read on demand
   DenseVolume dense;
   openvdb::math::Transform::Ptr xform;
   float background = options.background.value_or(0.0f);
-  if (format == Format::Vdb && !resample && !options.inMemory) {
+  glm::ivec3 extent(0);  // the source's voxels per axis (its active box for a .vdb): resampling's extent
+  if (format == Format::Vdb && (resample || !options.inMemory)) {
     const std::vector<std::string> floatTrees{openvdb::FloatTree::treeType()};
     // OpenVDB parses the header and topology: first in a child, which may crash on a damaged file.
     guardVdbRead(input, [&] { VdbLeafReader probe(input, options.gridName, floatTrees); });
@@ -191,32 +179,29 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     background = options.background.value_or(topology.background());
     summary.inputVoxels = topology.activeVoxelCount();
     xform = topology.transform().copy();
+    const openvdb::Coord dim = topology.evalActiveVoxelBoundingBox().dim();
+    extent = glm::ivec3(dim.x(), dim.y(), dim.z());
   } else if (format == Format::Vdb) {
     sourceGrid = readFloatGrid(input, options.gridName);
     provenance.sourceGrid = summary.gridName = sourceGrid->getName();
     provenance.levelSet = sourceGrid->getGridClass() == openvdb::GRID_LEVEL_SET;
     background = options.background.value_or(sourceGrid->background());
     summary.inputVoxels = sourceGrid->activeVoxelCount();
-    if (resample) {
-      dense = densify(*sourceGrid);
-      const openvdb::CoordBBox box = sourceGrid->evalActiveVoxelBoundingBox();
-      xform = sourceGrid->transform().copy();
-      xform->preTranslate(box.min().asVec3d());  // dense index (0,0,0) is the bbox minimum
-    } else {
-      xform = sourceGrid->transform().copy();
-    }
+    xform = sourceGrid->transform().copy();
   } else {
     dense = readDense(input, format, options);
     summary.gridName = "density";
     summary.inputVoxels = dense.values.size();
     xform = transformOf(dense, 1.0);
+    extent = dense.dims;
   }
 
   std::unique_ptr<SampleField> field;
   if (resample) {
-    const double h = options.scale > 0.0 ? options.scale : spacingForSampleCount(dense.dims, options.samples);
+    const double h = options.scale > 0.0 ? options.scale : spacingForSampleCount(extent, options.samples);
     if (!(h > 0.0) || !std::isfinite(h)) throw ValueError("--samples/--scale give no valid lattice spacing");
-    field = std::make_unique<DenseResampleField>(dense, background, h);
+    if (reader) field = std::make_unique<VdbResampleField>(reader, h, background);
+    else field = std::make_unique<DenseResampleField>(dense, background, h);
     xform->preScale(h);
   } else if (reader) {
     field = std::make_unique<VdbSourceField>(reader, background);
@@ -240,6 +225,8 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   };
 
   if (options.inMemory) {
+    // Out-of-core fields read only what they were prepared for: here, everything.
+    if (!field->bounds().empty()) field->prepare({field->bounds()});
     BuildResult built = buildFccGrid(*field, build, interrupter);
     describe(*built.grid, built.sampleMin, built.sampleMax);
     openvdb::GridCPtrVec grids{built.grid};

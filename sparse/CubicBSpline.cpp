@@ -2,13 +2,14 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace fcc {
-namespace {
 
 // In-place interpolation prefilter of one line (Unser 1999), mirror-symmetric boundaries.
-void prefilterLine(float* c, int n, ptrdiff_t stride) {
+void bsplinePrefilterLine(float* c, int n, ptrdiff_t stride) {
   if (n < 2) return;
   const double z = std::sqrt(3.0) - 2.0, lambda = (1.0 - z) * (1.0 - 1.0 / z);
   auto at = [&](int i) -> float& { return c[ptrdiff_t(i) * stride]; };
@@ -23,7 +24,50 @@ void prefilterLine(float* c, int n, ptrdiff_t stride) {
   for (int i = n - 2; i >= 0; --i) at(i) = float(z * (at(i + 1) - at(i)));
 }
 
-inline void weights(double t, double w[4]) {
+void bsplinePrefilterLines(float* c, int n, ptrdiff_t stride, int count, ptrdiff_t lineStride) {
+  if (n < 2 || count <= 0) return;
+  const double z = std::sqrt(3.0) - 2.0, lambda = (1.0 - z) * (1.0 - 1.0 / z);
+  auto row = [&](int i) { return c + ptrdiff_t(i) * stride; };  // element i of every line
+  for (int i = 0; i < n; ++i) {
+    float* r = row(i);
+    for (int j = 0; j < count; ++j) r[j * lineStride] = float(r[j * lineStride] * lambda);
+  }
+  // Causal initialisation, as bsplinePrefilterLine: sum in double, element by element.
+  const int horizon = std::min(n, 30);
+  thread_local std::vector<double> sum;
+  sum.assign(size_t(count), 0.0);
+  {
+    const float* r0 = row(0);
+    for (int j = 0; j < count; ++j) sum[size_t(j)] = r0[j * lineStride];
+  }
+  double zn = z;
+  for (int i = 1; i < horizon; ++i, zn *= z) {
+    const float* r = row(i);
+    for (int j = 0; j < count; ++j) sum[size_t(j)] += zn * r[j * lineStride];
+  }
+  {
+    float* r0 = row(0);
+    for (int j = 0; j < count; ++j) r0[j * lineStride] = float(sum[size_t(j)]);
+  }
+  for (int i = 1; i < n; ++i) {
+    float* r = row(i);
+    const float* p = row(i - 1);
+    for (int j = 0; j < count; ++j) r[j * lineStride] = float(r[j * lineStride] + z * p[j * lineStride]);
+  }
+  {
+    float* last = row(n - 1);
+    const float* before = row(n - 2);
+    for (int j = 0; j < count; ++j)
+      last[j * lineStride] = float((z / (z * z - 1.0)) * (last[j * lineStride] + z * before[j * lineStride]));
+  }
+  for (int i = n - 2; i >= 0; --i) {
+    float* r = row(i);
+    const float* next = row(i + 1);
+    for (int j = 0; j < count; ++j) r[j * lineStride] = float(z * (next[j * lineStride] - r[j * lineStride]));
+  }
+}
+
+void cubicBSplineWeights(double t, double w[4]) {
   const double s = 1.0 - t;
   w[0] = s * s * s / 6.0;
   w[1] = (4.0 - 6.0 * t * t + 3.0 * t * t * t) / 6.0;
@@ -31,20 +75,18 @@ inline void weights(double t, double w[4]) {
   w[3] = t * t * t / 6.0;
 }
 
-}  // namespace
-
 CubicBSplineVolume::CubicBSplineVolume(const glm::ivec3& dims, const std::vector<float>& values)
     : dims_(dims), coefficients_(values) {
   const ptrdiff_t sx = 1, sy = dims.x, sz = ptrdiff_t(dims.x) * dims.y;
   float* c = coefficients_.data();
   tbb::parallel_for(0, dims.z, [&](int k) {
-    for (int j = 0; j < dims.y; ++j) prefilterLine(c + k * sz + j * sy, dims.x, sx);
+    for (int j = 0; j < dims.y; ++j) bsplinePrefilterLine(c + k * sz + j * sy, dims.x, sx);
   });
   tbb::parallel_for(0, dims.z, [&](int k) {
-    for (int i = 0; i < dims.x; ++i) prefilterLine(c + k * sz + i * sx, dims.y, sy);
+    for (int i = 0; i < dims.x; ++i) bsplinePrefilterLine(c + k * sz + i * sx, dims.y, sy);
   });
   tbb::parallel_for(0, dims.y, [&](int j) {
-    for (int i = 0; i < dims.x; ++i) prefilterLine(c + j * sy + i * sx, dims.z, sz);
+    for (int i = 0; i < dims.x; ++i) bsplinePrefilterLine(c + j * sy + i * sx, dims.z, sz);
   });
 }
 
@@ -65,9 +107,9 @@ float CubicBSplineVolume::evaluate(const glm::dvec3& xyzIn) const {
   const glm::dvec3 f = glm::floor(xyz);
   const glm::ivec3 base = glm::ivec3(f) - 1;
   double wx[4], wy[4], wz[4];
-  weights(xyz.x - f.x, wx);
-  weights(xyz.y - f.y, wy);
-  weights(xyz.z - f.z, wz);
+  cubicBSplineWeights(xyz.x - f.x, wx);
+  cubicBSplineWeights(xyz.y - f.y, wy);
+  cubicBSplineWeights(xyz.z - f.z, wz);
   double sum = 0.0;
   for (int c = 0; c < 4; ++c)
     for (int b = 0; b < 4; ++b) {

@@ -4,9 +4,25 @@
 
 #include <glm/glm.hpp>
 
+#include <cstddef>
 #include <vector>
 
 namespace fcc {
+
+// The interpolation prefilter of one line of `n` samples, `stride` apart, in place (Unser 1999; the
+// line mirrored at its ends): samples become cubic B-spline coefficients. Its impulse response decays
+// as |z|^k, z = sqrt(3) - 2, below float precision after kBSplinePrefilterReach samples, so a line
+// padded by that much on each side gives its inner coefficients as an infinite line would.
+void bsplinePrefilterLine(float* c, int n, ptrdiff_t stride);
+inline constexpr int kBSplinePrefilterReach = 14;
+
+// The same filter on `count` lines at once, line j starting at c + j * lineStride: the recursions run
+// side by side (the inner loop over the lines), which hides their latency and, for lines next to each
+// other in memory (lineStride 1), vectorises. Each line's result is bsplinePrefilterLine's, bit for bit.
+void bsplinePrefilterLines(float* c, int n, ptrdiff_t stride, int count, ptrdiff_t lineStride);
+
+// The four cubic B-spline weights of the coefficients at floor(x) - 1 .. floor(x) + 2, t = x - floor(x).
+void cubicBSplineWeights(double t, double w[4]);
 
 class CubicBSplineVolume {
  public:

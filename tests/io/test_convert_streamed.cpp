@@ -7,10 +7,12 @@
 #include <openvdb/tools/LevelSetSphere.h>
 #include <openvdb/tools/LevelSetUtil.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "SameVdbFiles.h"
 #include "io/Convert.h"
+#include "sparse/FccSampler.h"
 #include "io/VdbFile.h"
 #include "io/VdbLeafReader.h"
 #include "io/VdbSourceField.h"
@@ -85,6 +87,49 @@ TEST(ConvertStreamed, LevelSetEqualsTheInMemoryPath) {
 TEST(ConvertStreamed, FogVolumeWithInteriorTilesEqualsTheInMemoryPath) {
   TempDir dir;
   expectStreamedEqualsInMemory(dir, writeSphere(dir, "fog", 70.0f, 1.0f, true), ConvertOptions{});
+}
+
+TEST(ConvertStreamed, ResampleEqualsTheInMemoryPath) {
+  TempDir dir;
+  ConvertOptions resample;
+  resample.mode = "resample";
+  resample.scale = 1.3;
+  expectStreamedEqualsInMemory(dir, writeSphere(dir, "ls", 40.0f, 1.0f), resample);
+  expectStreamedEqualsInMemory(dir, writeSphere(dir, "fog", 30.0f, 1.0f, true), resample);
+}
+
+// Resampling a level set densifies nothing and interpolates it: near the surface, where the source
+// holds signed distances, the samples are the distance to the sphere.
+TEST(ConvertStreamed, ResampledLevelSetIsTheSignedDistance) {
+  TempDir dir;
+  constexpr float kRadius = 60.0f;
+  const std::string input = writeSphere(dir, "ls", kRadius, 1.0f);
+  ConvertOptions o;
+  o.mode = "resample";
+  o.scale = 0.8;
+  o.prefilter = false;
+  convertToFcc(input, dir / "out.vdb", o);
+  const FccGrid::Ptr grid = readFccGrid(dir / "out.vdb");
+  EXPECT_EQ(grid->getGridClass(), openvdb::GRID_LEVEL_SET);
+  const FccSampler sampler(*grid, true);
+  const glm::dvec3 centre(3.3, -1.7, 0.6);
+  int checked = 0;
+  double worst = 0.0;
+  for (int k = -90; k <= 90; k += 3)
+    for (int j = -90; j <= 90; j += 5)
+      for (int i = -90; i <= 90; ++i) {
+        if ((i + j + k) & 1) continue;
+        const openvdb::Vec3d w = grid->transform().indexToWorld(openvdb::Coord(i, j, k));
+        const double distance = glm::length(glm::dvec3(w.x(), w.y(), w.z()) - centre) - kRadius;
+        if (std::abs(distance) > 1.0) continue;  // well inside the band of half width 3
+        worst = std::max(worst, std::abs(double(sampler.stored(glm::ivec3(i, j, k))) - distance));
+        ++checked;
+      }
+  EXPECT_GT(checked, 1000);
+  EXPECT_LT(worst, 0.02) << "over " << checked << " sites";
+  // The interior is tiles of -background (3 voxels), not leaves.
+  EXPECT_EQ(grid->tree().probeConstLeaf(openvdb::Coord(2, -1, 0)), nullptr);
+  EXPECT_FLOAT_EQ(grid->tree().getValue(openvdb::Coord(2, -1, 0))[0], -3.0f);
 }
 
 TEST(ConvertStreamed, DenseInputEqualsTheInMemoryPath) {

@@ -1,0 +1,115 @@
+#include "VdbResampleField.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "sparse/CubicBSpline.h"
+
+namespace fcc::io {
+namespace {
+
+// A cubic B-spline at position p reads the coefficients floor(p) - 1 .. floor(p) + 2.
+constexpr int kSplineBelow = 1, kSplineAbove = 2;
+
+}  // namespace
+
+VdbResampleField::VdbResampleField(std::shared_ptr<const VdbLeafReader> reader, double spacing, float background)
+    : source_(reader, static_cast<const openvdb::FloatGrid&>(*reader->grid()).background()),
+      spacing_(spacing),
+      background_(background) {
+  const SiteBox data = source_.bounds();
+  if (data.empty()) return;
+  // Sites whose reach meets the source's data.
+  const int pad = kBSplinePrefilterReach + kSplineAbove;
+  bounds_.min = glm::ivec3(glm::ceil(glm::dvec3(data.min - pad) / spacing_));
+  bounds_.max = glm::ivec3(glm::floor(glm::dvec3(data.max + pad) / spacing_));
+}
+
+SiteBox VdbResampleField::sourceReach(const SiteBox& box) const {
+  const glm::ivec3 lo = glm::ivec3(glm::floor(glm::dvec3(box.min) * spacing_)) - kSplineBelow;
+  const glm::ivec3 hi = glm::ivec3(glm::floor(glm::dvec3(box.max) * spacing_)) + kSplineAbove;
+  return SiteBox{lo, hi}.expandedBy(kBSplinePrefilterReach);
+}
+
+bool VdbResampleField::mayHoldData(const SiteBox& box) const {
+  return box.intersects(bounds_) && source_.mayHoldData(sourceReach(box));
+}
+
+bool VdbResampleField::uniformOver(const SiteBox& box, float& value) const {
+  return source_.uniformOver(sourceReach(box), value);
+}
+
+bool VdbResampleField::forEachDataBox(const SiteBox& region, const std::function<void(const SiteBox&)>& visit) const {
+  // A source box reaches the sites whose positions lie within the prefilter's and spline's reach of it.
+  const int pad = kBSplinePrefilterReach + kSplineAbove;
+  const SiteBox reach = sourceReach(region);
+  return source_.forEachDataBox(reach, [&](const SiteBox& data) {
+    visit(SiteBox{glm::ivec3(glm::ceil(glm::dvec3(data.min - pad) / spacing_)),
+                  glm::ivec3(glm::floor(glm::dvec3(data.max + pad) / spacing_))});
+  });
+}
+
+void VdbResampleField::prepare(const std::vector<SiteBox>& boxes) const {
+  std::vector<SiteBox> reach;
+  reach.reserve(boxes.size());
+  for (const SiteBox& b : boxes) reach.push_back(sourceReach(b));
+  source_.prepare(reach);
+}
+
+void VdbResampleField::fill(const SiteBox& box, float* out) const {
+  const glm::ivec3 dim = box.dim();
+  const size_t count = size_t(dim.x) * dim.y * dim.z;
+  const SiteBox reach = sourceReach(box);
+  float uniform = 0.0f;
+  if (source_.uniformOver(reach, uniform)) {  // exactly the value: what uniformOver promised the builder
+    std::fill_n(out, count, uniform);
+    return;
+  }
+  // The source samples over the reach become B-spline coefficients, line by line along each axis.
+  // Only the coefficients the spline reads (the reach without the prefilter's padding) are kept, so
+  // each pass filters only the lines the next one needs: x over all, y over the kept x, z over the
+  // kept x and y.
+  thread_local std::vector<float> c;
+  const glm::ivec3 n = reach.dim();
+  c.resize(size_t(n.x) * n.y * n.z);
+  source_.fill(reach, c.data());
+  const ptrdiff_t sy = n.x, sz = ptrdiff_t(n.x) * n.y;
+  constexpr int pad = kBSplinePrefilterReach;
+  const int keptX = n.x - 2 * pad;
+  for (int z = 0; z < n.z; ++z) bsplinePrefilterLines(c.data() + z * sz, n.x, 1, n.y, sy);
+  for (int z = 0; z < n.z; ++z) bsplinePrefilterLines(c.data() + z * sz + pad, n.y, sy, keptX, 1);
+  for (int y = pad; y < n.y - pad; ++y) bsplinePrefilterLines(c.data() + y * sy + pad, n.z, sz, keptX, 1);
+
+  for (int z = box.min.z; z <= box.max.z; ++z)
+    for (int y = box.min.y; y <= box.max.y; ++y)
+      for (int x = box.min.x; x <= box.max.x; ++x, ++out) {
+        if ((x + y + z) & 1) {  // not an FCC site: never read
+          *out = background_;
+          continue;
+        }
+        const glm::dvec3 p = glm::dvec3(x, y, z) * spacing_;
+        const glm::dvec3 f = glm::floor(p);
+        const glm::ivec3 base = glm::ivec3(f) - kSplineBelow - reach.min;
+        double wx[4], wy[4], wz[4];
+        cubicBSplineWeights(p.x - f.x, wx);
+        cubicBSplineWeights(p.y - f.y, wy);
+        cubicBSplineWeights(p.z - f.z, wz);
+        double sum = 0.0;
+        for (int k = 0; k < 4; ++k)
+          for (int j = 0; j < 4; ++j) {
+            const float* row = c.data() + (base.z + k) * sz + (base.y + j) * sy + base.x;
+            const double r = wx[0] * row[0] + wx[1] * row[1] + wx[2] * row[2] + wx[3] * row[3];
+            sum += wz[k] * wy[j] * r;
+          }
+        *out = float(sum);
+      }
+}
+
+float VdbResampleField::sample(const glm::ivec3& ijk) const {
+  float v = 0.0f;
+  fill(SiteBox{ijk, ijk}, &v);
+  return v;
+}
+
+}  // namespace fcc::io
