@@ -168,8 +168,22 @@ bool BrickStore::readBrick(const glm::ivec3& brick, BrickValues& out) const {
     return false;
   }
   static_assert(sizeof(BrickValues) == LeafT::SIZE * 4 * sizeof(float), "Vec4f packs four floats");
-  reader_->readLeaf(*leaf, reinterpret_cast<float*>(out.data()));
-  return true;
+  try {
+    reader_->readLeaf(*leaf, reinterpret_cast<float*>(out.data()));
+    return true;
+  } catch (const InputError& e) {
+    {
+      std::lock_guard<std::mutex> lock(damageMutex_);
+      if (damaged_.insert(*leaf).second && firstDamage_.empty()) firstDamage_ = e.what();
+    }
+    out.fill(grid_->background());
+    return false;
+  }
+}
+
+BrickStore::Damage BrickStore::damage() const {
+  std::lock_guard<std::mutex> lock(damageMutex_);
+  return {damaged_.size(), firstDamage_};
 }
 
 }  // namespace fcc::io

@@ -9,7 +9,9 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <unordered_set>
 
 #include "sparse/BrickBounds.h"
 #include "sparse/FccGrid.h"
@@ -45,9 +47,18 @@ class BrickStore {
   float valueMax() const { return valueMax_; }
 
   // The brick's packed voxels: the leaf's values if it has one (decoded from the file), else the
-  // tile value or the background everywhere. Thread-safe. Returns true if it was a leaf. InputError
-  // naming the file and the brick if the leaf's bytes are damaged.
+  // tile value or the background everywhere. Thread-safe. Returns true if it was a leaf. A leaf whose
+  // bytes are damaged is never trusted: it reads as the background (a hole in the surface), returns
+  // false, and is recorded once (damage()).
   bool readBrick(const glm::ivec3& brick, BrickValues& out) const;
+
+  // The damaged bricks met so far, and the first one's message ("FILE: leaf at (x, y, z) is damaged:
+  // WHAT"). Thread-safe.
+  struct Damage {
+    uint64_t bricks = 0;
+    std::string first;
+  };
+  Damage damage() const;
   // True if brick has a leaf in the file (its values need decoding).
   bool hasLeaf(const glm::ivec3& brick) const;
   // The constant value of a brick without a leaf.
@@ -63,6 +74,9 @@ class BrickStore {
   glm::dmat4 worldFromIndex_{1.0};
   openvdb::CoordBBox activeBrickBox_;
   float valueMin_ = 0.0f, valueMax_ = 0.0f;
+  mutable std::mutex damageMutex_;
+  mutable std::unordered_set<uint64_t> damaged_;  // leaf indices
+  mutable std::string firstDamage_;
 };
 
 }  // namespace fcc::io

@@ -14,13 +14,15 @@ Command addRenderCommand(CLI::App& parent) {
   struct Args {
     RenderFlags flags;
     std::string output;
-    bool quiet = false;
+    bool quiet = false, allowDamaged = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* app = parent.add_subcommand("render", "Render the isosurface headless (EGL) to EXR (R,G,B,A,Z,N.X,N.Y,N.Z) or PNG");
   addRenderFlags(*app, args->flags);
   app->add_option("-o,--output", args->output, "Output image, .exr or .png")->required();
   app->add_flag("--quiet", args->quiet, "No summary on stderr");
+  app->add_flag("--allow-damaged", args->allowDamaged,
+                "Exit 0 although damaged bricks were met (they are never trusted: rendered as holes, and named on stderr)");
   return {app, [args]() {
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
@@ -43,6 +45,13 @@ Command addRenderCommand(CLI::App& parent) {
                            args->output.c_str(), width, height, double(iso), stats.passes,
                            (unsigned long long)stats.bricksUploaded, (unsigned long long)stats.bricksNeeded,
                            stats.seconds, gl.renderer().c_str());
+            const io::BrickStore::Damage damage = store.damage();
+            if (damage.bricks > 0) {
+              std::fprintf(stderr, "fccvdb: %llu damaged brick%s rendered as holes in %s (first: %s)%s\n",
+                           (unsigned long long)damage.bricks, damage.bricks == 1 ? "" : "s", args->output.c_str(),
+                           damage.first.c_str(), args->allowDamaged ? "" : "; --allow-damaged to exit 0");
+              if (!args->allowDamaged) return 1;
+            }
             return 0;
           }};
 }

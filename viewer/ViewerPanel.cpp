@@ -108,6 +108,14 @@ void ViewerSession::drawPanel(int windowHeight) {
     char range[64];
     std::snprintf(range, sizeof range, "%.4g .. %.4g", double(summary_.valueMin), double(summary_.valueMax));
     row("values", range);
+    const io::BrickStore::Damage damage = store_.damage();
+    if (damage.bricks > 0) {
+      // Damaged bricks are never trusted: they show as holes; the panel says so, and which.
+      ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 140, 90, 255));
+      ImGui::TextWrapped("%llu damaged brick%s shown as holes. First: %s", (unsigned long long)damage.bricks,
+                         damage.bricks == 1 ? "" : "s", damage.first.c_str());
+      ImGui::PopStyleColor();
+    }
   }
   if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
     char frame[64];

@@ -23,7 +23,8 @@ constexpr double kRateWindowSeconds = 0.5;
 
 ViewerSession::ViewerSession(const io::BrickStore& store, const RenderOptions& options, const Camera& initialCamera,
                              DatasetSummary summary)
-    : raycaster_(store, options),
+    : store_(store),
+      raycaster_(store, options),
       camera_(initialCamera),
       initialCamera_(initialCamera),
       summary_(std::move(summary)) {

@@ -92,6 +92,7 @@ class ViewerSession {
   void drawHelp();
   void drawStreamingLine(int windowHeight);
 
+  const io::BrickStore& store_;  // for the damage it met (io/BrickStore.h)
   Raycaster raycaster_;
   Presenter presenter_;
   RedrawTracker redraw_;
