@@ -123,8 +123,7 @@ class FieldReader {
                                 std::to_string(kMaxNameBytes) + ")");
     if (n > c_.left()) fail(std::string(what) + " (" + std::to_string(n) + " bytes) runs past " + endName());
     std::string s(n, '\0');
-    const uint8_t* p = c_.peek(n);
-    std::memcpy(s.data(), p, n);
+    if (n > 0) std::memcpy(s.data(), c_.peek(n), n);
     c_.skip(n);
     return s;
   }

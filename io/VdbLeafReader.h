@@ -76,6 +76,8 @@ class VdbLeafReader {
   // n = x<<6 | y<<3 | z) into `values`, inactive voxels restored as OpenVDB restores them. Thread-safe
   // (pread, no shared mutable state). Throws InputError "FILE: leaf at (x, y, z) is damaged: WHAT" on any
   // inconsistency (also if the file shrank or changed since it was opened); never reads out of bounds.
+  // The leaf's value mask comes from grid()'s tree (and must equal the one in the buffer): a tree someone
+  // changed gives Error; an i out of range, ValueError.
   void readLeaf(size_t i, float* values) const;
 
   // Names, types and half flags of the grids in a .vdb file, from its descriptors alone (no OpenVDB).
