@@ -290,6 +290,9 @@ struct Record {
   uint64_t payloadBytes = 0;  // as stored
   uint64_t decodedBytes = 0;  // valueCount * element size
   uint64_t size() const { return payloadAt + payloadBytes; }
+  // Damage that leaves the record's size known (its mask, its blosc header): the leaf is never
+  // trusted, but the leaves after it can still be found.
+  std::string damage;
 };
 
 struct Damaged {
@@ -309,13 +312,14 @@ Record parseRecord(const uint8_t* p, uint64_t avail, const Mask3& topologyMask, 
     if (n > avail) throw Damaged{std::string(what) + " runs past the end of the grid's buffer section"};
   };
   need(kMaskBytes + 1, "the value mask");
+  bool maskDiffers = false;
   for (int w = 0; w < 8; ++w) {
     uint64_t word;
     std::memcpy(&word, p + 8 * w, 8);
-    if (word != topologyMask.getWord<uint64_t>(w))
-      throw Damaged{"its value mask differs from the topology's (the buffer section is out of step)"};
+    if (word != topologyMask.getWord<uint64_t>(w)) maskDiffers = true;
   }
   Record r;
+  if (maskDiffers) r.damage = "its value mask differs from the topology's";
   r.metadata = int8_t(p[kMaskBytes]);
   if (r.metadata < openvdb::io::NO_MASK_OR_INACTIVE_VALS || r.metadata > openvdb::io::NO_MASK_AND_ALL_VALS)
     throw Damaged{"compression metadata " + std::to_string(int(r.metadata)) + " (valid: 0 to 6)"};
@@ -369,9 +373,9 @@ Record parseRecord(const uint8_t* p, uint64_t avail, const Mask3& topologyMask, 
                   std::to_string(r.decodedBytes + BLOSC_MAX_OVERHEAD) + ")"};
   need(r.payloadAt + kBloscHeader, "the blosc header");
   size_t nbytes = 0;
-  if (blosc_cbuffer_validate(p + r.payloadAt, size_t(r.payloadBytes), &nbytes) != 0 || nbytes != r.decodedBytes)
-    throw Damaged{"its blosc header does not describe " + std::to_string(r.decodedBytes) + " bytes in " +
-                  std::to_string(stored)};
+  if ((blosc_cbuffer_validate(p + r.payloadAt, size_t(r.payloadBytes), &nbytes) != 0 || nbytes != r.decodedBytes) &&
+      r.damage.empty())
+    r.damage = "its blosc header does not describe " + std::to_string(r.decodedBytes) + " bytes in " + std::to_string(stored);
   r.encoding = Record::Encoding::Blosc;
   return r;
 }
@@ -599,6 +603,7 @@ void VdbLeafReader::buildIndex(const TreeT& tree) {
     }
     if (rec.size() > c.left()) throw damaged("its values run past the end of the grid's buffer section");
     if (rec.size() > kMaxLeafBytes) throw damaged("it is larger than any leaf can be");  // parseRecord bounds it
+    if (!rec.damage.empty()) ++damagedAtOpen_;  // readLeaf says what, when it is asked for
     c.skip(rec.size());
     index_.push_back({at, rec.size()});
     origins_.push_back(origin);
@@ -649,6 +654,7 @@ void VdbLeafReader::readLeaf(size_t i, float* values) const {
     throw damaged(d.what + " (the file changed after it was opened?)");
   }
   if (rec.size() != e.bytes) throw damaged("its size differs from when the file was opened");
+  if (!rec.damage.empty()) throw damaged(rec.damage);
 
   // The stored values, decoded to their element size.
   alignas(8) uint8_t decoded[kLeafVoxels * 16];

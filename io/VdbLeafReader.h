@@ -71,6 +71,10 @@ class VdbLeafReader {
   uint64_t gridBegin() const { return gridPos_; }
   uint64_t bufferBegin() const { return blockPos_; }
   uint64_t bufferEnd() const { return endPos_; }
+  // Leaves found damaged while indexing whose size was still known (a value mask that differs from
+  // the topology's, a blosc header that does not describe the leaf): the file opens, and readLeaf
+  // throws for exactly those.
+  size_t damagedAtOpen() const { return damagedAtOpen_; }
 
   // Decodes leaf i: 512 * components() floats (component-interleaved, OpenVDB's voxel order: offset
   // n = x<<6 | y<<3 | z) into `values`, inactive voxels restored as OpenVDB restores them. Thread-safe
@@ -109,6 +113,7 @@ class VdbLeafReader {
   float background_[4] = {0, 0, 0, 0};
   std::vector<Entry> index_;
   std::vector<openvdb::Coord> origins_;
+  size_t damagedAtOpen_ = 0;
 };
 
 }  // namespace fcc::io
