@@ -1,5 +1,6 @@
 #include "VdbSourceField.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -115,17 +116,23 @@ bool VdbSourceField::forEachDataBox(const SiteBox& region, const std::function<v
 }
 
 void VdbSourceField::prepare(const std::vector<SiteBox>& boxes) const {
+  // The leaves the boxes meet, gathered in parallel (a slab holds thousands of boxes).
+  tbb::enumerable_thread_specific<std::vector<size_t>> perThread;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, boxes.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<size_t>& found = perThread.local();
+    for (size_t b = r.begin(); b != r.end(); ++b)
+      visitRegion(
+          grid_->tree(), coordBox(boxes[b]),
+          [&](const Leaf& leaf) {
+            const std::optional<size_t> index = reader_->leafIndexAt(leaf.origin());
+            if (!index) throw Error("internal: the leaf reader has no leaf at " + text(leaf.origin()));
+            found.push_back(*index);
+            return true;
+          },
+          [](const CoordBBox&, float) { return true; });
+  });
   std::vector<size_t> needed;
-  for (const SiteBox& box : boxes)
-    visitRegion(
-        grid_->tree(), coordBox(box),
-        [&](const Leaf& leaf) {
-          const std::optional<size_t> index = reader_->leafIndexAt(leaf.origin());
-          if (!index) throw Error("internal: the leaf reader has no leaf at " + text(leaf.origin()));
-          needed.push_back(*index);
-          return true;
-        },
-        [](const CoordBBox&, float) { return true; });
+  for (const std::vector<size_t>& found : perThread) needed.insert(needed.end(), found.begin(), found.end());
   std::sort(needed.begin(), needed.end());
   needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
 
