@@ -1,6 +1,8 @@
 #include "Convert.h"
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "AtomicOutput.h"
@@ -245,7 +247,9 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   StreamedBuildOptions streamed;
   streamed.half = options.half;
   streamed.kernels = options.preprocess;
+  const auto passStart = std::chrono::steady_clock::now();
   const StreamedBuild built = buildFccGridStreamed(builder, streamed, interrupter);
+  const double pass1 = std::chrono::duration<double>(std::chrono::steady_clock::now() - passStart).count();
   describe(*built.grid, built.sampleMin, built.sampleMax);
   openvdb::GridCPtrVec grids{built.grid};
   if (options.bounds) {
@@ -254,7 +258,16 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     grids.push_back(bounds);
   }
   // The grid's tree builds its leaves' values while it is written, from `field`, alive until then.
+  const auto writeStart = std::chrono::steady_clock::now();
   writeVdbAtomically(output, grids, options.overwrite, input);
+  const double pass2 = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
+  const StreamedBuild::Times& t = built.times;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "pass 1 %.2f s (blocks %.2f, prepare %.2f, build %.2f, window %.2f, bounds %.2f, prune %.2f); "
+                "pass 2 (rebuild and write) %.2f s",
+                pass1, t.blocks, t.prepare, t.build, t.window, t.bounds, t.prune, pass2);
+  summary.timings = text;
   return summary;
 }
 

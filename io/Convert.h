@@ -39,6 +39,7 @@ struct ConvertSummary {
   uint64_t activeSamples = 0;
   uint64_t bricks = 0;
   uint64_t boundsBricks = 0;           // active bricks of the bounds grid (0 without bounds)
+  std::string timings;                 // wall seconds by stage (streamed conversions), for --timings
 };
 
 ConvertSummary convertToFcc(const std::string& input, const std::string& output, const ConvertOptions& options,

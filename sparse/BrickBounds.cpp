@@ -89,6 +89,16 @@ void forEachShellBrick(const CoordBBox& box, F&& f) {
     }
 }
 
+// Whether bricks `box` or their neighbours reach `region` (which may be CoordBBox::inf()).
+bool touchesRegion(const CoordBBox& box, const CoordBBox& region) {
+  CoordBBox near = region;  // grown by one brick where it is bounded (a slab is unbounded in y and z)
+  for (int a = 0; a < 3; ++a) {
+    if (near.min()[a] > std::numeric_limits<int>::min()) near.min()[a] -= 1;
+    if (near.max()[a] < std::numeric_limits<int>::max()) near.max()[a] += 1;
+  }
+  return box.hasOverlap(near);
+}
+
 // The packed voxels [8b - 1, 8b + 9)^3 of brick b, read through a value accessor (leaves, tiles and
 // the background alike): values[((pz * 10 + py) * 10 + px) * 4 + channel].
 struct HaloBlock {
@@ -216,17 +226,26 @@ void computeBrickBoundsIn(const FccGrid& coefficients, const CoordBBox& region, 
   if (!tiles.empty()) {
     openvdb::MaskTree exactMask;
     for (const Coord& b : exact) exactMask.setValueOn(b);
-    for (const Tile& t : tiles)
+    // The border bricks, each once (neighbouring tiles share most of theirs: a level set's inside is
+    // thousands of leaf-sized tiles), from the tiles that reach the region.
+    openvdb::MaskTree border;
+    for (const Tile& t : tiles) {
+      if (!touchesRegion(t.bricks, region)) continue;
       forEachShellBrick(t.bricks, [&](const Coord& brick) {
-        if (!region.isInside(brick) || exactMask.isValueOn(brick)) return;
-        // No leaf in the neighbourhood: each neighbour brick is one constant value (a tile, or the
-        // background), and the spline is a convex combination of them.
-        Vec2f b(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity());
-        for (int dz = -1; dz <= 1; ++dz)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) b = hullOf(b, hullOf(fccTree.getValue(packedOfBrick(brick.offsetBy(dx, dy, dz)))));
-        set(brick, b);
+        if (region.isInside(brick) && !exactMask.isValueOn(brick)) border.setValueOn(brick);
       });
+    }
+    openvdb::tree::ValueAccessor<const FccTree> values(fccTree);
+    for (auto it = border.cbeginValueOn(); it; ++it) {
+      const Coord brick = it.getCoord();
+      // No leaf in the neighbourhood: each neighbour brick is one constant value (a tile, or the
+      // background), and the spline is a convex combination of them.
+      Vec2f b(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity());
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) b = hullOf(b, hullOf(values.getValue(packedOfBrick(brick.offsetBy(dx, dy, dz)))));
+      set(brick, b);
+    }
   }
   std::vector<Vec2f> results;
   for (size_t first = 0; first < exact.size(); first += kBatchBricks) {

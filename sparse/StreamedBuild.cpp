@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <vector>
 
 #include "BrickKernels.h"
@@ -20,6 +21,16 @@ using openvdb::CoordBBox;
 using openvdb::Vec4f;
 using Leaf = FccBlockBuilder::Leaf;
 using LeafTile = FccSlabWindow::LeafTile;
+
+using Clock = std::chrono::steady_clock;
+
+// Seconds since `start`, which moves to now.
+double lap(Clock::time_point& start) {
+  const Clock::time_point now = Clock::now();
+  const double s = std::chrono::duration<double>(now - start).count();
+  start = now;
+  return s;
+}
 
 // Bricks (= blocks) with x in [x0, x1], any y and z.
 CoordBBox slabBricks(int x0, int x1) {
@@ -50,9 +61,12 @@ class SlabBuilder {
   SlabBuilder(const FccBlockBuilder& builder, bool half, FccTree& topology)
       : builder_(builder), half_(half), topology_(topology), background_(builder.background()) {}
 
-  FccSlabWindow::Slab build(int x) {
+  FccSlabWindow::Slab build(int x, StreamedBuild::Times& times) {
+    auto start = Clock::now();
     const std::vector<Coord> blocks = builder_.blocksInSlab(x);
+    times.blocks += lap(start);
     builder_.prepare(blocks);
+    times.prepare += lap(start);
     struct Built {
       std::unique_ptr<Leaf> leaf;
       bool isTile = false;
@@ -75,6 +89,7 @@ class SlabBuilder {
         if (half_ && !b.isTile) roundAsStoredHalf(b.leaf->beginValueAll(), background_);
       }
     });
+    times.build += lap(start);
     FccSlabWindow::Slab slab;
     for (Built& b : built) {
       if (b.isTile) {
@@ -133,15 +148,24 @@ StreamedBuild buildFccGridStreamed(const FccBlockBuilder& builder, const Streame
   const int first = blocks.min().x() - reach, last = blocks.max().x() + reach;
   int nextSlab = blocks.min().x();
   if (progress) progress->start("building FCC topology and bounds");
+  StreamedBuild::Times& times = result.times;
   for (int x = first; x <= last; ++x) {
+    auto start = Clock::now();
     window.dropBelow(x - reach);  // first: never more than 2 reach + 1 slabs at once
-    for (; nextSlab <= std::min(x + reach, blocks.max().x()); ++nextSlab) window.add(nextSlab, slabs.build(nextSlab));
+    times.window += lap(start);
+    for (; nextSlab <= std::min(x + reach, blocks.max().x()); ++nextSlab) {
+      FccSlabWindow::Slab slab = slabs.build(nextSlab, times);
+      start = Clock::now();
+      window.add(nextSlab, std::move(slab));
+      times.window += lap(start);
+    }
     if (rawSamples) {
       const FccGrid::Ptr coefficients = prefilterGrid(window.grid(), &kernels, slabBricks(x - 1, x + 1));
       computeBrickBoundsIn(*coefficients, slabBricks(x, x), kernels, *result.bounds);
     } else {
       computeBrickBoundsIn(window.grid(), slabBricks(x, x), kernels, *result.bounds);
     }
+    times.bounds += lap(start);
     if (progress && progress->wasInterrupted(int(100.0 * double(x - first + 1) / double(last - first + 1))))
       throw Error("interrupted");
   }
@@ -149,8 +173,10 @@ StreamedBuild buildFccGridStreamed(const FccBlockBuilder& builder, const Streame
 
   // Uniform leaves became tiles one by one; merging those upwards is the rest of the builder's
   // prune, and reads no leaf (the topology's have no values).
+  auto start = Clock::now();
   openvdb::tools::pruneTiles(static_cast<FccTree&>(*topology), Vec4f(builder.options().tolerance));
   openvdb::tools::prune(*result.bounds);
+  times.prune += lap(start);
   const SampleRange range = slabs.range().orBackground(builder.background());
   result.sampleMin = range.min;
   result.sampleMax = range.max;

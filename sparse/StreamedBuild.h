@@ -33,6 +33,11 @@ struct StreamedBuild {
   openvdb::Vec2STree::Ptr bounds;
   float sampleMin = 0.0f;  // range of the samples V over the field's bounds
   float sampleMax = 0.0f;
+  // Wall seconds of pass 1's stages (what `convert --timings` prints): choosing a slab's blocks,
+  // preparing the field for them, building them (in parallel), the slab window, the bounds, the prune.
+  struct Times {
+    double blocks = 0, prepare = 0, build = 0, window = 0, bounds = 0, prune = 0;
+  } times;
 };
 
 // The grid of `builder`'s field and options. `progress` reports pass 1 here and pass 2 while the

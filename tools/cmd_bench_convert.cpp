@@ -69,6 +69,17 @@ Measured runSelf(const std::vector<std::string>& args, const std::string& errPat
   return m;
 }
 
+// The last line a stage wrote on stderr (without its newline).
+std::string lastLineOf(const std::string& path) {
+  FILE* f = std::fopen(path.c_str(), "r");
+  std::string last;
+  char line[1024];
+  while (f && std::fgets(line, sizeof line, f)) last = line;
+  if (f) std::fclose(f);
+  while (!last.empty() && (last.back() == '\n' || last.back() == '\r')) last.pop_back();
+  return last;
+}
+
 // What the OpenVDB read stage does: every grid, every buffer, no delayed loading.
 void readFully(const std::string& path) {
   initializeVdb();
@@ -147,11 +158,16 @@ Command addBenchConvertCommand(CLI::App& bench) {
             struct stat st {};
             if (::stat(input.c_str(), &st) != 0) throw InputError(input + ": cannot open");
             Measured read{1e30, 0}, convert{1e30, 0};
+            std::string stages;
             for (int i = 0; i < args->repetitions; ++i) {
               const Measured r = runSelf({"bench", "convert", input, "--stage", "read"}, err);
-              const Measured c = runSelf({"convert", input, out, "--force", "--quiet", "--cl-device", args->device}, err);
+              const Measured c =
+                  runSelf({"convert", input, out, "--force", "--quiet", "--timings", "--cl-device", args->device}, err);
               if (r.seconds < read.seconds) read = r;
-              if (c.seconds < convert.seconds) convert = c;
+              if (c.seconds < convert.seconds) {
+                convert = c;
+                stages = lastLineOf(err);  // "timings: ..."
+              }
             }
             // The input's active voxels, from the converted file's provenance would need a read; the
             // topology is cheap: open with delayed loading (nothing but topology is read).
@@ -166,18 +182,19 @@ Command addBenchConvertCommand(CLI::App& bench) {
             if (args->printJson) {
               std::printf("{\"input\": %s, \"file_mib\": %s, \"active_voxels\": %llu, \"cores\": %u, "
                           "\"read_seconds\": %s, \"read_peak_rss_mib\": %s, \"convert_seconds\": %s, "
-                          "\"convert_peak_rss_mib\": %s, \"ratio\": %s, \"voxels_per_second\": %s}\n",
+                          "\"convert_peak_rss_mib\": %s, \"ratio\": %s, \"voxels_per_second\": %s, \"stages\": %s}\n",
                           jsonString(input).c_str(), jsonNumber(double(st.st_size) / (1 << 20)).c_str(),
                           (unsigned long long)active, cores, jsonNumber(read.seconds).c_str(),
                           jsonNumber(read.peakRssMiB).c_str(), jsonNumber(convert.seconds).c_str(),
                           jsonNumber(convert.peakRssMiB).c_str(), jsonNumber(ratio).c_str(),
-                          jsonNumber(double(active) / convert.seconds).c_str());
+                          jsonNumber(double(active) / convert.seconds).c_str(), jsonString(stages).c_str());
             } else {
               std::printf("input: %s (%.0f MiB, %llu active voxels), %u cores\n", input.c_str(),
                           double(st.st_size) / (1 << 20), (unsigned long long)active, cores);
               std::printf("OpenVDB full read: %8.2f s  peak RSS %7.0f MiB\n", read.seconds, read.peakRssMiB);
               std::printf("fccvdb convert:    %8.2f s  peak RSS %7.0f MiB  (%.2fx the read, %.1f M input voxels/s)\n",
                           convert.seconds, convert.peakRssMiB, ratio, double(active) / convert.seconds / 1e6);
+              std::printf("%s\n", stages.c_str());
             }
             return 0;
           }};

@@ -14,7 +14,7 @@ struct ConvertArgs {
   std::string input, output, device = "auto";
   SourceFlags source;
   float background = 0.0f;
-  bool quiet = false, noPrefilter = false;
+  bool quiet = false, noPrefilter = false, timings = false;
   io::ConvertOptions options;
 };
 
@@ -36,6 +36,7 @@ Command addConvertCommand(CLI::App& parent) {
   app->add_flag("--half", args->options.half, "Store values as 16-bit floats");
   app->add_flag("--force", args->options.overwrite, "Overwrite an existing OUTPUT");
   app->add_flag("--quiet", args->quiet, "No progress bar");
+  app->add_flag("--timings", args->timings, "Print the wall time of each stage of the conversion (one line on stderr)");
   addDeviceOption(*app, args->device);
   return {app, [args, bg]() {
             io::ConvertOptions& o = args->options;
@@ -52,6 +53,7 @@ Command addConvertCommand(CLI::App& parent) {
                            args->output.c_str(), s.gridName.c_str(), (unsigned long long)s.activeSamples,
                            (unsigned long long)s.bricks, (unsigned long long)s.inputVoxels,
                            (unsigned long long)s.boundsBricks, kernels->describe().c_str());
+            if (args->timings && !s.timings.empty()) std::fprintf(stderr, "timings: %s\n", s.timings.c_str());
             return 0;
           }};
 }
