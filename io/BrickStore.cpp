@@ -89,7 +89,7 @@ BoundsGrid::Ptr readBounds(const std::string& path, const std::string& boundsNam
 
 }  // namespace
 
-BrickStore::BrickStore(const std::string& path, const std::string& gridName) : path_(path) {
+BrickStore::BrickStore(const std::string& path, const std::string& gridName, bool forRendering) : path_(path) {
   std::string boundsName;
   const VdbGridEntry entry = chooseFccGrid(path, gridName, boundsName);
   const std::vector<std::string> fccTypes{kFccTreeTypeName};
@@ -111,7 +111,7 @@ BrickStore::BrickStore(const std::string& path, const std::string& gridName) : p
   if (!grid_ || !isFccGrid(*grid_))
     throw InputError(path + ": grid '" + entry.name + "' is a Vec4 grid without the FCC metadata (lattice = fcc), not an FCC grid; "
                      "run `fccvdb convert` on its Cartesian source");
-  if (storesSamples(*grid_))
+  if (forRendering && storesSamples(*grid_))
     throw InputError(path + ": grid '" + grid_->getName() +
                      "' stores raw samples (converted with --no-prefilter); the renderer needs spline "
                      "coefficients: convert again without --no-prefilter");
@@ -174,7 +174,8 @@ bool BrickStore::readBrick(const glm::ivec3& brick, BrickValues& out) const {
   } catch (const InputError& e) {
     {
       std::lock_guard<std::mutex> lock(damageMutex_);
-      if (damaged_.insert(*leaf).second && firstDamage_.empty()) firstDamage_ = e.what();
+      if (damaged_.insert(*leaf).second && damageMessages_.size() < kMaxDamageMessages)
+        damageMessages_.push_back(e.what());
     }
     out.fill(grid_->background());
     return false;
@@ -183,7 +184,7 @@ bool BrickStore::readBrick(const glm::ivec3& brick, BrickValues& out) const {
 
 BrickStore::Damage BrickStore::damage() const {
   std::lock_guard<std::mutex> lock(damageMutex_);
-  return {damaged_.size(), firstDamage_};
+  return {damaged_.size(), damageMessages_.empty() ? std::string() : damageMessages_.front(), damageMessages_};
 }
 
 }  // namespace fcc::io

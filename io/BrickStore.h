@@ -12,6 +12,7 @@
 #include <mutex>
 #include <string>
 #include <unordered_set>
+#include <vector>
 
 #include "sparse/BrickBounds.h"
 #include "sparse/FccGrid.h"
@@ -30,7 +31,8 @@ class BrickStore {
   // without one gets conservative bounds (every brick near data, the whole value range).
   // Throws InputError for a file without an FCC grid (saying to run convert), one that stores raw
   // samples, or a transform that is not affine.
-  BrickStore(const std::string& path, const std::string& gridName = {});
+  // `forRendering` false (fccvdb info): a grid of raw samples opens too.
+  BrickStore(const std::string& path, const std::string& gridName = {}, bool forRendering = true);
 
   const std::string& path() const { return path_; }
   const FccGrid& index() const { return *grid_; }  // leaf buffers stay out of core: do not read values
@@ -57,7 +59,9 @@ class BrickStore {
   struct Damage {
     uint64_t bricks = 0;
     std::string first;
+    std::vector<std::string> messages;  // the first kMaxDamageMessages, one a brick
   };
+  static constexpr size_t kMaxDamageMessages = 20;
   Damage damage() const;
   // True if brick has a leaf in the file (its values need decoding).
   bool hasLeaf(const glm::ivec3& brick) const;
@@ -76,7 +80,7 @@ class BrickStore {
   float valueMin_ = 0.0f, valueMax_ = 0.0f;
   mutable std::mutex damageMutex_;
   mutable std::unordered_set<uint64_t> damaged_;  // leaf indices
-  mutable std::string firstDamage_;
+  mutable std::vector<std::string> damageMessages_;
 };
 
 }  // namespace fcc::io

@@ -1,4 +1,5 @@
-// fccvdb info FILE.vdb: what an FCC .vdb holds.
+// fccvdb info FILE.vdb: what an FCC .vdb holds, from its topology, bounds grid and metadata alone (no
+// brick is read); --check reads every brick and names the damaged ones.
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -6,7 +7,9 @@
 
 #include "Command.h"
 #include "JsonText.h"
-#include "io/VdbFile.h"
+#include <tbb/parallel_for.h>
+
+#include "io/BrickStore.h"
 #include "sparse/BoundsHierarchy.h"
 #include "sparse/Error.h"
 #include "sparse/FccGrid.h"
@@ -21,7 +24,7 @@ struct BoundsSummary {
   std::optional<float> iso;
 };
 
-BoundsSummary summarizeBounds(const BoundsGrid::Ptr& bounds, std::optional<float> iso) {
+BoundsSummary summarizeBounds(const BoundsGrid* bounds, std::optional<float> iso) {
   BoundsSummary b;
   b.iso = iso;
   if (!bounds) return b;
@@ -47,18 +50,29 @@ std::string boundsJson(const BoundsSummary& b) {
   return out + "}";
 }
 
+// `"check": {"bricks_damaged": N, "damaged": [...]}` after --check, else nothing.
+std::string checkJson(const std::optional<io::BrickStore::Damage>& damage) {
+  if (!damage) return "";
+  std::string list;
+  for (const std::string& m : damage->messages) list += (list.empty() ? "" : ", ") + jsonString(m);
+  return ", \"check\": {\"bricks_damaged\": " + std::to_string(damage->bricks) + ", \"damaged\": [" + list + "]}";
+}
+
 double percent(uint64_t part, uint64_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0.0; }
 
 struct Summary {
   std::string name, lattice, values, gridClass;
   openvdb::CoordBBox siteBox;  // in the lattice's index space
   uint64_t samples = 0, bricks = 0, bytes = 0, tiles = 0;
-  double min = 0, max = 0;     // range of the stored values
+  double min = 0, max = 0;                // the values the spline takes: the hull of the bounds
+  bool rangeFromBounds = false;           // else the samples' range (metadata), a file without bounds
+  std::optional<double> sampleMin, sampleMax;  // the samples' range as converted (metadata)
   openvdb::Vec3d voxelSize;
   std::vector<std::pair<std::string, std::string>> metadata;
 };
 
-Summary summarize(const FccGrid& grid) {
+Summary summarize(const io::BrickStore& store) {
+  const FccGrid& grid = store.index();  // topology only: masks and tiles
   Summary s;
   s.name = grid.getName();
   s.lattice = "fcc";
@@ -71,14 +85,28 @@ Summary summarize(const FccGrid& grid) {
   s.tiles = grid.tree().activeTileCount();
   // Decoded size of the active data: a brick is a full 8^3 block of Vec4f, a tile one value.
   s.bytes = s.bricks * FccTree::LeafNodeType::SIZE * sizeof(openvdb::Vec4f) + s.tiles * sizeof(openvdb::Vec4f);
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (auto it = grid.cbeginValueOn(); it; ++it)
-    for (int c = 0; c < 4; ++c) lo = std::min(lo, double((*it)[c])), hi = std::max(hi, double((*it)[c]));
-  s.min = s.samples ? lo : grid.background()[0];
-  s.max = s.samples ? hi : grid.background()[0];
+  if (const auto lo = grid.getMetadata<openvdb::FloatMetadata>(meta::kSampleMin)) s.sampleMin = lo->value();
+  if (const auto hi = grid.getMetadata<openvdb::FloatMetadata>(meta::kSampleMax)) s.sampleMax = hi->value();
+  s.rangeFromBounds = store.boundsFromFile();
+  s.min = store.valueMin();  // the bounds' hull, or the recorded sample range without bounds
+  s.max = store.valueMax();
   s.voxelSize = grid.voxelSize();
   for (auto it = grid.beginMeta(); it != grid.endMeta(); ++it) s.metadata.emplace_back(it->first, it->second->str());
   return s;
+}
+
+// Reads every brick (in parallel); returns the damage found.
+io::BrickStore::Damage checkBricks(const io::BrickStore& store) {
+  std::vector<glm::ivec3> bricks;
+  for (auto it = store.index().tree().cbeginLeaf(); it; ++it) {
+    const openvdb::Coord b = it->origin() >> 3;
+    bricks.emplace_back(b.x(), b.y(), b.z());
+  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, bricks.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+    io::BrickValues values;
+    for (size_t i = r.begin(); i != r.end(); ++i) store.readBrick(bricks[i], values);
+  });
+  return store.damage();
 }
 
 }  // namespace
@@ -86,7 +114,7 @@ Summary summarize(const FccGrid& grid) {
 Command addInfoCommand(CLI::App& parent) {
   struct Args {
     std::string file, grid;
-    bool json = false;
+    bool json = false, check = false;
     float iso = 0.0f;
   };
   auto args = std::make_shared<Args>();
@@ -94,6 +122,7 @@ Command addInfoCommand(CLI::App& parent) {
   app->add_option("FILE", args->file, "FCC .vdb file")->required();
   app->add_option("--grid", args->grid, "The FCC grid to describe (default: the first)");
   auto* isoOption = app->add_option("--iso", args->iso, "Isovalue: how many bricks and internal nodes of the bounds hierarchy it leaves active");
+  app->add_flag("--check", args->check, "Read every brick and name the damaged ones (exit 1 if any is)");
   app->add_flag("--json", args->json, "One JSON object (keys: file, grid, lattice, values, dims, samples, bricks, bytes, min, max, metadata, bounds: {bricks, nodes1, nodes2[, iso, bricks_kept, nodes1_kept, nodes2_kept]} or null)");
   return {app, [args, isoOption]() {
             std::optional<float> iso;
@@ -101,25 +130,30 @@ Command addInfoCommand(CLI::App& parent) {
               if (!std::isfinite(args->iso)) throw ValueError("--iso must be a finite number, got " + isoOption->as<std::string>());
               iso = args->iso;
             }
-            const io::FccWithBounds file = io::readFccGridWithBounds(args->file, args->grid);
-            const FccGrid::Ptr grid = file.grid;
-            const Summary s = summarize(*grid);
-            const BoundsSummary b = summarizeBounds(file.bounds, iso);
+            const io::BrickStore store(args->file, args->grid, /*forRendering=*/false);
+            const Summary s = summarize(store);
+            const BoundsSummary b =
+                summarizeBounds(store.boundsFromFile() ? &store.bounds() : nullptr, iso);
+            std::optional<io::BrickStore::Damage> damage;
+            if (args->check) damage = checkBricks(store);
             const openvdb::Coord dims = s.siteBox.dim();
             if (args->json) {
               std::string meta;
               for (const auto& [k, v] : s.metadata) meta += (meta.empty() ? "" : ", ") + jsonString(k) + ": " + jsonString(v);
               std::printf("{\"file\": %s, \"grid\": %s, \"lattice\": %s, \"values\": %s, \"class\": %s, "
                           "\"dims\": [%d, %d, %d], \"samples\": %llu, \"bricks\": %llu, \"tiles\": %llu, "
-                          "\"bytes\": %llu, \"min\": %s, \"max\": %s, \"voxel_size\": [%s, %s, %s], \"metadata\": {%s}, "
-                          "\"bounds\": %s}\n",
+                          "\"bytes\": %llu, \"min\": %s, \"max\": %s, \"range_from\": %s, \"sample_min\": %s, "
+                          "\"sample_max\": %s, \"voxel_size\": [%s, %s, %s], \"metadata\": {%s}, \"bounds\": %s%s}\n",
                           jsonString(args->file).c_str(), jsonString(s.name).c_str(), jsonString(s.lattice).c_str(),
                           jsonString(s.values).c_str(), jsonString(s.gridClass).c_str(), dims.x(), dims.y(), dims.z(),
                           (unsigned long long)s.samples, (unsigned long long)s.bricks, (unsigned long long)s.tiles,
                           (unsigned long long)s.bytes, jsonNumber(s.min).c_str(), jsonNumber(s.max).c_str(),
-                          jsonNumber(s.voxelSize.x()).c_str(), jsonNumber(s.voxelSize.y()).c_str(),
-                          jsonNumber(s.voxelSize.z()).c_str(), meta.c_str(), boundsJson(b).c_str());
-              return 0;
+                          jsonString(s.rangeFromBounds ? "bounds" : "samples").c_str(),
+                          s.sampleMin ? jsonNumber(*s.sampleMin).c_str() : "null",
+                          s.sampleMax ? jsonNumber(*s.sampleMax).c_str() : "null", jsonNumber(s.voxelSize.x()).c_str(),
+                          jsonNumber(s.voxelSize.y()).c_str(), jsonNumber(s.voxelSize.z()).c_str(), meta.c_str(),
+                          boundsJson(b).c_str(), checkJson(damage).c_str());
+              return damage && damage->bricks > 0 ? 1 : 0;
             }
             std::printf("file:      %s\n", args->file.c_str());
             std::printf("grid:      %s (%s, %s)\n", s.name.c_str(), s.lattice.c_str(), s.gridClass.c_str());
@@ -131,7 +165,13 @@ Command addInfoCommand(CLI::App& parent) {
             std::printf("bricks:    %llu (8^3 packed voxels each), %llu active tiles\n", (unsigned long long)s.bricks,
                         (unsigned long long)s.tiles);
             std::printf("bytes:     %llu decoded\n", (unsigned long long)s.bytes);
-            std::printf("range:     %.9g .. %.9g (stored values)\n", s.min, s.max);
+            if (s.rangeFromBounds)
+              std::printf("range:     %.9g .. %.9g (the values the spline takes, so the isovalues with a surface: the hull of the bounds)\n",
+                          s.min, s.max);
+            else
+              std::printf("range:     %.9g .. %.9g (the samples' range: the file has no bounds)\n", s.min, s.max);
+            if (s.sampleMin && s.sampleMax)
+              std::printf("data:      %.9g .. %.9g (the range of the samples as converted)\n", *s.sampleMin, *s.sampleMax);
             if (!b.present) {
               std::printf("bounds:    none (written before bounds existed; convert again to add them)\n");
             } else {
@@ -145,6 +185,16 @@ Command addInfoCommand(CLI::App& parent) {
                             (unsigned long long)b.kept.nodes2, percent(b.kept.nodes2, b.total.nodes2));
             }
             for (const auto& [k, v] : s.metadata) std::printf("meta:      %s = %s\n", k.c_str(), v.c_str());
+            if (damage) {
+              std::printf("check:     %llu bricks read, %llu damaged\n", (unsigned long long)s.bricks,
+                          (unsigned long long)damage->bricks);
+              for (const std::string& m : damage->messages) std::printf("damaged:   %s\n", m.c_str());
+              if (damage->bricks > 0) {
+                std::fprintf(stderr, "fccvdb: %s: %llu damaged bricks (first: %s)\n", args->file.c_str(),
+                             (unsigned long long)damage->bricks, damage->first.c_str());
+                return 1;
+              }
+            }
             return 0;
           }};
 }

@@ -131,6 +131,7 @@ TEST(Cli, InfoReportsTheBoundsHierarchyForAnIsovalue) {
   auto r = runFccvdb("info " + vdb + " --iso 0.5 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* key : {"\"lattice\":", "\"samples\":", "\"bricks\":", "\"bytes\":", "\"min\":", "\"max\":",
+                          "\"range_from\": \"bounds\"", "\"sample_min\":", "\"sample_max\":",
                           "\"bounds\": {\"bricks\":", "\"nodes1\":", "\"nodes2\":", "\"iso\": 0.5", "\"bricks_kept\":",
                           "\"nodes1_kept\":", "\"nodes2_kept\":"})
     EXPECT_THAT(r.out, HasSubstr(key));

@@ -128,6 +128,20 @@ TEST(CliDamage, DamagedBrickIsAHoleNamedInOneLine) {
   const CommandResult clean = runFccvdb("render " + good + " -o " + (dir / "c.png") + " --res 32x32 --quiet");
   EXPECT_EQ(clean.status, 0) << clean.err;
   EXPECT_EQ(clean.err, "");
+
+  // info reads no brick, so it describes the damaged file; --check reads them all and names it.
+  const CommandResult info = runFccvdb("info " + bad);
+  EXPECT_EQ(info.status, 0) << info.err;
+  const CommandResult check = runFccvdb("info " + bad + " --check");
+  EXPECT_EQ(check.status, 1);
+  EXPECT_EQ(lineCount(check.err), 1) << check.err;
+  EXPECT_THAT(check.out, HasSubstr("1 damaged"));
+  EXPECT_THAT(check.out, HasSubstr("damaged:   " + bad + ": leaf at"));
+  const CommandResult checkJson = runFccvdb("info " + bad + " --check --json");
+  EXPECT_THAT(checkJson.out, HasSubstr("\"bricks_damaged\": 1"));
+  const CommandResult cleanCheck = runFccvdb("info " + good + " --check");
+  EXPECT_EQ(cleanCheck.status, 0) << cleanCheck.err;
+  EXPECT_THAT(cleanCheck.out, HasSubstr(", 0 damaged"));
 }
 
 }  // namespace
