@@ -134,11 +134,11 @@ TEST(ConvertStreamed, ResampledLevelSetIsTheSignedDistance) {
 
 TEST(ConvertStreamed, DenseInputEqualsTheInMemoryPath) {
   const std::string data = FCC_SHARED_DATA_DIR;
-  if (!std::ifstream(data + "/brainsmall.den")) GTEST_SKIP() << "no " << data;
+  if (!std::ifstream(data + "/engine_256x256x128_uint8.raw.gz")) GTEST_SKIP() << "no " << data;
   TempDir dir;
   ConvertOptions o;
-  o.raw = RawLayout{{128, 128, 84}, ScalarType::U8, false, glm::dvec3(1.0), 62};
-  expectStreamedEqualsInMemory(dir, data + "/brainsmall.den", o);
+  o.raw = RawLayout{{256, 256, 128}, ScalarType::U8, false, glm::dvec3(1.0), 0};
+  expectStreamedEqualsInMemory(dir, data + "/engine_256x256x128_uint8.raw.gz", o);
 }
 
 TEST(ConvertStreamed, RealLevelSetFileEqualsTheInMemoryPath) {
