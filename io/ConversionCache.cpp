@@ -42,6 +42,19 @@ std::string describe(const std::string& input, const ConvertOptions& o) {
     << st.st_mtim.tv_nsec << '\n' << o.mode << ' ' << o.samples << ' ' << o.scale << ' '
     << (o.background ? std::to_string(*o.background) : "default") << ' ' << o.prefilter << ' ' << o.tolerance << ' '
     << o.half << ' ' << o.gridName << ' ' << o.bounds;
+  // A DICOM series is a folder: what its files are, not the folder's own size and time.
+  std::error_code ec;
+  if (fs::is_directory(input, ec)) {
+    std::vector<std::string> files;
+    for (const fs::directory_entry& e : fs::directory_iterator(input, ec)) {
+      struct stat f {};
+      if (::stat(e.path().c_str(), &f) != 0 || !S_ISREG(f.st_mode)) continue;
+      files.push_back(e.path().filename().string() + ' ' + std::to_string(f.st_size) + ' ' +
+                      std::to_string(f.st_mtim.tv_sec) + '.' + std::to_string(f.st_mtim.tv_nsec));
+    }
+    std::sort(files.begin(), files.end());
+    for (const std::string& f : files) d << '\n' << f;
+  }
   if (o.raw)
     d << " raw " << o.raw->dims.x << ',' << o.raw->dims.y << ',' << o.raw->dims.z << ' ' << int(o.raw->type) << ' '
       << o.raw->bigEndian << ' ' << o.raw->spacing.x << ',' << o.raw->spacing.y << ',' << o.raw->spacing.z << ' '

@@ -9,12 +9,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
 #include <random>
 
+#include "io/ConversionCache.h"
 #include "io/Convert.h"
 #include "io/DenseVolume.h"
 #include "io/VdbFile.h"
@@ -135,6 +138,30 @@ TEST(ItkReaders, DicomSeriesInAnyFileOrderGivesTheVolumeWithRescaleAndGeometry) 
   const glm::dvec3 expected = kOrigin + rowDirection() * (kSpacing.x * 2.0) + columnDirection() * (kSpacing.y * 3.0) +
                               glm::cross(rowDirection(), columnDirection()) * (kSpacing.z * 4.0);
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(world[a], expected[a], 1e-6) << "axis " << a;
+}
+
+// A DICOM folder renders through the conversion cache like any input; a changed slice is a changed
+// source (the folder's own time does not change when a file in it is rewritten in place).
+TEST(ItkReaders, DicomFolderIsCachedAndAChangedSliceConvertsAgain) {
+  TempDir dir;
+  std::vector<int> order(kNz);
+  std::iota(order.begin(), order.end(), 0);
+  writeSeries(dir / "ct", order);
+  ::setenv("FCCVDB_CACHE_DIR", (dir / "cache").c_str(), 1);
+  ConvertOptions o;
+  {
+    const FccInput first(dir / "ct", o, true, nullptr);
+    EXPECT_EQ(first.origin(), FccInput::Origin::Converted);
+    EXPECT_TRUE(holdsFccGrid(first.path()));
+  }
+  EXPECT_EQ(FccInput(dir / "ct", o, true, nullptr).origin(), FccInput::Origin::CacheHit);
+  // Slice 3 rewritten with other values, the same name and size.
+  const auto slice = std::filesystem::path(dir / "ct") / "slice3";
+  const auto before = std::filesystem::last_write_time(slice);
+  writeSlice(slice.string(), 3, "1.2.3", "1.2.3.4");
+  std::filesystem::last_write_time(slice, before + std::chrono::seconds(3));
+  EXPECT_EQ(FccInput(dir / "ct", o, true, nullptr).origin(), FccInput::Origin::Converted);
+  ::unsetenv("FCCVDB_CACHE_DIR");
 }
 
 TEST(ItkReaders, MetaImageWithDetachedAndLocalData) {
