@@ -59,6 +59,14 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
       ->capture_default_str();
 }
 
+void warnIfIsoOutside(float iso, const io::BrickStore& store) {
+  if (iso >= store.valueMin() && iso <= store.valueMax()) return;
+  std::fprintf(stderr,
+               "fccvdb: warning: isovalue %g is outside the values the spline takes in %s (%g .. %g): no surface "
+               "will show; pick --iso in that range\n",
+               double(iso), store.path().c_str(), double(store.valueMin()), double(store.valueMax()));
+}
+
 float isoFromFlags(const RenderFlags& flags, const io::BrickStore& store) {
   if (flags.iso.empty()) {
     // A level set's surface is its zero crossing; anything else gets the middle of its range.

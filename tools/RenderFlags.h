@@ -33,6 +33,9 @@ std::unique_ptr<io::FccInput> openFccInput(const RenderFlags& flags, bool quiet)
 
 // --iso (default: midway through the data's value range); ValueError if not a finite number.
 float isoFromFlags(const RenderFlags& flags, const io::BrickStore& store);
+// One line on stderr if `iso` lies outside the range the spline takes (the hull of the bounds): the
+// image would show no surface. Not an error: the user may want exactly that.
+void warnIfIsoOutside(float iso, const io::BrickStore& store);
 // --res (or `flag`) "WxH"; ValueError naming the flag for anything else or a zero size.
 void resolutionFromFlags(const std::string& res, int& width, int& height, const char* flag = "--res");
 // The camera: frames the data unless --eye/--lookat/--up/--fov say otherwise.

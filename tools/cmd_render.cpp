@@ -30,6 +30,7 @@ Command addRenderCommand(CLI::App& parent) {
             const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, args->quiet);
             const io::BrickStore store(input->path(), args->flags.grid);
             const float iso = isoFromFlags(args->flags, store);
+            warnIfIsoOutside(iso, store);
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;
             render::RenderOptions options = renderOptionsFromFlags(args->flags);

@@ -39,6 +39,7 @@ Command addViewCommand(CLI::App& parent) {
             const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);
             const auto store = std::make_unique<io::BrickStore>(input->path(), args->flags.grid);
             const float iso = isoFromFlags(args->flags, *store);
+            warnIfIsoOutside(iso, *store);
             render::RenderOptions options = renderOptionsFromFlags(args->flags);
             options.iso = iso;
 

@@ -93,6 +93,21 @@ TEST(CliRender, BenchRenderJsonHasTheDocumentedKeys) {
   EXPECT_EQ(checkJsonWithPython(dir, r.out, check), 0) << r.out;
 }
 
+// An isovalue outside the values the spline takes renders an empty image, exit 0, and says so once.
+TEST(CliRender, IsoOutsideTheRangeWarnsInOneLine) {
+  TempDir dir;
+  const std::string vdb = dir / "s.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 24,24,24 --quiet").status, 0);
+  const auto r = runFccvdb("render " + vdb + " -o " + (dir / "a.png") + " --res 32x32 --iso 1000 --quiet");
+  if (failedForLackOfGl(r)) GTEST_SKIP() << r.err;
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("isovalue 1000 is outside"));
+  const auto inside = runFccvdb("render " + vdb + " -o " + (dir / "b.png") + " --res 32x32 --iso 0.5 --quiet");
+  EXPECT_EQ(inside.status, 0) << inside.err;
+  EXPECT_EQ(inside.err, "");
+}
+
 // Any input convert takes renders directly: converted once into the cache, then reused; a changed
 // source is converted again; --no-cache converts into a temporary file that does not outlive the run.
 TEST(CliRender, CartesianInputConvertsOnceIntoTheCacheAndIsReused) {
