@@ -38,9 +38,10 @@ std::string describe(const std::string& input, const ConvertOptions& o) {
   struct stat st {};
   if (::stat(input.c_str(), &st) != 0) throw InputError(input + ": cannot open: no such file");
   std::ostringstream d;
+  d << std::hexfloat;  // every bit of every floating-point flag: 0.5 and 0.5000001 are other conversions
   d << kCacheFormat << '\n' << fs::canonical(input).string() << '\n' << st.st_size << ' ' << st.st_mtim.tv_sec << '.'
     << st.st_mtim.tv_nsec << '\n' << o.mode << ' ' << o.samples << ' ' << o.scale << ' '
-    << (o.background ? std::to_string(*o.background) : "default") << ' ' << o.prefilter << ' ' << o.tolerance << ' '
+    << o.background.has_value() << ' ' << o.background.value_or(0.0f) << ' ' << o.prefilter << ' ' << o.tolerance << ' '
     << o.half << ' ' << o.gridName << ' ' << o.bounds;
   // A DICOM series is a folder: what its files are, not the folder's own size and time.
   std::error_code ec;

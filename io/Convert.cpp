@@ -227,8 +227,9 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   };
 
   if (options.inMemory) {
-    // Out-of-core fields read only what they were prepared for: here, everything.
-    if (!field->bounds().empty()) field->prepare({field->bounds()});
+    // Out-of-core fields read only what they were prepared for: here, everything a block may read
+    // (a block's samples reach 2 * 8 + 1 sites beyond the field's bounds).
+    if (!field->bounds().empty()) field->prepare({field->bounds().expandedBy(17)});
     BuildResult built = buildFccGrid(*field, build, interrupter);
     describe(*built.grid, built.sampleMin, built.sampleMax);
     openvdb::GridCPtrVec grids{built.grid};

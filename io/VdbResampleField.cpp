@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "sparse/CubicBSpline.h"
+#include "sparse/Error.h"
 
 namespace fcc::io {
 namespace {
@@ -72,6 +73,12 @@ void VdbResampleField::fill(const SiteBox& box, float* out) const {
   // kept x and y.
   thread_local std::vector<float> c;
   const glm::ivec3 n = reach.dim();
+  // A coarse lattice makes a block reach far: refuse what would not fit rather than fail for memory.
+  constexpr uint64_t kMaxReachVoxels = uint64_t(1) << 26;  // 256 MiB of floats per thread
+  if (uint64_t(n.x) * uint64_t(n.y) * uint64_t(n.z) > kMaxReachVoxels)
+    throw ValueError("resampling at a spacing of " + std::to_string(spacing_) + " source voxels: a block of 16 sites reads " +
+                     std::to_string(n.x) + "^3 source voxels, more than " + std::to_string(kMaxReachVoxels) +
+                     "; use a smaller --scale or more --samples");
   c.resize(size_t(n.x) * n.y * n.z);
   source_.fill(reach, c.data());
   const ptrdiff_t sy = n.x, sz = ptrdiff_t(n.x) * n.y;

@@ -98,6 +98,23 @@ TEST(ConvertStreamed, ResampleEqualsTheInMemoryPath) {
   expectStreamedEqualsInMemory(dir, writeSphere(dir, "fog", 30.0f, 1.0f, true), resample);
 }
 
+// A leaf without an active voxel lies outside the active box the fields' bounds come from, yet blocks
+// at the edge of that box read it: the in-memory path prepares everything they reach.
+TEST(ConvertStreamed, ResampleReadsLeavesOutsideTheActiveBox) {
+  TempDir dir;
+  initializeVdb();
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  for (int i = 64; i <= 71; ++i) grid->tree().setValueOn(openvdb::Coord(i, 66, 67), float(i - 60));
+  grid->tree().touchLeaf(openvdb::Coord(16, 64, 64))->setValueOff(openvdb::Coord(17, 65, 66), 5.0f);
+  grid->setName("edge");
+  const std::string input = dir / "edge.vdb";
+  writeGrid(input, grid);
+  ConvertOptions resample;
+  resample.mode = "resample";
+  resample.scale = 1.0;
+  expectStreamedEqualsInMemory(dir, input, resample);
+}
+
 // Resampling a level set densifies nothing and interpolates it: near the surface, where the source
 // holds signed distances, the samples are the distance to the sphere.
 TEST(ConvertStreamed, ResampledLevelSetIsTheSignedDistance) {
