@@ -115,12 +115,14 @@ struct HaloBlock {
           for (int c = 0; c < 4; ++c) out[c] = v[c];
         }
   }
-  // Whether every value the unit cube at `corner` reads (sites [corner - 1, corner + 2]^3, through
-  // the packed voxels that hold them) is one value v: then the spline there is v (partition of unity)
-  // and the cube's bounds are (v, v) without computing its BB-coefficients (air in scans, a level
-  // set's inside and outside). The OpenCL kernel makes the same test per packed voxel.
+  // Whether every value of the 3^3 packed voxels around the one holding `corner` (its cell, all four
+  // channels: what the OpenCL kernel tests per cell, so both skip the same cubes) is one value v. The
+  // unit cube at `corner` reads a part of them (sites [corner - 1, corner + 2]^3), so the spline there
+  // is v (partition of unity) and its bounds are (v, v) without computing BB-coefficients (air in
+  // scans, a level set's inside and outside).
   bool cubeReadsOneValue(const glm::ivec3& corner, float& v) const {
-    const glm::ivec3 lo = packedVoxelOfSite(corner - 1) - packedOrigin, hi = packedVoxelOfSite(corner + 2) - packedOrigin;
+    const glm::ivec3 cell = packedVoxelOfSite(corner) - packedOrigin;
+    const glm::ivec3 lo = cell - 1, hi = cell + 1;
     v = values[((lo.z * kHaloSide + lo.y) * kHaloSide + lo.x) * 4];
     for (int z = lo.z; z <= hi.z; ++z)
       for (int y = lo.y; y <= hi.y; ++y)
