@@ -20,11 +20,14 @@ VdbResampleField::VdbResampleField(std::shared_ptr<const VdbLeafReader> reader, 
       spacing_(spacing),
       background_(background) {
   const SiteBox data = source_.bounds();
-  if (data.empty()) return;
-  // Sites whose reach meets the source's data.
+  if (!data.empty()) bounds_ = sitesReaching(data);
+}
+
+SiteBox VdbResampleField::sitesReaching(const SiteBox& source) const {
+  // The sites whose positions lie within the prefilter's and the spline's reach of the source box.
   const int pad = kBSplinePrefilterReach + kSplineAbove;
-  bounds_.min = glm::ivec3(glm::ceil(glm::dvec3(data.min - pad) / spacing_));
-  bounds_.max = glm::ivec3(glm::floor(glm::dvec3(data.max + pad) / spacing_));
+  return {glm::ivec3(glm::ceil(glm::dvec3(source.min - pad) / spacing_)),
+          glm::ivec3(glm::floor(glm::dvec3(source.max + pad) / spacing_))};
 }
 
 SiteBox VdbResampleField::sourceReach(const SiteBox& box) const {
@@ -42,13 +45,7 @@ bool VdbResampleField::uniformOver(const SiteBox& box, float& value) const {
 }
 
 bool VdbResampleField::forEachDataBox(const SiteBox& region, const std::function<void(const SiteBox&)>& visit) const {
-  // A source box reaches the sites whose positions lie within the prefilter's and spline's reach of it.
-  const int pad = kBSplinePrefilterReach + kSplineAbove;
-  const SiteBox reach = sourceReach(region);
-  return source_.forEachDataBox(reach, [&](const SiteBox& data) {
-    visit(SiteBox{glm::ivec3(glm::ceil(glm::dvec3(data.min - pad) / spacing_)),
-                  glm::ivec3(glm::floor(glm::dvec3(data.max + pad) / spacing_))});
-  });
+  return source_.forEachDataBox(sourceReach(region), [&](const SiteBox& data) { visit(sitesReaching(data)); });
 }
 
 void VdbResampleField::prepare(const std::vector<SiteBox>& boxes) const {
@@ -95,20 +92,10 @@ void VdbResampleField::fill(const SiteBox& box, float* out) const {
           *out = background_;
           continue;
         }
-        const glm::dvec3 p = glm::dvec3(x, y, z) * spacing_;
-        const glm::dvec3 f = glm::floor(p);
-        const glm::ivec3 base = glm::ivec3(f) - kSplineBelow - reach.min;
-        double wx[4], wy[4], wz[4];
-        cubicBSplineWeights(p.x - f.x, wx);
-        cubicBSplineWeights(p.y - f.y, wy);
-        cubicBSplineWeights(p.z - f.z, wz);
-        double sum = 0.0;
-        for (int k = 0; k < 4; ++k)
-          for (int j = 0; j < 4; ++j) {
-            const float* row = c.data() + (base.z + k) * sz + (base.y + j) * sy + base.x;
-            const double r = wx[0] * row[0] + wx[1] * row[1] + wx[2] * row[2] + wx[3] * row[3];
-            sum += wz[k] * wy[j] * r;
-          }
+        const double sum = cubicBSplineAt(glm::dvec3(x, y, z) * spacing_, [&](const glm::ivec3& ijk) {
+          const glm::ivec3 l = ijk - reach.min;
+          return c[size_t(l.z * sz + l.y * sy + l.x)];
+        });
         *out = float(sum);
       }
 }

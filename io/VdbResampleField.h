@@ -30,6 +30,8 @@ class VdbResampleField final : public SampleField {
 
   // The source voxels whose samples the sites of `box` depend on.
   SiteBox sourceReach(const SiteBox& box) const;
+  // The sites that depend on the source voxels of `source` (the inverse of sourceReach).
+  SiteBox sitesReaching(const SiteBox& source) const;
 
  private:
   VdbSourceField source_;  // the source's samples, unmapped (its own background)

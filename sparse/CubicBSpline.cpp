@@ -104,20 +104,7 @@ float CubicBSplineVolume::coefficient(int i, int j, int k) const {
 
 float CubicBSplineVolume::evaluate(const glm::dvec3& xyzIn) const {
   const glm::dvec3 xyz = glm::clamp(xyzIn, glm::dvec3(0.0), glm::dvec3(dims_ - 1));
-  const glm::dvec3 f = glm::floor(xyz);
-  const glm::ivec3 base = glm::ivec3(f) - 1;
-  double wx[4], wy[4], wz[4];
-  cubicBSplineWeights(xyz.x - f.x, wx);
-  cubicBSplineWeights(xyz.y - f.y, wy);
-  cubicBSplineWeights(xyz.z - f.z, wz);
-  double sum = 0.0;
-  for (int c = 0; c < 4; ++c)
-    for (int b = 0; b < 4; ++b) {
-      double row = 0.0;
-      for (int a = 0; a < 4; ++a) row += wx[a] * coefficient(base.x + a, base.y + b, base.z + c);
-      sum += wz[c] * wy[b] * row;
-    }
-  return float(sum);
+  return float(cubicBSplineAt(xyz, [&](const glm::ivec3& ijk) { return coefficient(ijk.x, ijk.y, ijk.z); }));
 }
 
 }  // namespace fcc

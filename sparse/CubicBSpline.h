@@ -24,6 +24,26 @@ void bsplinePrefilterLines(float* c, int n, ptrdiff_t stride, int count, ptrdiff
 // The four cubic B-spline weights of the coefficients at floor(x) - 1 .. floor(x) + 2, t = x - floor(x).
 void cubicBSplineWeights(double t, double w[4]);
 
+// The tricubic B-spline at position `xyz` from the coefficients `coefficientAt(glm::ivec3)` gives at the
+// 4^3 integer points floor(xyz) - 1 .. floor(xyz) + 2: one sum, in one order, for every caller.
+template <class CoefficientAt>
+double cubicBSplineAt(const glm::dvec3& xyz, CoefficientAt&& coefficientAt) {
+  const glm::dvec3 f = glm::floor(xyz);
+  const glm::ivec3 base = glm::ivec3(f) - 1;
+  double wx[4], wy[4], wz[4];
+  cubicBSplineWeights(xyz.x - f.x, wx);
+  cubicBSplineWeights(xyz.y - f.y, wy);
+  cubicBSplineWeights(xyz.z - f.z, wz);
+  double sum = 0.0;
+  for (int c = 0; c < 4; ++c)
+    for (int b = 0; b < 4; ++b) {
+      double row = 0.0;
+      for (int a = 0; a < 4; ++a) row += wx[a] * coefficientAt(base + glm::ivec3(a, b, c));
+      sum += wz[c] * wy[b] * row;
+    }
+  return sum;
+}
+
 class CubicBSplineVolume {
  public:
   // `values` x fastest; the coefficients are computed once (recursive filter, mirror boundaries).
