@@ -39,8 +39,7 @@ VdbSourceField::VdbSourceField(std::shared_ptr<const VdbLeafReader> reader, floa
 }
 
 const float* VdbSourceField::residentValues(const Leaf& leaf) const {
-  const std::optional<size_t> index = reader_->leafIndexAt(leaf.origin());
-  const auto it = index ? resident_.find(*index) : resident_.end();
+  const auto it = resident_.find(&leaf);
   if (it == resident_.end())
     throw Error("internal: the source leaf at " + text(leaf.origin()) + " was read before it was prepared");
   return it->second.get();
@@ -117,39 +116,40 @@ bool VdbSourceField::forEachDataBox(const SiteBox& region, const std::function<v
 
 void VdbSourceField::prepare(const std::vector<SiteBox>& boxes) const {
   // The leaves the boxes meet, gathered in parallel (a slab holds thousands of boxes).
-  tbb::enumerable_thread_specific<std::vector<size_t>> perThread;
+  tbb::enumerable_thread_specific<std::vector<const Leaf*>> perThread;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, boxes.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
-    std::vector<size_t>& found = perThread.local();
+    std::vector<const Leaf*>& found = perThread.local();
     for (size_t b = r.begin(); b != r.end(); ++b)
       visitRegion(
           grid_->tree(), coordBox(boxes[b]),
           [&](const Leaf& leaf) {
-            const std::optional<size_t> index = reader_->leafIndexAt(leaf.origin());
-            if (!index) throw Error("internal: the leaf reader has no leaf at " + text(leaf.origin()));
-            found.push_back(*index);
+            found.push_back(&leaf);
             return true;
           },
           [](const CoordBBox&, float) { return true; });
   });
-  std::vector<size_t> needed;
-  for (const std::vector<size_t>& found : perThread) needed.insert(needed.end(), found.begin(), found.end());
+  std::vector<const Leaf*> needed;
+  for (const std::vector<const Leaf*>& found : perThread) needed.insert(needed.end(), found.begin(), found.end());
   std::sort(needed.begin(), needed.end());
   needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
 
   // Keep what is still needed, decode the rest in parallel, drop everything else.
-  std::unordered_map<size_t, std::unique_ptr<float[]>> next;
+  std::unordered_map<const Leaf*, std::unique_ptr<float[]>> next;
   next.reserve(needed.size());
-  std::vector<size_t> missing;
-  for (size_t index : needed) {
-    auto it = resident_.find(index);
-    if (it != resident_.end()) next.emplace(index, std::move(it->second));
-    else missing.push_back(index);
+  std::vector<const Leaf*> missing;
+  for (const Leaf* leaf : needed) {
+    auto it = resident_.find(leaf);
+    if (it != resident_.end()) next.emplace(leaf, std::move(it->second));
+    else missing.push_back(leaf);
   }
   std::vector<std::unique_ptr<float[]>> values(missing.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, missing.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
+      // The reader indexes leaves by origin, in the order of this same topology tree.
+      const std::optional<size_t> index = reader_->leafIndexAt(missing[i]->origin());
+      if (!index) throw Error("internal: the leaf reader has no leaf at " + text(missing[i]->origin()));
       values[i].reset(new float[Leaf::SIZE]);
-      reader_->readLeaf(missing[i], values[i].get());
+      reader_->readLeaf(*index, values[i].get());
     }
   });
   for (size_t i = 0; i < missing.size(); ++i) next.emplace(missing[i], std::move(values[i]));

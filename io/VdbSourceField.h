@@ -44,8 +44,9 @@ class VdbSourceField final : public SampleField {
   float sourceBackground_;
   float background_;
   SiteBox bounds_;
-  // Decoded leaves by leaf index: replaced by prepare(), read-only while blocks are built.
-  mutable std::unordered_map<size_t, std::unique_ptr<float[]>> resident_;
+  // Decoded leaves, by their leaf in the topology tree (fill() meets them there): replaced by
+  // prepare(), read-only while blocks are built.
+  mutable std::unordered_map<const openvdb::FloatTree::LeafNodeType*, std::unique_ptr<float[]>> resident_;
   mutable size_t decoded_ = 0;
 };
 
