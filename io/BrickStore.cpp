@@ -96,7 +96,7 @@ BrickStore::BrickStore(const std::string& path, const std::string& gridName, boo
   // OpenVDB parses the FCC grid's topology and the bounds grid: first in a child, which a damaged file
   // may crash. Leaf buffers are ours (VdbLeafReader validates them before decoding).
   guardVdbRead(path, [&] {
-    VdbLeafReader probe(path, entry.name, fccTypes);
+    VdbLeafReader probe(path, entry.name, fccTypes, /*indexLeaves=*/false);
     (void)readBounds(path, boundsName, entry.name);
   });
   try {

@@ -173,7 +173,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   if (format == Format::Vdb && (resample || !options.inMemory)) {
     const std::vector<std::string> floatTrees{openvdb::FloatTree::treeType()};
     // OpenVDB parses the header and topology: first in a child, which may crash on a damaged file.
-    guardVdbRead(input, [&] { VdbLeafReader probe(input, options.gridName, floatTrees); });
+    guardVdbRead(input, [&] { VdbLeafReader probe(input, options.gridName, floatTrees, /*indexLeaves=*/false); });
     reader = std::make_shared<VdbLeafReader>(input, options.gridName, floatTrees);
     const auto& topology = static_cast<const openvdb::FloatGrid&>(*reader->grid());
     provenance.sourceGrid = summary.gridName = topology.getName();

@@ -408,7 +408,7 @@ std::vector<VdbGridEntry> VdbLeafReader::listGrids(const std::string& path) {
 }
 
 VdbLeafReader::VdbLeafReader(const std::string& path, const std::string& gridName,
-                             const std::vector<std::string>& requestedTypes)
+                             const std::vector<std::string>& requestedTypes, bool indexLeaves)
     : path_(path) {
   std::vector<std::string> types = requestedTypes.empty() ? supportedTypes() : requestedTypes;
   for (const auto& t : types)
@@ -559,6 +559,7 @@ VdbLeafReader::VdbLeafReader(const std::string& path, const std::string& gridNam
     grid_ = grid;
 
     // --- The index of leaf buffers.
+    if (!indexLeaves) return;
     if (components_ == 1)
       buildIndex(treeOf<openvdb::FloatTree>(*grid_));
     else

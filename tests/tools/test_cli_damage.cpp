@@ -59,7 +59,9 @@ std::string damaged(const std::string& bytes, std::mt19937& rng, std::string& wh
 // Status 0, or 1 with one line; never a signal (128 + N) or another status.
 void expectOneLineOrSuccess(const CommandResult& r, const std::string& what) {
   EXPECT_TRUE(r.status == 0 || r.status == 1) << what << ": status " << r.status << "\n" << r.err;
-  if (r.status == 1) EXPECT_EQ(lineCount(r.err), 1) << what << "\n" << r.err;
+  if (r.status == 1) {
+    EXPECT_EQ(lineCount(r.err), 1) << what << "\n" << r.err;
+  }
 }
 
 TEST(CliDamage, SeededCampaignEndsEveryRunWithStatus0Or1AndOneLine) {
