@@ -13,47 +13,58 @@ uint64_t brickKey(const glm::ivec3& b) {
 
 }  // namespace
 
-BrickCache::BrickCache(const BrickStore& store, std::size_t budgetBytes) : store_(store), budgetBytes_(budgetBytes) {}
+namespace {
+// Shards: enough that 16+ loader threads rarely meet on one lock, few enough that each keeps a
+// useful share of a small budget (at least 64 bricks a shard).
+std::size_t shardCountFor(std::size_t budgetBricks) {
+  std::size_t n = 1;
+  while (n < 64 && budgetBricks / (2 * n) >= 64) n *= 2;
+  return n;
+}
+}  // namespace
+
+BrickCache::BrickCache(const BrickStore& store, std::size_t budgetBytes)
+    : store_(store),
+      budgetBytes_(budgetBytes),
+      shards_(shardCountFor(budgetBytes / kBytesPerBrick)) {
+  bricksPerShard_ = budgetBytes / kBytesPerBrick / shards_.size();
+}
 
 std::shared_ptr<const BrickValues> BrickCache::leafValues(const glm::ivec3& brick) {
   const uint64_t key = brickKey(brick);
+  Shard& shard = shardOf(key);
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    auto it = entries_.find(key);
-    if (it != entries_.end()) {
-      lru_.splice(lru_.begin(), lru_, it->second.lru);
-      ++hits_;
+    std::lock_guard<std::mutex> lock(shard.mutex);
+    auto it = shard.entries.find(key);
+    if (it != shard.entries.end()) {
+      shard.lru.splice(shard.lru.begin(), shard.lru, it->second.lru);
+      hits_.fetch_add(1, std::memory_order_relaxed);
       return it->second.values;
     }
   }
-  auto values = std::make_shared<BrickValues>();
+  // Not make_shared: it would zero the 8 KB (Vec4f's default constructor is defaulted) to overwrite them.
+  std::shared_ptr<BrickValues> values(new BrickValues);
   store_.readBrick(brick, *values);  // decoding happens outside the lock
-  std::lock_guard<std::mutex> lock(mutex_);
-  ++decoded_;
-  auto [it, inserted] = entries_.try_emplace(key);
+  decoded_.fetch_add(1, std::memory_order_relaxed);
+  std::lock_guard<std::mutex> lock(shard.mutex);
+  auto [it, inserted] = shard.entries.try_emplace(key);
   if (!inserted) return it->second.values;  // another thread decoded it meanwhile
-  lru_.push_front(key);
-  it->second = Entry{values, lru_.begin()};
-  while (!lru_.empty() && entries_.size() * kBytesPerBrick > budgetBytes_) {
-    entries_.erase(lru_.back());
-    lru_.pop_back();
+  shard.lru.push_front(key);
+  it->second = Entry{values, shard.lru.begin()};
+  while (!shard.lru.empty() && shard.entries.size() > bricksPerShard_) {
+    shard.entries.erase(shard.lru.back());
+    shard.lru.pop_back();
   }
   return values;
 }
 
 std::size_t BrickCache::bytesUsed() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return entries_.size() * kBytesPerBrick;
-}
-
-uint64_t BrickCache::decodedCount() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return decoded_;
-}
-
-uint64_t BrickCache::hitCount() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return hits_;
+  std::size_t bricks = 0;
+  for (const Shard& shard : shards_) {
+    std::lock_guard<std::mutex> lock(shard.mutex);
+    bricks += shard.entries.size();
+  }
+  return bricks * kBytesPerBrick;
 }
 
 void assembleHaloBlock(const BrickStore& store, BrickCache& cache, const glm::ivec3& brick, float* out) {

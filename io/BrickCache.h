@@ -4,12 +4,14 @@
 
 #include <glm/glm.hpp>
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <list>
 #include <memory>
 #include <mutex>
 #include <unordered_map>
+#include <vector>
 
 #include "BrickStore.h"
 
@@ -28,20 +30,29 @@ class BrickCache {
 
   std::size_t budgetBytes() const { return budgetBytes_; }
   std::size_t bytesUsed() const;
-  uint64_t decodedCount() const;  // bricks decoded from the file so far
-  uint64_t hitCount() const;
+  uint64_t decodedCount() const { return decoded_.load(std::memory_order_relaxed); }  // bricks decoded so far
+  uint64_t hitCount() const { return hits_.load(std::memory_order_relaxed); }
 
  private:
+  // The cache is split by brick into shards, each its own LRU list under its own lock, so that the
+  // loader's threads (27 lookups per halo block) do not queue on one mutex. Eviction is per shard:
+  // each holds an equal share of the budget.
   struct Entry {
     std::shared_ptr<const BrickValues> values;
     std::list<uint64_t>::iterator lru;
   };
+  struct Shard {
+    mutable std::mutex mutex;
+    std::list<uint64_t> lru;  // most recent first
+    std::unordered_map<uint64_t, Entry> entries;
+  };
+  Shard& shardOf(uint64_t key) { return shards_[(key * 0x9E3779B97F4A7C15ull) >> 58 & (shards_.size() - 1)]; }
+
   const BrickStore& store_;
   std::size_t budgetBytes_;
-  mutable std::mutex mutex_;
-  std::list<uint64_t> lru_;  // most recent first
-  std::unordered_map<uint64_t, Entry> entries_;
-  uint64_t decoded_ = 0, hits_ = 0;
+  std::size_t bricksPerShard_;
+  std::vector<Shard> shards_;  // a power of two of them
+  std::atomic<uint64_t> decoded_{0}, hits_{0};
 };
 
 // The packed voxels [8b - 1, 8b + 9)^3 of brick b (the brick and the one-voxel halo its cells'

@@ -28,6 +28,7 @@ Command addSynthCommand(CLI::App& parent);
 Command addViewCommand(CLI::App& parent);
 // `bench` is a parent command; each benchmark registers itself on it from its own file.
 Command addBenchCommand(CLI::App& parent);
+Command addBenchBricksCommand(CLI::App& bench);      // under `bench`
 Command addBenchConvertCommand(CLI::App& bench);     // under `bench`
 Command addBenchRenderCommand(CLI::App& bench);      // under `bench`
 Command addBenchPreprocessCommand(CLI::App& bench);  // under `bench`

@@ -8,6 +8,7 @@ Command addBenchCommand(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand("bench", "Benchmarks: time a stage of the pipeline on this machine (see docs/BENCHMARKS.md)");
   app->require_subcommand(1, 1);
   auto benchmarks = std::make_shared<std::vector<Command>>();
+  benchmarks->push_back(addBenchBricksCommand(*app));
   benchmarks->push_back(addBenchConvertCommand(*app));
   benchmarks->push_back(addBenchPreprocessCommand(*app));
   benchmarks->push_back(addBenchRenderCommand(*app));

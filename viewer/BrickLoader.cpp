@@ -1,16 +1,20 @@
 #include "BrickLoader.h"
 
-#include <tbb/parallel_for.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 
 namespace fcc::render {
 namespace {
-constexpr std::size_t kBatch = 64;  // bricks decoded in parallel per round (1 MB of blocks)
+constexpr std::size_t kChunk = 8;  // most bricks a loader thread takes at once (128 KB of blocks)
 }  // namespace
 
 BrickLoader::BrickLoader(const io::BrickStore& store, io::BrickCache& cache, std::size_t maxReady)
-    : store_(store), cache_(cache), maxReady_(std::max<std::size_t>(maxReady, 1)), thread_([this] { run(); }) {}
+    : store_(store), cache_(cache), maxReady_(std::max<std::size_t>(maxReady, 1)) {
+  // As many as TBB may use (all cores, or what a tbb::global_control allows).
+  const int threads = std::max<int>(1, int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+  for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { work(); });
+}
 
 BrickLoader::~BrickLoader() {
   {
@@ -18,7 +22,7 @@ BrickLoader::~BrickLoader() {
     stop_ = true;
   }
   work_.notify_all();
-  thread_.join();
+  for (std::thread& t : threads_) t.join();
 }
 
 uint64_t BrickLoader::key(const glm::ivec3& b) {
@@ -37,7 +41,7 @@ void BrickLoader::request(const std::vector<glm::ivec3>& bricks) {
         any = true;
       }
   }
-  if (any) work_.notify_one();
+  if (any) work_.notify_all();
 }
 
 void BrickLoader::cancelQueued() {
@@ -57,7 +61,7 @@ std::vector<LoadedBrick> BrickLoader::take(std::size_t max, bool wait) {
     out.push_back(std::move(ready_.front()));
     ready_.pop_front();
   }
-  if (!out.empty()) work_.notify_one();  // room in ready_ again
+  if (!out.empty()) work_.notify_all();  // room in ready_ again
   return out;
 }
 
@@ -71,47 +75,62 @@ uint64_t BrickLoader::loadedCount() const {
   return loaded_;
 }
 
-void BrickLoader::run() {
-  std::vector<LoadedBrick> batch;
+void BrickLoader::recycle(std::vector<LoadedBrick>&& taken) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const std::size_t keep = maxReady_ + threads_.size() * kChunk;  // what can be in use at once
+  for (LoadedBrick& b : taken)
+    if (spare_.size() < keep && !b.halo.empty()) spare_.push_back(std::move(b.halo));
+  taken.clear();
+}
+
+void BrickLoader::work() {
+  std::vector<LoadedBrick> chunk;
   for (;;) {
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      work_.wait(lock, [&] { return stop_ || (!queued_.empty() && ready_.size() < maxReady_); });
+      work_.wait(lock, [&] { return stop_ || (!error_ && !queued_.empty() && ready_.size() + decoding_ < maxReady_); });
       if (stop_) return;
-      const std::size_t n = std::min({kBatch, queued_.size(), maxReady_ - ready_.size()});
-      batch.resize(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        batch[i].brick = queued_.front();
+      // Small requests are spread over the threads; large ones go kChunk at a time.
+      const std::size_t share = std::max<std::size_t>(1, queued_.size() / threads_.size());
+      const std::size_t n = std::min({kChunk, share, maxReady_ - ready_.size() - decoding_});
+      chunk.resize(n);
+      for (LoadedBrick& b : chunk) {
+        b.brick = queued_.front();
         queued_.pop_front();
+        if (!spare_.empty()) {
+          b.halo = std::move(spare_.back());
+          spare_.pop_back();
+        }
       }
-      decoding_ = n;
+      decoding_ += n;
     }
-    std::exception_ptr error;
-    try {
-      tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t i) {
-        batch[i].halo.resize(std::size_t(io::kHaloBlockVoxels) * 4);
-        io::assembleHaloBlock(store_, cache_, batch[i].brick, batch[i].halo.data());
-      });
-    } catch (...) {
-      error = std::current_exception();
-    }
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (error) {
-        error_ = error;
-        for (const LoadedBrick& b : batch) held_.erase(key(b.brick));
-        decoding_ = 0;
-        batch.clear();
-        done_.notify_all();
-        return;
-      }
-      for (LoadedBrick& b : batch) ready_.push_back(std::move(b));
-      loaded_ += batch.size();
-      decoding_ = 0;
-      batch.clear();
-    }
-    done_.notify_all();
+    decodeChunk(chunk);
   }
+}
+
+void BrickLoader::decodeChunk(std::vector<LoadedBrick>& chunk) {
+  std::exception_ptr error;
+  try {
+    for (LoadedBrick& b : chunk) {
+      b.halo.resize(std::size_t(io::kHaloBlockVoxels) * 4);  // no-op for a recycled block
+      io::assembleHaloBlock(store_, cache_, b.brick, b.halo.data());
+    }
+  } catch (...) {
+    error = std::current_exception();
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    decoding_ -= chunk.size();
+    if (error) {
+      if (!error_) error_ = error;
+      for (const LoadedBrick& b : chunk) held_.erase(key(b.brick));
+    } else {
+      for (LoadedBrick& b : chunk) ready_.push_back(std::move(b));
+      loaded_ += chunk.size();
+    }
+    chunk.clear();
+  }
+  done_.notify_all();
 }
 
 }  // namespace fcc::render

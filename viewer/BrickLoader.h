@@ -4,6 +4,10 @@
 // bricks already queued, being decoded or waiting to be taken are not queued twice. At most
 // `maxReady` finished blocks wait to be taken (the thread pauses meanwhile), which bounds the host
 // memory the loader adds to the host cache's budget.
+//
+// Decoding is a stream, not rounds: one loader thread per core (TBB's concurrency) takes small chunks
+// of the queue, and each chunk's blocks are ready as soon as that chunk is done. Blocks given back
+// with recycle() are reused, so a steady stream allocates (and page-faults) nothing.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -30,7 +34,7 @@ struct LoadedBrick {
 class BrickLoader {
  public:
   BrickLoader(const io::BrickStore& store, io::BrickCache& cache, std::size_t maxReady);
-  ~BrickLoader();  // stops after the batch in progress; queued requests are dropped
+  ~BrickLoader();  // waits for the chunks in progress; queued requests are dropped
   BrickLoader(const BrickLoader&) = delete;
   BrickLoader& operator=(const BrickLoader&) = delete;
 
@@ -41,12 +45,15 @@ class BrickLoader {
   // Up to `max` finished bricks, oldest first. With `wait`, blocks until at least one is finished or
   // nothing is left to decode. Rethrows what decoding threw (a file that fails to read).
   std::vector<LoadedBrick> take(std::size_t max, bool wait);
+  // Gives taken blocks' memory back for reuse (the bricks themselves are forgotten).
+  void recycle(std::vector<LoadedBrick>&& taken);
   // Bricks queued, decoding or waiting to be taken.
   std::size_t pending() const;
   uint64_t loadedCount() const;  // bricks decoded into blocks since construction
 
  private:
-  void run();
+  void work();  // one loader thread
+  void decodeChunk(std::vector<LoadedBrick>& chunk);
   static uint64_t key(const glm::ivec3& b);
 
   const io::BrickStore& store_;
@@ -54,15 +61,16 @@ class BrickLoader {
   const std::size_t maxReady_;
   mutable std::mutex mutex_;
   std::condition_variable work_;   // requests queued, room in ready_, or stopping
-  std::condition_variable done_;   // a batch finished
+  std::condition_variable done_;   // a chunk finished
   std::deque<glm::ivec3> queued_;
-  std::size_t decoding_ = 0;
+  std::size_t decoding_ = 0;  // bricks in chunks handed to tasks
   std::deque<LoadedBrick> ready_;
+  std::vector<std::vector<float>> spare_;  // recycled halo blocks
   std::unordered_set<uint64_t> held_;  // keys of queued, decoding and ready bricks
   uint64_t loaded_ = 0;
   std::exception_ptr error_;  // the first decoding failure, for take() to rethrow
   bool stop_ = false;
-  std::thread thread_;  // last: starts once the members above exist
+  std::vector<std::thread> threads_;  // last: they start once the members above exist
 };
 
 }  // namespace fcc::render

@@ -326,9 +326,10 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
     std::vector<uint32_t> slotUse = readSlotUse();
     uint64_t uploaded = 0;
     for (;;) {
-      const std::vector<LoadedBrick> loaded = loader_->take(kUploadBatch, true);
+      std::vector<LoadedBrick> loaded = loader_->take(kUploadBatch, true);
       if (loaded.empty()) break;
       uploaded += upload(loaded, slotUse);
+      loader_->recycle(std::move(loaded));
     }
     if (uploaded == 0) throw Error("renderer: rays requested bricks but none could be given a pool slot");
     uploadPageTable();
@@ -368,10 +369,11 @@ void Raycaster::startStep(const Camera& camera, int width, int height, double up
   const auto start = std::chrono::steady_clock::now();
   std::vector<uint32_t> slotUse;
   do {
-    const std::vector<LoadedBrick> loaded = loader_->take(kStepUploadBatch, false);
+    std::vector<LoadedBrick> loaded = loader_->take(kStepUploadBatch, false);
     if (loaded.empty()) break;
     if (slotUse.empty()) slotUse = readSlotUse();
     stats.uploaded += upload(loaded, slotUse);
+    loader_->recycle(std::move(loaded));
   } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < uploadSeconds);
   if (stats.uploaded) uploadPageTable();
 
