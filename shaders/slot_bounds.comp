@@ -12,8 +12,16 @@
 
 layout(local_size_x = 64) in;
 
+layout(std430, binding = 5) writeonly buffer SlotUse { uint slotLastUse[]; };
 layout(std430, binding = 6) writeonly buffer SlotBounds { vec2 slotBounds[]; };
 layout(std430, binding = 7) readonly buffer Uploaded { uint uploadedSlots[]; };
+// The pass in which the slots were uploaded: they count as used in it, so the next assignment does
+// not evict them first (one write a slot here instead of a buffer update a slot on the host).
+uniform uint uPass;
+
+void markUsed(uint slot) {
+  if (gl_GlobalInvocationID.x == 0u) slotLastUse[slot] = uPass;
+}
 
 #if defined(FCC_SLOT_BOUNDS_BB)
 // On a GPU the tighter bound costs nothing worth saving: min/max over the BB-coefficients of the 40
@@ -22,6 +30,7 @@ void main() {
   uint voxel = gl_GlobalInvocationID.x;
   if (voxel >= uint(kSlotVoxels)) return;
   uint slot = uploadedSlots[gl_WorkGroupID.y];
+  markUsed(slot);
   // A slot's contents do not depend on where its brick is (shifts by 16 keep site parity and
   // channels), so the brick is taken at the origin.
   selectSlot(slot, ivec3(0));
@@ -43,6 +52,7 @@ void main() {
   uint voxel = gl_GlobalInvocationID.x;
   if (voxel >= uint(kSlotVoxels)) return;
   uint slot = uploadedSlots[gl_WorkGroupID.y];
+  markUsed(slot);
   selectSlot(slot, ivec3(0));  // as above: the brick taken at the origin
   ivec3 v = ivec3(int(voxel) & 7, (int(voxel) >> 3) & 7, int(voxel) >> 6);
   // The FCC sites of packed voxels v - 1 .. v + 1: sites [2v - 2, 2v + 4)^3 with an even coordinate sum.

@@ -56,7 +56,7 @@ Stage loadBlocks(const std::string& name, const io::BrickStore& store, io::Brick
   constexpr std::size_t kBatch = 256;
   const uint64_t decodedBefore = cache.decodedCount();
   const auto start = Clock::now();
-  render::BrickLoader loader(store, cache, kBatch);
+  render::BrickLoader loader(store, cache, 4 * kBatch);  // as the renderer makes it
   loader.request(bricks);
   std::size_t taken = 0;
   for (;;) {
@@ -127,8 +127,18 @@ Command addBenchBricksCommand(CLI::App& bench) {
               render::BrickPool pool(layout, slots);
               glFinish();
               start = Clock::now();
-              for (std::size_t i = 0; i < bricks.size(); ++i)
-                pool.upload(uint32_t(i % slots), blocks[i % blocks.size()].halo.data());
+              // In the renderer's batches of 256, the slots in order.
+              std::vector<uint32_t> batchSlots;
+              std::vector<const float*> batchBlocks;
+              for (std::size_t first = 0; first < bricks.size(); first += 256) {
+                batchSlots.clear();
+                batchBlocks.clear();
+                for (std::size_t i = first; i < std::min(first + 256, bricks.size()); ++i) {
+                  batchSlots.push_back(uint32_t(i % slots));
+                  batchBlocks.push_back(blocks[i % blocks.size()].halo.data());
+                }
+                pool.upload(batchSlots, batchBlocks);
+              }
               glFinish();
               stages.push_back({"blocks->pool", bricks.size(), secondsSince(start)});
             }

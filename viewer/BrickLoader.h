@@ -42,8 +42,8 @@ class BrickLoader {
   void request(const std::vector<glm::ivec3>& bricks);
   // Drops the queued requests not yet started (the view changed; what is decoding still arrives).
   void cancelQueued();
-  // Up to `max` finished bricks, oldest first. With `wait`, blocks until at least one is finished or
-  // nothing is left to decode. Rethrows what decoding threw (a file that fails to read).
+  // Up to `max` finished bricks, in the order they finished. With `wait`, blocks until `max` (or
+  // maxReady) are finished or nothing is left to decode. Rethrows what decoding threw (a file that fails to read).
   std::vector<LoadedBrick> take(std::size_t max, bool wait);
   // Gives taken blocks' memory back for reuse (the bricks themselves are forgotten).
   void recycle(std::vector<LoadedBrick>&& taken);
@@ -63,7 +63,8 @@ class BrickLoader {
   std::condition_variable work_;   // requests queued, room in ready_, or stopping
   std::condition_variable done_;   // a chunk finished
   std::deque<glm::ivec3> queued_;
-  std::size_t decoding_ = 0;  // bricks in chunks handed to tasks
+  std::size_t decoding_ = 0;  // bricks in chunks being decoded
+  std::size_t waitFor_ = 0;   // ready bricks a blocked take() waits for (0: none waits)
   std::deque<LoadedBrick> ready_;
   std::vector<std::vector<float>> spare_;  // recycled halo blocks
   std::unordered_set<uint64_t> held_;  // keys of queued, decoding and ready bricks

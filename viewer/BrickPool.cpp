@@ -1,7 +1,10 @@
 #include "BrickPool.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "io/BrickCache.h"
 #include "sparse/Error.h"
@@ -28,6 +31,22 @@ glm::ivec3 textureGrid(std::size_t slots, int dim) {
     throw GlError("brick pool: " + std::to_string(slots) + " slots do not fit a 3D texture (GL_MAX_3D_TEXTURE_SIZE " +
                   std::to_string(max3d) + ")");
   return {x, y, z};
+}
+
+// Site l of a scalar slot (global 16b - 2 + l, an even offset) is packed voxel l >> 1 of the halo
+// block, channel ((l.x & 1) << 1) | (l.y & 1); sites with an odd coordinate sum are not FCC sites.
+void spreadOverSites(const float* haloBlock, float* sites) {
+  for (int z = 0; z < kSiteDim; ++z)
+    for (int y = 0; y < kSiteDim; ++y)
+      for (int x = 0; x < kSiteDim; ++x) {
+        const std::size_t site = (std::size_t(z) * kSiteDim + y) * kSiteDim + x;
+        if ((x + y + z) & 1) {
+          sites[site] = 0.0f;
+          continue;
+        }
+        const std::size_t packed = (std::size_t(z >> 1) * kPackedDim + (y >> 1)) * kPackedDim + (x >> 1);
+        sites[site] = haloBlock[packed * 4 + std::size_t(((x & 1) << 1) | (y & 1))];
+      }
 }
 
 }  // namespace
@@ -75,7 +94,10 @@ std::size_t BrickPool::maxSlots(BrickLayout layout) {
 }
 
 BrickPool::BrickPool(BrickLayout layout, std::size_t slots) : layout_(layout), slots_(std::max<std::size_t>(slots, 1)) {
-  if (isScalar(layout)) scratch_.assign(std::size_t(kSiteDim) * kSiteDim * kSiteDim, 0.0f);
+  // Three segments of 256 slots (4 or 8 MB each): the renderer's upload batch, with room for the GPU
+  // to still copy two earlier batches.
+  stagingSlots_ = std::min<std::size_t>(slots_, 256);
+  staging_ = std::make_unique<GlUploadBuffer>(stagingSlots_ * slotBytes(layout), 3);
   if (!isTexture(layout)) {
     buffer_ = std::make_unique<GlBuffer>(slots_ * slotBytes(layout));
     return;
@@ -100,34 +122,39 @@ std::string BrickPool::glslDefines() const {
   return d;
 }
 
-void BrickPool::upload(uint32_t slot, const float* haloBlock) {
-  const float* data = haloBlock;
-  if (isScalar(layout_)) {
-    // Site l of the slot (global 16b - 2 + l, an even offset) is packed voxel l >> 1 of the block,
-    // channel ((l.x & 1) << 1) | (l.y & 1); sites with an odd coordinate sum are not FCC sites.
-    for (int z = 0; z < kSiteDim; ++z)
-      for (int y = 0; y < kSiteDim; ++y)
-        for (int x = 0; x < kSiteDim; ++x) {
-          const std::size_t site = (std::size_t(z) * kSiteDim + y) * kSiteDim + x;
-          if ((x + y + z) & 1) {
-            scratch_[site] = 0.0f;
-            continue;
-          }
-          const std::size_t packed = (std::size_t(z >> 1) * kPackedDim + (y >> 1)) * kPackedDim + (x >> 1);
-          scratch_[site] = haloBlock[packed * 4 + std::size_t(((x & 1) << 1) | (y & 1))];
-        }
-    data = scratch_.data();
+void BrickPool::upload(const std::vector<uint32_t>& slots, const std::vector<const float*>& blocks) {
+  if (slots.size() != blocks.size()) throw Error("brick pool: " + std::to_string(slots.size()) + " slots for " +
+                                                 std::to_string(blocks.size()) + " blocks");
+  const std::size_t bytes = slotBytes(layout_);
+  for (std::size_t first = 0; first < slots.size(); first += stagingSlots_) {
+    const std::size_t count = std::min(stagingSlots_, slots.size() - first);
+    std::size_t segmentOffset = 0;
+    char* segment = static_cast<char*>(staging_->begin(segmentOffset));
+    tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) {
+      float* out = reinterpret_cast<float*>(segment + i * bytes);
+      if (isScalar(layout_)) spreadOverSites(blocks[first + i], out);
+      else std::memcpy(out, blocks[first + i], bytes);
+    });
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t from = segmentOffset + i * bytes;
+      const uint32_t slot = slots[first + i];
+      if (buffer_) {
+        glCopyNamedBufferSubData(staging_->id(), buffer_->id(), GLintptr(from), GLintptr(std::size_t(slot) * bytes),
+                                 GLsizeiptr(bytes));
+        continue;
+      }
+      const int dim = slotDim(layout_);
+      const int s = int(slot);
+      const glm::ivec3 texel = glm::ivec3(s % grid_.x, (s / grid_.x) % grid_.y, s / (grid_.x * grid_.y)) * dim;
+      glBindBuffer(GL_PIXEL_UNPACK_BUFFER, staging_->id());
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      glTextureSubImage3D(texture_, 0, texel.x, texel.y, texel.z, dim, dim, dim, isScalar(layout_) ? GL_RED : GL_RGBA,
+                          GL_FLOAT, reinterpret_cast<const void*>(from));
+    }
+    if (!buffer_) glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    staging_->end();
   }
-  if (buffer_) {
-    buffer_->write(data, slotBytes(layout_), std::size_t(slot) * slotBytes(layout_));
-    return;
-  }
-  const int dim = slotDim(layout_);
-  const int s = int(slot);
-  const glm::ivec3 texel = glm::ivec3(s % grid_.x, (s / grid_.x) % grid_.y, s / (grid_.x * grid_.y)) * dim;
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTextureSubImage3D(texture_, 0, texel.x, texel.y, texel.z, dim, dim, dim, isScalar(layout_) ? GL_RED : GL_RGBA,
-                      GL_FLOAT, data);
+  checkGl("uploading " + std::to_string(slots.size()) + " bricks into the " + brickLayoutName(layout_) + " pool");
 }
 
 void BrickPool::bind() const {

@@ -39,8 +39,11 @@ class BrickPool {
   std::size_t slots() const { return slots_; }
   // "#define FCC_POOL_LAYOUT n" (and the texture grid) for shaders that include pool.glsl.
   std::string glslDefines() const;
-  // Fills `slot` from a halo block (io::kHaloBlockVoxels packed voxels, 4 floats each, x fastest).
-  void upload(uint32_t slot, const float* haloBlock);
+  // Fills slots[i] from blocks[i], halo blocks of io::kHaloBlockVoxels packed voxels (4 floats each, x
+  // fastest), for every i. The blocks are staged side by side in a mapped buffer by all cores (the
+  // scalar layouts spread over their sites on the way), then copied into their slots on the GPU: one
+  // GL call a slot and no copy through the driver, so uploading keeps up with the loader's threads.
+  void upload(const std::vector<uint32_t>& slots, const std::vector<const float*>& blocks);
   // Binds the pool where pool.glsl reads it (SSBO binding 0, or texture unit 3).
   void bind() const;
 
@@ -50,7 +53,8 @@ class BrickPool {
   glm::ivec3 grid_{1};                 // texture layouts: slots per axis
   std::unique_ptr<GlBuffer> buffer_;   // SSBO layouts
   GLuint texture_ = 0;                 // texture layouts
-  std::vector<float> scratch_;         // scalar layouts: one slot of sites
+  std::unique_ptr<GlUploadBuffer> staging_;
+  std::size_t stagingSlots_ = 0;       // slots one segment of staging_ holds
 };
 
 }  // namespace fcc::render

@@ -241,6 +241,44 @@ const void* GlReadbackBuffer::wait() {
   return mapped_;
 }
 
+GlUploadBuffer::GlUploadBuffer(std::size_t segmentBytes, int segments)
+    : segmentBytes_(segmentBytes), fences_(std::size_t(std::max(segments, 1)), nullptr) {
+  const std::size_t bytes = segmentBytes * fences_.size();
+  constexpr GLbitfield kFlags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+  glCreateBuffers(1, &id_);
+  glNamedBufferStorage(id_, GLsizeiptr(bytes), nullptr, kFlags);
+  mapped_ = glMapNamedBufferRange(id_, 0, GLsizeiptr(bytes), kFlags);
+  checkGl("creating a " + std::to_string(bytes) + "-byte upload buffer");
+  if (!mapped_) throw GlError("mapping a " + std::to_string(bytes) + "-byte upload buffer failed");
+}
+
+GlUploadBuffer::~GlUploadBuffer() {
+  for (GLsync fence : fences_)
+    if (fence) glDeleteSync(fence);
+  if (id_) {
+    glUnmapNamedBuffer(id_);
+    glDeleteBuffers(1, &id_);
+  }
+}
+
+void* GlUploadBuffer::begin(std::size_t& offset) {
+  GLsync& fence = fences_[next_];
+  if (fence) {
+    GLenum status = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
+    while (status == GL_TIMEOUT_EXPIRED) status = glClientWaitSync(fence, 0, 1'000'000'000);
+    glDeleteSync(fence);
+    fence = nullptr;
+    if (status == GL_WAIT_FAILED) throw GlError("waiting for an upload buffer failed");
+  }
+  offset = next_ * segmentBytes_;
+  return static_cast<char*>(mapped_) + offset;
+}
+
+void GlUploadBuffer::end() {
+  fences_[next_] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  next_ = (next_ + 1) % fences_.size();
+}
+
 GlTexture2D::GlTexture2D(GLenum internalFormat, int width, int height)
     : format_(internalFormat), width_(width), height_(height) {
   glCreateTextures(GL_TEXTURE_2D, 1, &id_);

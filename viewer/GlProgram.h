@@ -116,6 +116,30 @@ class GlReadbackBuffer {
   const void* mapped_ = nullptr;
 };
 
+// The mirror of GlReadbackBuffer: a host-visible buffer (persistently mapped, write-only) the CPU
+// fills and the GPU copies from, in `segments` equal parts used in turn, so the CPU fills one while
+// the GPU may still copy from the others. begin() waits until the next part's previous copies are done
+// and returns it; after issuing the copies that read it, end() fences them.
+class GlUploadBuffer {
+ public:
+  GlUploadBuffer(std::size_t segmentBytes, int segments);
+  GlUploadBuffer(const GlUploadBuffer&) = delete;
+  GlUploadBuffer& operator=(const GlUploadBuffer&) = delete;
+  ~GlUploadBuffer();
+  GLuint id() const { return id_; }
+  std::size_t segmentBytes() const { return segmentBytes_; }
+  // The segment to fill: its bytes, and its offset in the buffer (for the copies that read it).
+  void* begin(std::size_t& offset);
+  void end();
+
+ private:
+  GLuint id_ = 0;
+  std::size_t segmentBytes_ = 0;
+  std::vector<GLsync> fences_;  // one a segment; null when nothing reads it
+  std::size_t next_ = 0;
+  void* mapped_ = nullptr;
+};
+
 // A 2D texture with immutable storage of one level (glTextureStorage2D), e.g. GL_RGBA32F, used as a
 // compute shader image.
 class GlTexture2D {

@@ -73,6 +73,7 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
                        at("uSurfaceColor"), at("uLightDir")};
   slotBoundsProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/slot_bounds.comp"), defines),
                                           "shaders/slot_bounds.comp");
+  slotBoundsPassUniform_ = slotBoundsProgram_.uniformLocation("uPass");
 
   residency_ = std::make_unique<Residency>(brickMin, brickDims, uint32_t(slots));
   hostCache_ = std::make_unique<io::BrickCache>(store, options.hostCacheBytes);
@@ -90,7 +91,8 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   if (options.timeGpu) passTimer_ = std::make_unique<GpuInterval>();
   slotUse_ = std::make_unique<GlBuffer>(slots * sizeof(uint32_t));
   slotUse_->clear();
-  loader_ = std::make_unique<BrickLoader>(store, *hostCache_, kUploadBatch);
+  // Four batches ready: decoding goes on while render() uploads one (16 MB of blocks).
+  loader_ = std::make_unique<BrickLoader>(store, *hostCache_, 4 * kUploadBatch);
   setIso(std::isnan(options.iso) ? 0.5f * (store.valueMin() + store.valueMax()) : options.iso);
 }
 
@@ -137,8 +139,10 @@ void Raycaster::setLightInCamera(const glm::vec3& direction) {
 void Raycaster::computeSlotBounds(const std::vector<uint32_t>& slots) {
   uploadedSlots_->write(slots);
   pool_->bind();
+  slotUse_->bindBase(GL_SHADER_STORAGE_BUFFER, 5);
   slotBounds_->bindBase(GL_SHADER_STORAGE_BUFFER, 6);
   uploadedSlots_->bindBase(GL_SHADER_STORAGE_BUFFER, 7);
+  glProgramUniform1ui(slotBoundsProgram_.id(), slotBoundsPassUniform_, pass_);
   slotBoundsProgram_.use();
   glDispatchCompute(GLuint(kSlotVoxels / 64), GLuint(slots.size()), 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -288,16 +292,17 @@ uint32_t Raycaster::upload(const std::vector<LoadedBrick>& loaded, std::vector<u
   const auto assigned = residency_->assign(bricks, slotLastUse);  // skips bricks resident meanwhile
   if (assigned.empty()) return 0;
   std::vector<uint32_t> slots;
+  std::vector<const float*> blocks;
   std::size_t next = 0;
   for (const auto& [brick, slot] : assigned) {
     while (loaded[next].brick != brick) ++next;  // assign() keeps the order
-    pool_->upload(slot, loaded[next].halo.data());
-    // Freshly loaded slots count as used now, so the next assignment does not evict them first; on
-    // the host they are pinned until the next pass reports real use.
-    slotUse_->write(&pass_, sizeof pass_, std::size_t(slot) * sizeof(uint32_t));
+    blocks.push_back(loaded[next].halo.data());
+    // Freshly loaded slots count as used now (computeSlotBounds marks them on the GPU), so the next
+    // assignment does not evict them first; on the host they are pinned until the next pass reports.
     slotLastUse[slot] = std::numeric_limits<uint32_t>::max();
     slots.push_back(slot);
   }
+  pool_->upload(slots, blocks);
   computeSlotBounds(slots);
   bricksUploaded_ += assigned.size();
   return uint32_t(assigned.size());

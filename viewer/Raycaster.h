@@ -174,6 +174,7 @@ class Raycaster {
   bool stepStarted_ = false;  // startStep() ran, finishStep() has not
   StepStats startedStep_;     // what startStep() did
   GlProgram program_, slotBoundsProgram_;
+  GLint slotBoundsPassUniform_ = -1;  // its uPass: the pass that marks freshly uploaded slots used
   // raycast.comp's uniform locations, looked up once.
   struct Uniforms {
     GLint resolution, eye, forward, right, up, indexFromWorld, normalFromIndex, iso, brickMin, brickDims, nodeDims,
