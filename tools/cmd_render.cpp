@@ -1,6 +1,10 @@
 // fccvdb render FILE -o OUT.(exr|png): one headless frame of the isosurface (FILE: an FCC .vdb, or any
 // input convert takes, converted once into the cache).
+#include <chrono>
 #include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "Command.h"
 #include "RenderFlags.h"
@@ -14,32 +18,55 @@ Command addRenderCommand(CLI::App& parent) {
   struct Args {
     RenderFlags flags;
     std::string output;
-    bool quiet = false, allowDamaged = false;
+    bool quiet = false, allowDamaged = false, timings = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* app = parent.add_subcommand("render", "Render the isosurface headless (EGL) to EXR (R,G,B,A,Z,N.X,N.Y,N.Z) or PNG");
   addRenderFlags(*app, args->flags);
   app->add_option("-o,--output", args->output, "Output image, .exr or .png")->required();
   app->add_flag("--quiet", args->quiet, "No summary on stderr");
+  app->add_flag("--timings", args->timings, "Print where the wall time went (open, EGL, renderer set-up, frame, image) on stderr");
   app->add_flag("--allow-damaged", args->allowDamaged,
                 "Exit 0 although damaged bricks were met (they are never trusted: rendered as holes, and named on stderr)");
   return {app, [args]() {
+            const auto start = std::chrono::steady_clock::now();
+            std::vector<std::pair<const char*, double>> times;  // stage, seconds since start
+            const auto mark = [&](const char* stage) {
+              times.emplace_back(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            };
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
             checkOutputWritable(args->output);
             const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, args->quiet);
+            mark("input");
             const io::BrickStore store(input->path(), args->flags.grid);
+            mark("open");
             const float iso = isoFromFlags(args->flags, store);
             warnIfIsoOutside(iso, store);
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;
+            mark("egl");
             render::RenderOptions options = renderOptionsFromFlags(args->flags);
             options.iso = iso;
             render::Raycaster raycaster(store, options);
+            mark("renderer");
             const render::FrameStats stats = raycaster.render(camera, width, height);
+            mark("frame");
             const render::FrameImages images = raycaster.readImages();
             io::RenderedImage image{images.width, images.height, &images.rgba, &images.normalDepth};
             io::writeRenderedImage(args->output, image, glm::vec3(0.08f, 0.09f, 0.11f));
+            mark("image");
+            if (args->timings) {
+              std::string line = "timings (s):";
+              double before = 0.0;
+              for (const auto& [stage, at] : times) {
+                char part[64];
+                std::snprintf(part, sizeof part, " %s %.3f", stage, at - before);
+                line += part;
+                before = at;
+              }
+              std::fprintf(stderr, "%s; total %.3f\n", line.c_str(), before);
+            }
             if (!args->quiet)
               std::fprintf(stderr,
                            "wrote %s: %dx%d, iso %g, %d passes, %llu of %llu needed bricks uploaded, %.3f s on %s\n",

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "embedded_shaders.h"
 #include "io/BrickCache.h"
 #include "sparse/Error.h"
 
@@ -108,6 +109,10 @@ BrickPool::BrickPool(BrickLayout layout, std::size_t slots) : layout_(layout), s
   glTextureStorage3D(texture_, 1, isScalar(layout) ? GL_R32F : GL_RGBA32F, grid_.x * dim, grid_.y * dim, grid_.z * dim);
   glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  batchSlots_ = std::make_unique<GlBuffer>(stagingSlots_ * sizeof(uint32_t));
+  scatter_ = GlProgram::compute(withDefines(embedded::shaders("shaders/pool_upload.comp"), glslDefines()),
+                                "shaders/pool_upload.comp");
+  setUniforms(scatter_);
   checkGl("creating the " + brickLayoutName(layout) + " brick pool of " + std::to_string(slots_) + " slots");
 }
 
@@ -115,11 +120,12 @@ BrickPool::~BrickPool() {
   if (texture_) glDeleteTextures(1, &texture_);
 }
 
-std::string BrickPool::glslDefines() const {
-  std::string d = "#define FCC_POOL_LAYOUT " + std::to_string(int(layout_)) + "\n";
-  if (isTexture(layout_))
-    d += "#define FCC_POOL_GRID_X " + std::to_string(grid_.x) + "\n#define FCC_POOL_GRID_Y " + std::to_string(grid_.y) + "\n";
-  return d;
+std::string BrickPool::glslDefines() const { return "#define FCC_POOL_LAYOUT " + std::to_string(int(layout_)) + "\n"; }
+
+void BrickPool::setUniforms(const GlProgram& program) const {
+  if (!isTexture(layout_)) return;
+  const GLint grid = glGetUniformLocation(program.id(), "uPoolGrid");
+  if (grid >= 0) glProgramUniform2i(program.id(), grid, grid_.x, grid_.y);
 }
 
 void BrickPool::upload(const std::vector<uint32_t>& slots, const std::vector<const float*>& blocks) {
@@ -135,23 +141,20 @@ void BrickPool::upload(const std::vector<uint32_t>& slots, const std::vector<con
       if (isScalar(layout_)) spreadOverSites(blocks[first + i], out);
       else std::memcpy(out, blocks[first + i], bytes);
     });
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::size_t from = segmentOffset + i * bytes;
-      const uint32_t slot = slots[first + i];
-      if (buffer_) {
-        glCopyNamedBufferSubData(staging_->id(), buffer_->id(), GLintptr(from), GLintptr(std::size_t(slot) * bytes),
-                                 GLsizeiptr(bytes));
-        continue;
-      }
-      const int dim = slotDim(layout_);
-      const int s = int(slot);
-      const glm::ivec3 texel = glm::ivec3(s % grid_.x, (s / grid_.x) % grid_.y, s / (grid_.x * grid_.y)) * dim;
-      glBindBuffer(GL_PIXEL_UNPACK_BUFFER, staging_->id());
-      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-      glTextureSubImage3D(texture_, 0, texel.x, texel.y, texel.z, dim, dim, dim, isScalar(layout_) ? GL_RED : GL_RGBA,
-                          GL_FLOAT, reinterpret_cast<const void*>(from));
+    if (buffer_) {
+      for (std::size_t i = 0; i < count; ++i)
+        glCopyNamedBufferSubData(staging_->id(), buffer_->id(), GLintptr(segmentOffset + i * bytes),
+                                 GLintptr(std::size_t(slots[first + i]) * bytes), GLsizeiptr(bytes));
+    } else {
+      batchSlots_->write(slots.data() + first, count * sizeof(uint32_t));
+      glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 8, staging_->id(), GLintptr(segmentOffset), GLsizeiptr(count * bytes));
+      batchSlots_->bindBase(GL_SHADER_STORAGE_BUFFER, 9);
+      glBindImageTexture(3, texture_, 0, GL_TRUE, 0, GL_WRITE_ONLY, isScalar(layout_) ? GL_R32F : GL_RGBA32F);
+      scatter_.use();
+      const GLuint texels = GLuint(slotDim(layout_) * slotDim(layout_) * slotDim(layout_));
+      glDispatchCompute((texels + 63) / 64, GLuint(count), 1);
+      glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    if (!buffer_) glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
     staging_->end();
   }
   checkGl("uploading " + std::to_string(slots.size()) + " bricks into the " + brickLayoutName(layout_) + " pool");

@@ -37,8 +37,10 @@ class BrickPool {
 
   BrickLayout layout() const { return layout_; }
   std::size_t slots() const { return slots_; }
-  // "#define FCC_POOL_LAYOUT n" (and the texture grid) for shaders that include pool.glsl.
+  // "#define FCC_POOL_LAYOUT n" for shaders that include pool.glsl; then setUniforms() on each program
+  // (the texture layouts' uPoolGrid).
   std::string glslDefines() const;
+  void setUniforms(const GlProgram& program) const;
   // Fills slots[i] from blocks[i], halo blocks of io::kHaloBlockVoxels packed voxels (4 floats each, x
   // fastest), for every i. The blocks are staged side by side in a mapped buffer by all cores (the
   // scalar layouts spread over their sites on the way), then copied into their slots on the GPU: one
@@ -54,6 +56,8 @@ class BrickPool {
   std::unique_ptr<GlBuffer> buffer_;   // SSBO layouts
   GLuint texture_ = 0;                 // texture layouts
   std::unique_ptr<GlUploadBuffer> staging_;
+  std::unique_ptr<GlBuffer> batchSlots_;  // texture layouts: the slots of a staged segment
+  GlProgram scatter_;                     // texture layouts: shaders/pool_upload.comp
   std::size_t stagingSlots_ = 0;       // slots one segment of staging_ holds
 };
 

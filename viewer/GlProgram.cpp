@@ -241,9 +241,17 @@ const void* GlReadbackBuffer::wait() {
   return mapped_;
 }
 
+std::string withDefines(std::string_view source, const std::string& defines) {
+  std::string s(source);
+  const auto eol = s.find('\n');
+  s.insert(eol == std::string::npos ? s.size() : eol + 1, defines);
+  return s;
+}
+
 GlUploadBuffer::GlUploadBuffer(std::size_t segmentBytes, int segments)
-    : segmentBytes_(segmentBytes), fences_(std::size_t(std::max(segments, 1)), nullptr) {
-  const std::size_t bytes = segmentBytes * fences_.size();
+    // Segments start at multiples of 256 bytes: any GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT allows that.
+    : segmentBytes_((segmentBytes + 255) / 256 * 256), fences_(std::size_t(std::max(segments, 1)), nullptr) {
+  const std::size_t bytes = segmentBytes_ * fences_.size();
   constexpr GLbitfield kFlags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
   glCreateBuffers(1, &id_);
   glNamedBufferStorage(id_, GLsizeiptr(bytes), nullptr, kFlags);

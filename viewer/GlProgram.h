@@ -30,6 +30,9 @@ const char* glErrorName(GLenum code);
 // drained and named).
 void checkGl(std::string_view doing);
 
+// `source` with `defines` ("#define NAME VALUE" lines) inserted after its first line (the #version).
+std::string withDefines(std::string_view source, const std::string& defines);
+
 class GlProgram {
  public:
   // Compiles and links one compute shader. `name` labels errors. Throws GlError: "compiling compute

@@ -22,13 +22,6 @@ constexpr int kMaxPasses = 1 << 20;       // a frame that needs more has a bug, 
 glm::ivec3 toGlm(const openvdb::Coord& c) { return {c.x(), c.y(), c.z()}; }
 
 // `source` with `defines` inserted after its #version line (which must stay first).
-std::string withDefines(std::string_view source, const std::string& defines) {
-  std::string s(source);
-  const auto eol = s.find('\n');
-  s.insert(eol == std::string::npos ? s.size() : eol + 1, defines);
-  return s;
-}
-
 }  // namespace
 
 BrickLayout chooseBrickLayout(const io::BrickStore& store, std::size_t gpuCacheBytes) {
@@ -74,6 +67,8 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   slotBoundsProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/slot_bounds.comp"), defines),
                                           "shaders/slot_bounds.comp");
   slotBoundsPassUniform_ = slotBoundsProgram_.uniformLocation("uPass");
+  pool_->setUniforms(program_);
+  pool_->setUniforms(slotBoundsProgram_);
 
   residency_ = std::make_unique<Residency>(brickMin, brickDims, uint32_t(slots));
   hostCache_ = std::make_unique<io::BrickCache>(store, options.hostCacheBytes);
