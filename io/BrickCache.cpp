@@ -14,11 +14,12 @@ uint64_t brickKey(const glm::ivec3& b) {
 }  // namespace
 
 namespace {
-// Shards: enough that 16+ loader threads rarely meet on one lock, few enough that each keeps a
-// useful share of a small budget (at least 64 bricks a shard).
+// Shards: enough that 16+ loader threads, each touching 27 bricks a block, rarely meet on one lock
+// (64 were too few on the H200 machine), few enough that each keeps a useful share of a small budget
+// (at least 64 bricks a shard).
 std::size_t shardCountFor(std::size_t budgetBricks) {
   std::size_t n = 1;
-  while (n < 64 && budgetBricks / (2 * n) >= 64) n *= 2;
+  while (n < 1024 && budgetBricks / (2 * n) >= 64) n *= 2;
   return n;
 }
 }  // namespace
@@ -67,7 +68,14 @@ std::size_t BrickCache::bytesUsed() const {
   return bricks * kBytesPerBrick;
 }
 
-void assembleHaloBlock(const BrickStore& store, BrickCache& cache, const glm::ivec3& brick, float* out) {
+std::shared_ptr<const BrickValues> BrickValuesMemo::leafValues(const glm::ivec3& brick) {
+  for (const auto& [b, values] : held_)
+    if (b == brick) return values;
+  held_.emplace_back(brick, source_.leafValues(brick));
+  return held_.back().second;
+}
+
+void assembleHaloBlock(const BrickStore& store, BrickValuesSource& cache, const glm::ivec3& brick, float* out) {
   constexpr int D = kBrickPackedDim, H = kHaloBlockDim;
   // The 27 bricks the block touches: the centre and its neighbours (only their border layer is used).
   for (int nz = -1; nz <= 1; ++nz)

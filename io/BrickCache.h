@@ -17,7 +17,14 @@
 
 namespace fcc::io {
 
-class BrickCache {
+// Where io::assembleHaloBlock finds the decoded values of a brick that has a leaf.
+class BrickValuesSource {
+ public:
+  virtual ~BrickValuesSource() = default;
+  virtual std::shared_ptr<const BrickValues> leafValues(const glm::ivec3& brick) = 0;
+};
+
+class BrickCache : public BrickValuesSource {
  public:
   // Bytes one cached brick costs, with its bookkeeping.
   static constexpr std::size_t kBytesPerBrick = sizeof(BrickValues) + 96;
@@ -26,7 +33,7 @@ class BrickCache {
 
   // The decoded values of a brick that has a leaf, from the cache or decoded now. Thread-safe; the
   // returned values stay valid while held, even if evicted meanwhile.
-  std::shared_ptr<const BrickValues> leafValues(const glm::ivec3& brick);
+  std::shared_ptr<const BrickValues> leafValues(const glm::ivec3& brick) override;
 
   std::size_t budgetBytes() const { return budgetBytes_; }
   std::size_t bytesUsed() const;
@@ -46,7 +53,7 @@ class BrickCache {
     std::list<uint64_t> lru;  // most recent first
     std::unordered_map<uint64_t, Entry> entries;
   };
-  Shard& shardOf(uint64_t key) { return shards_[(key * 0x9E3779B97F4A7C15ull) >> 58 & (shards_.size() - 1)]; }
+  Shard& shardOf(uint64_t key) { return shards_[(key * 0x9E3779B97F4A7C15ull) >> 54 & (shards_.size() - 1)]; }
 
   const BrickStore& store_;
   std::size_t budgetBytes_;
@@ -55,10 +62,24 @@ class BrickCache {
   std::atomic<uint64_t> decoded_{0}, hits_{0};
 };
 
+// A few bricks' values held for a batch of halo blocks, in front of a cache: neighbouring blocks share
+// most of their 27 bricks, and each lookup in the shared cache takes a lock that all loader threads
+// contend for. Not thread-safe: one a thread.
+class BrickValuesMemo : public BrickValuesSource {
+ public:
+  explicit BrickValuesMemo(BrickValuesSource& source) : source_(source) {}
+  std::shared_ptr<const BrickValues> leafValues(const glm::ivec3& brick) override;
+  void clear() { held_.clear(); }
+
+ private:
+  BrickValuesSource& source_;
+  std::vector<std::pair<glm::ivec3, std::shared_ptr<const BrickValues>>> held_;
+};
+
 // The packed voxels [8b - 1, 8b + 9)^3 of brick b (the brick and the one-voxel halo its cells'
 // stencils reach), x fastest, as four floats each: what one pool slot of the renderer holds.
 inline constexpr int kHaloBlockDim = kBrickPackedDim + 2;
 inline constexpr int kHaloBlockVoxels = kHaloBlockDim * kHaloBlockDim * kHaloBlockDim;
-void assembleHaloBlock(const BrickStore& store, BrickCache& cache, const glm::ivec3& brick, float* out);
+void assembleHaloBlock(const BrickStore& store, BrickValuesSource& values, const glm::ivec3& brick, float* out);
 
 }  // namespace fcc::io

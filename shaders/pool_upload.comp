@@ -1,8 +1,8 @@
 #version 450 core
-// Copies freshly staged slots into a texture pool (viewer/BrickPool.cpp; the SSBO layouts copy with
-// glCopyNamedBufferSubData instead). One dispatch a batch: work group y is the batch's i-th slot,
-// invocation x a texel of it. Far faster than a glTextureSubImage3D a slot from the unpack buffer
-// (31 k slots/s on the H200: each call is a driver round trip).
+// Copies freshly staged slots into the pool (viewer/BrickPool.cpp), any layout. One dispatch a batch:
+// work group y is the batch's i-th slot, invocation x a texel of it. Far faster than a GL call a slot
+// (glTextureSubImage3D from the unpack buffer: 31 k slots/s on the H200; glCopyNamedBufferSubData:
+// 300 k slots/s): each call is a driver round trip.
 #define FCC_GLSL 1
 #include "FccSpline.h"  // pool.glsl gathers stencils in FccSpline.h's types
 #include "pool.glsl"
@@ -10,11 +10,20 @@
 layout(local_size_x = 64) in;
 
 #if defined(FCC_POOL_SCALAR)
+#define FCC_TEXEL float
+#else
+#define FCC_TEXEL vec4
+#endif
+layout(std430, binding = 8) readonly buffer Staged { FCC_TEXEL staged[]; };
+#if FCC_POOL_LAYOUT >= 2
+#if defined(FCC_POOL_SCALAR)
 layout(binding = 3, r32f) uniform writeonly image3D uPoolImage;
-layout(std430, binding = 8) readonly buffer Staged { float staged[]; };
 #else
 layout(binding = 3, rgba32f) uniform writeonly image3D uPoolImage;
-layout(std430, binding = 8) readonly buffer Staged { vec4 staged[]; };
+#endif
+#else
+// The pool buffer again, writable (pool.glsl reads it at binding 0).
+layout(std430, binding = 10) writeonly buffer PoolOut { FCC_TEXEL poolOut[]; };
 #endif
 layout(std430, binding = 9) readonly buffer Slots { uint batchSlots[]; };
 
@@ -22,11 +31,12 @@ void main() {
   uint texel = gl_GlobalInvocationID.x;
   if (texel >= uint(kSlotTexels)) return;
   uint i = gl_WorkGroupID.y;
+  FCC_TEXEL value = staged[i * uint(kSlotTexels) + texel];
   selectSlot(batchSlots[i], ivec3(0));
+#if FCC_POOL_LAYOUT >= 2
   ivec3 local = ivec3(int(texel) % kSlotDim, (int(texel) / kSlotDim) % kSlotDim, int(texel) / (kSlotDim * kSlotDim));
-#if defined(FCC_POOL_SCALAR)
-  imageStore(uPoolImage, gSlotTexel + local, vec4(staged[i * uint(kSlotTexels) + texel]));
+  imageStore(uPoolImage, gSlotTexel + local, vec4(value));
 #else
-  imageStore(uPoolImage, gSlotTexel + local, staged[i * uint(kSlotTexels) + texel]);
+  poolOut[gSlotBase + texel] = value;
 #endif
 }

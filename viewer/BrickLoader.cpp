@@ -119,9 +119,10 @@ void BrickLoader::work() {
 void BrickLoader::decodeChunk(std::vector<LoadedBrick>& chunk) {
   std::exception_ptr error;
   try {
+    io::BrickValuesMemo memo(cache_);  // the chunk's bricks are mostly neighbours: one cache lookup each
     for (LoadedBrick& b : chunk) {
       b.halo.resize(std::size_t(io::kHaloBlockVoxels) * 4);  // no-op for a recycled block
-      io::assembleHaloBlock(store_, cache_, b.brick, b.halo.data());
+      io::assembleHaloBlock(store_, memo, b.brick, b.halo.data());
     }
   } catch (...) {
     error = std::current_exception();

@@ -99,6 +99,9 @@ BrickPool::BrickPool(BrickLayout layout, std::size_t slots) : layout_(layout), s
   // to still copy two earlier batches.
   stagingSlots_ = std::min<std::size_t>(slots_, 256);
   staging_ = std::make_unique<GlUploadBuffer>(stagingSlots_ * slotBytes(layout), 3);
+  batchSlots_ = std::make_unique<GlBuffer>(stagingSlots_ * sizeof(uint32_t));
+  scatter_ = GlProgram::compute(withDefines(embedded::shaders("shaders/pool_upload.comp"), glslDefines()),
+                                "shaders/pool_upload.comp");
   if (!isTexture(layout)) {
     buffer_ = std::make_unique<GlBuffer>(slots_ * slotBytes(layout));
     return;
@@ -109,9 +112,6 @@ BrickPool::BrickPool(BrickLayout layout, std::size_t slots) : layout_(layout), s
   glTextureStorage3D(texture_, 1, isScalar(layout) ? GL_R32F : GL_RGBA32F, grid_.x * dim, grid_.y * dim, grid_.z * dim);
   glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  batchSlots_ = std::make_unique<GlBuffer>(stagingSlots_ * sizeof(uint32_t));
-  scatter_ = GlProgram::compute(withDefines(embedded::shaders("shaders/pool_upload.comp"), glslDefines()),
-                                "shaders/pool_upload.comp");
   setUniforms(scatter_);
   checkGl("creating the " + brickLayoutName(layout) + " brick pool of " + std::to_string(slots_) + " slots");
 }
@@ -141,20 +141,15 @@ void BrickPool::upload(const std::vector<uint32_t>& slots, const std::vector<con
       if (isScalar(layout_)) spreadOverSites(blocks[first + i], out);
       else std::memcpy(out, blocks[first + i], bytes);
     });
-    if (buffer_) {
-      for (std::size_t i = 0; i < count; ++i)
-        glCopyNamedBufferSubData(staging_->id(), buffer_->id(), GLintptr(segmentOffset + i * bytes),
-                                 GLintptr(std::size_t(slots[first + i]) * bytes), GLsizeiptr(bytes));
-    } else {
-      batchSlots_->write(slots.data() + first, count * sizeof(uint32_t));
-      glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 8, staging_->id(), GLintptr(segmentOffset), GLsizeiptr(count * bytes));
-      batchSlots_->bindBase(GL_SHADER_STORAGE_BUFFER, 9);
-      glBindImageTexture(3, texture_, 0, GL_TRUE, 0, GL_WRITE_ONLY, isScalar(layout_) ? GL_R32F : GL_RGBA32F);
-      scatter_.use();
-      const GLuint texels = GLuint(slotDim(layout_) * slotDim(layout_) * slotDim(layout_));
-      glDispatchCompute((texels + 63) / 64, GLuint(count), 1);
-      glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    }
+    batchSlots_->write(slots.data() + first, count * sizeof(uint32_t));
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 8, staging_->id(), GLintptr(segmentOffset), GLsizeiptr(count * bytes));
+    batchSlots_->bindBase(GL_SHADER_STORAGE_BUFFER, 9);
+    if (buffer_) buffer_->bindBase(GL_SHADER_STORAGE_BUFFER, 10);
+    else glBindImageTexture(3, texture_, 0, GL_TRUE, 0, GL_WRITE_ONLY, isScalar(layout_) ? GL_R32F : GL_RGBA32F);
+    scatter_.use();
+    const GLuint texels = GLuint(slotDim(layout_) * slotDim(layout_) * slotDim(layout_));
+    glDispatchCompute((texels + 63) / 64, GLuint(count), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     staging_->end();
   }
   checkGl("uploading " + std::to_string(slots.size()) + " bricks into the " + brickLayoutName(layout_) + " pool");

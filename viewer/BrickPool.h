@@ -43,8 +43,8 @@ class BrickPool {
   void setUniforms(const GlProgram& program) const;
   // Fills slots[i] from blocks[i], halo blocks of io::kHaloBlockVoxels packed voxels (4 floats each, x
   // fastest), for every i. The blocks are staged side by side in a mapped buffer by all cores (the
-  // scalar layouts spread over their sites on the way), then copied into their slots on the GPU: one
-  // GL call a slot and no copy through the driver, so uploading keeps up with the loader's threads.
+  // scalar layouts spread over their sites on the way), then copied into their slots on the GPU by one
+  // compute dispatch a batch: no GL call a slot, no copy through the driver.
   void upload(const std::vector<uint32_t>& slots, const std::vector<const float*>& blocks);
   // Binds the pool where pool.glsl reads it (SSBO binding 0, or texture unit 3).
   void bind() const;
@@ -56,8 +56,8 @@ class BrickPool {
   std::unique_ptr<GlBuffer> buffer_;   // SSBO layouts
   GLuint texture_ = 0;                 // texture layouts
   std::unique_ptr<GlUploadBuffer> staging_;
-  std::unique_ptr<GlBuffer> batchSlots_;  // texture layouts: the slots of a staged segment
-  GlProgram scatter_;                     // texture layouts: shaders/pool_upload.comp
+  std::unique_ptr<GlBuffer> batchSlots_;  // the slots of a staged segment
+  GlProgram scatter_;                     // shaders/pool_upload.comp: staged segment -> slots
   std::size_t stagingSlots_ = 0;       // slots one segment of staging_ holds
 };
 
