@@ -613,7 +613,6 @@ VdbLeafReader::VdbLeafReader(const std::string& path, const std::string& gridNam
       grid = openvdb::FloatGrid::create();
     else
       grid = FccGrid::create();
-    grid->setSaveFloatAsHalf(half_);
     for (const MetaEntry& e : meta) {
       // Archive drops the delayed-load metadata (it only serves OpenVDB's own reading), and MetaMap::readMeta
       // drops unknown temporary ("__") metadata. Neither is ever parsed here.
@@ -644,6 +643,11 @@ VdbLeafReader::VdbLeafReader(const std::string& path, const std::string& gridNam
         r.fail("metadata " + quotedText(e.name) + " (" + escaped(e.type) + ") is refused: " + ex.what());
       }
     }
+    // After the metadata: OpenVDB keeps the half flag as metadata ("is_saved_as_half_float"), which the file
+    // holds too, and a file whose metadata contradicts its descriptor made OpenVDB read the topology's tile
+    // values at another size than the walk above checked (a heap overflow; found by fuzz_vdb_leaf_reader).
+    // The descriptor decides, as for the leaf buffers.
+    grid->setSaveFloatAsHalf(half_);
 
     // --- Transform and topology through OpenVDB, on a stream tagged as Archive::readGrid tags it.
     {

@@ -1,7 +1,7 @@
 // Writes the seed corpus of fuzz_vdb_leaf_reader: small .vdb files (one root child each, a few leaves)
 // covering what the reader distinguishes — float and Vec4f trees, every compression, half storage, every
 // kind of inactive values (compression metadata 0 to 6), tiles at each level, a grid without leaves, a
-// grid of another type and an instanced grid. Usage: fuzz_make_vdb_seeds FOLDER (see make_seeds.sh).
+// grid of another type and an instanced grid. Usage: fuzz_make_vdb_seeds FOLDER (make_seeds.py runs it).
 #include <openvdb/openvdb.h>
 
 #include <cstdio>

@@ -665,6 +665,30 @@ TEST(VdbLeafReader, MetadataOpenVdbRefusesIsAnInputError) {
               testing::HasSubstr(": metadata \"aa\" (float) is refused: "));
 }
 
+// The grid's metadata says "is_saved_as_half_float" too; OpenVDB read the topology by it, the walk of the
+// topology by the descriptor ("_HalfFloat"). The descriptor decides: the file reads as written.
+TEST(VdbLeafReader, HalfFlagInMetadataDoesNotOverrideTheDescriptor) {
+  TempDir dir;
+  const std::string path = dir / "half.vdb";
+  writeFile(path, {craftedGrid<openvdb::FloatGrid>("crafted", 2.5f, /*compact=*/true)}, vio::COMPRESS_ZIP, true);
+  std::string bytes = fileBytes(path);
+  const std::string flag = std::string("is_saved_as_half_float") + std::string("\x04\0\0\0bool\x01\0\0\0\x01", 13);
+  const size_t at = bytes.find(flag);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + flag.size() - 1] = 0;  // the metadata now says full floats
+  const std::string patched = dir / "patched.vdb";
+  writeBytes(patched, bytes);
+  const VdbLeafReader original(path, "crafted", {}), reader(patched, "crafted", {});
+  EXPECT_TRUE(reader.storedAsHalf());
+  ASSERT_EQ(reader.leafCount(), original.leafCount());
+  float a[512], b[512];
+  for (size_t i = 0; i < reader.leafCount(); ++i) {
+    original.readLeaf(i, a);
+    reader.readLeaf(i, b);
+    EXPECT_EQ(0, std::memcmp(a, b, sizeof a)) << "leaf " << i;
+  }
+}
+
 // The inputs fuzz_vdb_leaf_reader found, kept in its corpus: each opens or is refused with InputError.
 TEST(VdbLeafReader, FuzzRegressionInputsAreRefused) {
   const std::filesystem::path corpus = std::filesystem::path(FCC_SOURCE_DIR) / "tests/fuzz/corpus/vdb_leaf_reader";
@@ -677,7 +701,7 @@ TEST(VdbLeafReader, FuzzRegressionInputsAreRefused) {
     for (const auto& g : VdbLeafReader::listGrids(entry.path().string())) openAndReadAll(entry.path().string(), g.name, o);
     EXPECT_GT(o.refused, 0);
   }
-  EXPECT_GE(seen, 2);
+  EXPECT_GE(seen, 3);
 }
 
 // ---------------------------------------------------------------------------------------------------------
