@@ -4,7 +4,8 @@
 #
 #   ./setup.sh demo    install, build, convert a generated Cartesian volume to FCC, describe it and
 #                      render its isosurface headless (PNG and EXR)
-#   ./setup.sh test    install, build, run the whole test suite (ctest)
+#   ./setup.sh test    install, build, run the whole test suite (ctest), then each fuzz target of the file
+#                      readers for FCC_FUZZ_SECONDS seconds (default 45; 0 skips them; docs/RELIABILITY.md)
 #   ./setup.sh build   install and build only
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -16,7 +17,8 @@ packages=(build-essential cmake pkg-config ccache python3
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers
   libglfw3-dev libglm-dev libopenexr-dev libpng-dev libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev libx11-dev libxrandr-dev
   libinsighttoolkit5-dev libgdcm-tools
-  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev xvfb xauth)
+  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev xvfb xauth
+  clang libclang-rt-14-dev)  # the fuzz targets: clang, and its libFuzzer and sanitizer runtimes
 
 missing=()
 for p in "${packages[@]}"; do
@@ -48,5 +50,15 @@ case "$mode" in
     ;;
   test)
     ctest --test-dir "$build" --output-on-failure -j2
+    # The readers' fuzz targets (tests/fuzz), each over a copy of its seed corpus: a crash, leak, hang,
+    # sanitizer report or oversized allocation fails the run. A clang build of those few files only.
+    fuzz_seconds=${FCC_FUZZ_SECONDS:-45}
+    if [ "$fuzz_seconds" -gt 0 ]; then
+      fuzz_build=${FCC_FUZZ_BUILD_DIR:-build-fuzz}
+      CC=clang CXX=clang++ cmake -S . -B "$fuzz_build" -DFCC_FUZZ=ON -DFCC_BUILD_TESTS=OFF \
+        -DFCC_BUILD_BENCHMARKS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+      cmake --build "$fuzz_build" -j2 --target fuzz_all
+      tests/fuzz/run_fuzzers.sh "$fuzz_build" "$fuzz_seconds"
+    fi
     ;;
 esac

@@ -305,26 +305,21 @@ struct Format {
   uint32_t compression = 0;
 };
 
-// Parses the record's head from `p` (`avail` bytes of it are present; fewer than the whole record while
-// indexing). Throws Damaged for anything the format does not allow.
-Record parseRecord(const uint8_t* p, uint64_t avail, const Mask3& topologyMask, const Format& f) {
+// Parses io::writeCompressedValues' layout at p + at (`avail` bytes from p are present; fewer than the
+// whole record while indexing) for a node of `total` values, `active` of them on, whose selection mask
+// takes `maskBytes`: a leaf's buffer after its value mask, and an internal node's tile values in the
+// topology. Fills r's layout fields; throws Damaged for anything the format does not allow.
+void parseValues(const uint8_t* p, uint64_t avail, uint64_t at, uint32_t total, uint32_t active, size_t maskBytes,
+                 const Format& f, Record& r) {
   auto need = [&](uint64_t n, const char* what) {
     if (n > avail) throw Damaged{std::string(what) + " runs past the end of the grid's buffer section"};
   };
-  need(kMaskBytes + 1, "the value mask");
-  bool maskDiffers = false;
-  for (int w = 0; w < 8; ++w) {
-    uint64_t word;
-    std::memcpy(&word, p + 8 * w, 8);
-    if (word != topologyMask.getWord<uint64_t>(w)) maskDiffers = true;
-  }
-  Record r;
-  if (maskDiffers) r.damage = "its value mask differs from the topology's";
-  r.metadata = int8_t(p[kMaskBytes]);
+  need(at + 1, "the compression metadata");
+  r.metadata = int8_t(p[at]);
   if (r.metadata < openvdb::io::NO_MASK_OR_INACTIVE_VALS || r.metadata > openvdb::io::NO_MASK_AND_ALL_VALS)
     throw Damaged{"compression metadata " + std::to_string(int(r.metadata)) + " (valid: 0 to 6)"};
   const size_t valueSize = 4 * size_t(f.components);  // sizeof(ValueType): inactive values are never half
-  uint64_t at = kMaskBytes + 1;
+  at += 1;
   using namespace openvdb::io;
   if (r.metadata == NO_MASK_AND_ONE_INACTIVE_VAL || r.metadata == MASK_AND_ONE_INACTIVE_VAL ||
       r.metadata == MASK_AND_TWO_INACTIVE_VALS) {
@@ -334,18 +329,18 @@ Record parseRecord(const uint8_t* p, uint64_t avail, const Mask3& topologyMask, 
   if (r.metadata == MASK_AND_NO_INACTIVE_VALS || r.metadata == MASK_AND_ONE_INACTIVE_VAL ||
       r.metadata == MASK_AND_TWO_INACTIVE_VALS) {
     r.selectionAt = at;
-    at += kMaskBytes;
+    at += maskBytes;
   }
   need(at, "the inactive values");
   const bool maskCompressed = f.compression & COMPRESS_ACTIVE_MASK;
-  r.valueCount = (maskCompressed && r.metadata != NO_MASK_AND_ALL_VALS) ? topologyMask.countOn() : kLeafVoxels;
+  r.valueCount = (maskCompressed && r.metadata != NO_MASK_AND_ALL_VALS) ? active : total;
   r.decodedBytes = uint64_t(r.valueCount) * (f.half ? 2 : 4) * uint64_t(f.components);
   r.payloadAt = at;
-  if (f.half && r.valueCount == 0) return r;  // HalfReader reads nothing at all, not even a size
+  if (f.half && r.valueCount == 0) return;  // HalfReader reads nothing at all, not even a size
   const bool blosc = f.compression & COMPRESS_BLOSC, zip = !blosc && (f.compression & COMPRESS_ZIP);
   if (!blosc && !zip) {
     r.payloadBytes = r.decodedBytes;
-    return r;
+    return;
   }
   need(at + 8, "the size of the values");
   int64_t stored;
@@ -356,7 +351,7 @@ Record parseRecord(const uint8_t* p, uint64_t avail, const Mask3& topologyMask, 
       throw Damaged{"raw values of " + std::to_string(-stored) + " bytes where " + std::to_string(r.valueCount) +
                     " values take " + std::to_string(r.decodedBytes)};
     r.payloadBytes = r.decodedBytes;
-    return r;
+    return;
   }
   r.payloadBytes = uint64_t(stored);
   if (zip) {
@@ -365,7 +360,7 @@ Record parseRecord(const uint8_t* p, uint64_t avail, const Mask3& topologyMask, 
       throw Damaged{"zip data of " + std::to_string(stored) + " bytes for " + std::to_string(r.decodedBytes) +
                     " bytes of values (valid: up to " + std::to_string(bound) + ")"};
     r.encoding = Record::Encoding::Zip;
-    return r;
+    return;
   }
   if (r.payloadBytes < kBloscHeader || r.payloadBytes > r.decodedBytes + BLOSC_MAX_OVERHEAD)
     throw Damaged{"blosc data of " + std::to_string(stored) + " bytes for " + std::to_string(r.decodedBytes) +
@@ -377,8 +372,153 @@ Record parseRecord(const uint8_t* p, uint64_t avail, const Mask3& topologyMask, 
       r.damage.empty())
     r.damage = "its blosc header does not describe " + std::to_string(r.decodedBytes) + " bytes in " + std::to_string(stored);
   r.encoding = Record::Encoding::Blosc;
+}
+
+// Decodes the values of `rec` stored at `src` into `dst` (rec.decodedBytes bytes). Returns what failed, or
+// nothing.
+std::string decodeValues(const Record& rec, const uint8_t* src, uint8_t* dst) {
+  switch (rec.encoding) {
+    case Record::Encoding::Raw:
+      if (rec.decodedBytes > 0) std::memcpy(dst, src, size_t(rec.decodedBytes));
+      return {};
+    case Record::Encoding::Blosc: {
+      const int n = blosc_decompress_ctx(src, dst, size_t(rec.decodedBytes), /*numinternalthreads=*/1);
+      if (n < 0 || uint64_t(n) != rec.decodedBytes)
+        return "its blosc data does not decompress to " + std::to_string(rec.decodedBytes) + " bytes (" +
+               (n < 0 ? "blosc error " + std::to_string(n) : std::to_string(n) + " bytes") + ")";
+      return {};
+    }
+    case Record::Encoding::Zip: {
+      uLongf n = uLongf(rec.decodedBytes);
+      const int status = uncompress(dst, &n, src, uLong(rec.payloadBytes));
+      if (status != Z_OK || n != rec.decodedBytes)
+        return "its zip data does not inflate to " + std::to_string(rec.decodedBytes) + " bytes (" +
+               (status != Z_OK ? std::string(zError(status)) : std::to_string(n) + " bytes") + ")";
+      return {};
+    }
+  }
+  return "unknown encoding";
+}
+
+// Parses a leaf record's head from `p` (`avail` bytes of it are present; fewer than the whole record while
+// indexing): its value mask, then its values. Throws Damaged for anything the format does not allow.
+Record parseRecord(const uint8_t* p, uint64_t avail, const Mask3& topologyMask, const Format& f) {
+  if (kMaskBytes + 1 > avail) throw Damaged{"the value mask runs past the end of the grid's buffer section"};
+  Record r;
+  for (int w = 0; w < 8; ++w) {
+    uint64_t word;
+    std::memcpy(&word, p + 8 * w, 8);
+    if (word != topologyMask.getWord<uint64_t>(w)) r.damage = "its value mask differs from the topology's";
+  }
+  parseValues(p, avail, kMaskBytes, kLeafVoxels, topologyMask.countOn(), kMaskBytes, f, r);
   return r;
 }
+
+// OpenVDB's Tree/RootNode/InternalNode/LeafNode::readTopology trust every byte they read: a compressed
+// size prefix is allocated as it says and a raw one copied into a buffer sized by the node (a heap
+// overflow), a second root child at an origin already taken replaces the first (leaked), an unaligned
+// root origin or a bit on in both of a node's masks (a child pointer then read as a tile value) breaks
+// the tree's invariants, and a tile's active flag is loaded as a bool whatever its byte. So the topology
+// is walked here first, byte for byte as OpenVDB will read it (file versions 222 to 224), and OpenVDB
+// reads only what passed. Found by fuzz_vdb_leaf_reader (docs/RELIABILITY.md).
+class TopologyCheck {
+ public:
+  TopologyCheck(FieldReader& r, const Format& f) : r_(r), f_(f) {}
+
+  void tree() {
+    const int32_t bufferCount = r_.get<int32_t>("the topology");
+    if (bufferCount != 1) r_.fail("its tree has " + std::to_string(bufferCount) + " buffers (valid: 1)");
+    const size_t valueSize = 4 * size_t(f_.components);
+    r_.skip(valueSize, "the background");
+    const uint64_t tiles = r_.get<uint32_t>("the root tile count"), children = r_.get<uint32_t>("the root child count");
+    const uint64_t tileBytes = 12 + valueSize + 1, childBytes = 12 + 2 * 4096 + 1;
+    if (tiles * tileBytes + children * childBytes > r_.cursor().left())
+      r_.fail("its root claims " + std::to_string(tiles) + " tiles and " + std::to_string(children) +
+              " children, more than fit in its topology");
+    std::vector<Coord> keys;
+    keys.reserve(size_t(tiles + children));
+    for (uint64_t n = 0; n < tiles; ++n) {
+      keys.push_back(rootKey("a root tile"));
+      r_.skip(valueSize, "a root tile's value");
+      const uint8_t active = r_.get<uint8_t>("a root tile's active flag");
+      if (active > 1)
+        r_.fail("the root tile at " + coordText(keys.back()) + " has active flag " + std::to_string(active) + " (valid: 0, 1)");
+    }
+    for (uint64_t n = 0; n < children; ++n) {
+      keys.push_back(rootKey("a root child"));
+      internal(keys.back(), 5);
+    }
+    std::sort(keys.begin(), keys.end());
+    const auto twice = std::adjacent_find(keys.begin(), keys.end());
+    if (twice != keys.end()) r_.fail("its root holds two nodes at " + coordText(*twice));
+  }
+
+ private:
+  // A root tile's or child's origin: a multiple of 4096, the 32^3 node's extent, in each axis.
+  Coord rootKey(const char* what) {
+    Coord c;
+    for (int axis = 0; axis < 3; ++axis) c[axis] = r_.get<int32_t>(what);
+    if ((c.x() | c.y() | c.z()) & 4095)
+      r_.fail(std::string(what) + " at " + coordText(c) + " is not at a multiple of 4096");
+    return c;
+  }
+
+  // An internal node of 2^(3 log2) values: child mask, value mask, tile values, then its children in
+  // child-mask order (16^3 nodes under a 32^3 node, leaves' value masks under a 16^3 node).
+  void internal(const Coord& origin, int log2) {
+    const uint32_t total = 1u << (3 * log2);
+    const size_t maskBytes = total / 8;
+    const std::string node = "the " + std::to_string(1 << log2) + "^3 node at " + coordText(origin);
+    const uint8_t* p = r_.cursor().peek(2 * maskBytes);
+    if (!p) r_.fail(node + ": its masks run past " + r_.endName());
+    std::vector<uint64_t> childMask(maskBytes / 8);
+    std::memcpy(childMask.data(), p, maskBytes);
+    uint32_t valuesOn = 0;
+    for (size_t w = 0; w < childMask.size(); ++w) {
+      uint64_t valueWord;
+      std::memcpy(&valueWord, p + maskBytes + 8 * w, 8);
+      if (valueWord & childMask[w]) r_.fail(node + ": a child is also an active tile (its masks overlap)");
+      valuesOn += uint32_t(__builtin_popcountll(valueWord));
+    }
+    r_.cursor().skip(2 * maskBytes);
+
+    const uint64_t avail = std::min<uint64_t>(1 + 2 * 16 + maskBytes + 8 + kBloscHeader, r_.cursor().left());
+    Record values;
+    try {
+      parseValues(r_.cursor().peek(size_t(avail)), avail, 0, total, valuesOn, maskBytes, f_, values);
+    } catch (const Damaged& d) {
+      r_.fail(node + ": its tile values: " + d.what);
+    }
+    if (!values.damage.empty()) r_.fail(node + ": its tile values: " + values.damage);
+    // OpenVDB throws for values that do not decompress, after it allocated the node: leaked. Decoded here
+    // once more (at most 512 KiB, and only where compressed).
+    const uint8_t* stored = r_.cursor().peek(size_t(values.size()));
+    if (!stored) r_.fail(node + ": its tile values run past " + r_.endName());
+    if (values.encoding != Record::Encoding::Raw) {
+      scratch_.resize(size_t(values.decodedBytes));
+      if (const std::string failed = decodeValues(values, stored + values.payloadAt, scratch_.data()); !failed.empty())
+        r_.fail(node + ": its tile values: " + failed);
+    }
+    r_.cursor().skip(values.size());
+
+    const int childLog2Extent = log2 == 5 ? 7 : 3;  // a 16^3 node spans 128 voxels, a leaf 8
+    for (size_t w = 0; w < childMask.size(); ++w)
+      for (uint64_t bits = childMask[w]; bits; bits &= bits - 1) {
+        const uint32_t i = uint32_t(64 * w) + uint32_t(__builtin_ctzll(bits));
+        const Coord child = origin + (Coord(int32_t(i >> (2 * log2)), int32_t((i >> log2) & ((1u << log2) - 1)),
+                                            int32_t(i & ((1u << log2) - 1)))
+                                      << size_t(childLog2Extent));
+        if (log2 == 5)
+          internal(child, 4);
+        else
+          r_.skip(kMaskBytes, "the value mask of the leaf at " + coordText(child));
+      }
+  }
+
+  FieldReader& r_;
+  const Format f_;
+  std::vector<uint8_t> scratch_;
+};
 
 template <class TreeT>
 const TreeT& treeOf(const openvdb::GridBase& grid) {
@@ -473,7 +613,6 @@ VdbLeafReader::VdbLeafReader(const std::string& path, const std::string& gridNam
       grid = openvdb::FloatGrid::create();
     else
       grid = FccGrid::create();
-    grid->setSaveFloatAsHalf(half_);
     for (const MetaEntry& e : meta) {
       // Archive drops the delayed-load metadata (it only serves OpenVDB's own reading), and MetaMap::readMeta
       // drops unknown temporary ("__") metadata. Neither is ever parsed here.
@@ -496,8 +635,19 @@ VdbLeafReader::VdbLeafReader(const std::string& path, const std::string& gridNam
       if (!in || in.tellg() != std::streampos(bytes.size()))
         r.fail("metadata " + quotedText(e.name) + " (" + escaped(e.type) + ") holds " + std::to_string(e.valueBytes) +
                " bytes, not what its type stores");
-      grid->insertMeta(e.name, *value);
+      try {
+        grid->insertMeta(e.name, *value);
+      } catch (const std::exception& ex) {
+        // OpenVDB's MetaMap throws its own ValueError for an empty name and TypeError for a name given
+        // twice with two types; found by fuzz_vdb_leaf_reader (docs/RELIABILITY.md).
+        r.fail("metadata " + quotedText(e.name) + " (" + escaped(e.type) + ") is refused: " + ex.what());
+      }
     }
+    // After the metadata: OpenVDB keeps the half flag as metadata ("is_saved_as_half_float"), which the file
+    // holds too, and a file whose metadata contradicts its descriptor made OpenVDB read the topology's tile
+    // values at another size than the walk above checked (a heap overflow; found by fuzz_vdb_leaf_reader).
+    // The descriptor decides, as for the leaf buffers.
+    grid->setSaveFloatAsHalf(half_);
 
     // --- Transform and topology through OpenVDB, on a stream tagged as Archive::readGrid tags it.
     {
@@ -530,21 +680,13 @@ VdbLeafReader::VdbLeafReader(const std::string& path, const std::string& gridNam
     if (!in || topologyPos < 0 || uint64_t(topologyPos) > blockPos_)
       throw InputError(gridText + " is damaged: its transform runs past the grid's buffer section");
     {
-      // The counts OpenVDB's RootNode::readTopology loops over, checked against the bytes there are.
-      Cursor t(fd_, path, uint64_t(topologyPos), blockPos_, 1 << 12);
+      Cursor t(fd_, path, uint64_t(topologyPos), blockPos_, 1 << 16);
       FieldReader tr(t, gridText + " is damaged: ");
       tr.setEndName("the grid's buffer section");
-      const int32_t bufferCount = tr.get<int32_t>("the topology");
-      if (bufferCount != 1)
-        tr.fail("its tree has " + std::to_string(bufferCount) + " buffers (valid: 1)");
-      const size_t valueSize = 4 * size_t(components_);
-      tr.skip(valueSize, "the background");
-      const uint64_t tiles = tr.get<uint32_t>("the root tile count"), children = tr.get<uint32_t>("the root child count");
-      const uint64_t tileBytes = 12 + valueSize + 1, childBytes = 12 + 2 * 4096 + 1;
-      if (tiles * tileBytes + children * childBytes > t.left())
-        tr.fail("its root claims " + std::to_string(tiles) + " tiles and " + std::to_string(children) +
-                " children, more than fit in its " + std::to_string(blockPos_ - uint64_t(topologyPos)) +
-                " bytes of topology");
+      TopologyCheck(tr, Format{components_, half_, compression_}).tree();
+      if (t.pos() != blockPos_)
+        tr.fail("its topology ends at byte " + std::to_string(t.pos()) + " but its buffers start at byte " +
+                std::to_string(blockPos_));
     }
     try {
       grid->readTopology(in);
@@ -659,27 +801,8 @@ void VdbLeafReader::readLeaf(size_t i, float* values) const {
 
   // The stored values, decoded to their element size.
   alignas(8) uint8_t decoded[kLeafVoxels * 16];
-  const uint8_t* src = record + rec.payloadAt;
-  switch (rec.encoding) {
-    case Record::Encoding::Raw:
-      std::memcpy(decoded, src, size_t(rec.decodedBytes));
-      break;
-    case Record::Encoding::Blosc: {
-      const int n = blosc_decompress_ctx(src, decoded, size_t(rec.decodedBytes), /*numinternalthreads=*/1);
-      if (n < 0 || uint64_t(n) != rec.decodedBytes)
-        throw damaged("its blosc data does not decompress to " + std::to_string(rec.decodedBytes) + " bytes (" +
-                      (n < 0 ? "blosc error " + std::to_string(n) : std::to_string(n) + " bytes") + ")");
-      break;
-    }
-    case Record::Encoding::Zip: {
-      uLongf n = uLongf(rec.decodedBytes);
-      const int status = uncompress(decoded, &n, src, uLong(rec.payloadBytes));
-      if (status != Z_OK || n != rec.decodedBytes)
-        throw damaged("its zip data does not inflate to " + std::to_string(rec.decodedBytes) + " bytes (" +
-                      (status != Z_OK ? std::string(zError(status)) : std::to_string(n) + " bytes") + ")");
-      break;
-    }
-  }
+  if (const std::string failed = decodeValues(rec, record + rec.payloadAt, decoded); !failed.empty())
+    throw damaged(failed);
 
   const int comps = components_;
   const size_t count = size_t(rec.valueCount) * size_t(comps);  // floats stored

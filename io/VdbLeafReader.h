@@ -6,8 +6,9 @@
 // What OpenVDB still parses: the chosen grid's metadata values, transform and topology (root tiles,
 // internal node masks and tile values, leaf value masks), through Grid::readMeta/readTransform/
 // readTopology on a std::ifstream. Everything else is ours: the file header, the file metadata (skipped),
-// the grid descriptors, the structure of the grid's metadata (checked before OpenVDB reads it), and the
-// whole buffer section (the leaf masks again, io::readCompressedValues' layout, blosc/zip/plain values).
+// the grid descriptors, the structure of the grid's metadata and the whole topology (walked and checked
+// before OpenVDB reads them: every size, origin, mask and compressed block), and the whole buffer
+// section (the leaf masks again, io::readCompressedValues' layout, blosc/zip/plain values).
 #pragma once
 
 #include <openvdb/openvdb.h>

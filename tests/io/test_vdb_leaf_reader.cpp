@@ -576,6 +576,135 @@ TEST(VdbLeafReader, SaysWhatIsWrong) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
+// Found by fuzz_vdb_leaf_reader (docs/RELIABILITY.md): OpenVDB's readTopology trusts sizes, origins and masks
+// (a raw block larger than the node's buffer, a compressed size it allocates, a root child at an origin
+// already taken, leaked, or at one no tree has); its MetaMap throws its own exceptions. Each is now an
+// InputError naming the file before OpenVDB reads anything.
+
+// Where the topology of a float grid with background `bg` and `children` root children (no root tiles)
+// starts in `bytes`: the buffer count 1, the background, 0 tiles, then the child count.
+size_t topologyAt(const std::string& bytes, float bg, uint32_t children) {
+  std::string head(16, '\0');
+  const int32_t one = 1;
+  std::memcpy(&head[0], &one, 4);
+  std::memcpy(&head[4], &bg, 4);
+  std::memcpy(&head[12], &children, 4);
+  const size_t at = bytes.find(head);
+  EXPECT_NE(at, std::string::npos);
+  EXPECT_EQ(bytes.find(head, at + 1), std::string::npos);
+  return at;
+}
+
+TEST(VdbLeafReader, RefusesTopologyOpenVdbWouldTrust) {
+  TempDir dir;
+  const std::string path = dir / "two_children.vdb";
+  const float bg = 2.75f;
+  auto grid = openvdb::FloatGrid::create(bg);
+  grid->setName("g");
+  grid->tree().setValue(Coord(1, 2, 3), 1.0f);
+  grid->tree().setValue(Coord(4096 + 1, 2, 3), 1.0f);
+  // Zip without the active mask: the 32^3 nodes' tile values, all 32768 of them, are zip data.
+  writeFile(path, {grid}, vio::COMPRESS_ZIP, false);
+  const std::string original = fileBytes(path);
+  const size_t topo = topologyAt(original, bg, 2);
+  const size_t child0 = topo + 16;                   // origin of the first root child
+  const size_t masks0 = child0 + 12;                 // its child mask, then its value mask (4096 bytes each)
+  const size_t values0 = masks0 + 2 * 4096;          // its tile values: metadata byte, then (zip) the size
+  ASSERT_EQ(original[values0], char(vio::NO_MASK_AND_ALL_VALS));
+  using testing::HasSubstr;
+  auto damaged = [&](const std::function<void(std::string&)>& damage) {
+    std::string bytes = original;
+    damage(bytes);
+    const std::string out = dir / "damaged.vdb";
+    writeBytes(out, bytes);
+    return errorOf([&] { VdbLeafReader(out, "g", {}); });
+  };
+  auto put = [](std::string& bytes, size_t at, auto value) { std::memcpy(&bytes[at], &value, sizeof value); };
+
+  // A raw block ("size" -N) larger than the node's values: OpenVDB copied it into the node's buffer.
+  EXPECT_THAT(damaged([&](std::string& b) { put(b, values0 + 1, int64_t(-(1 << 20))); }),
+              HasSubstr("the 32^3 node at (0, 0, 0): its tile values: raw values of 1048576 bytes"));
+  // A compressed size of 2^40: OpenVDB allocated it.
+  EXPECT_THAT(damaged([&](std::string& b) { put(b, values0 + 1, int64_t(1) << 40); }),
+              HasSubstr("its tile values: zip data of 1099511627776 bytes"));
+  // Zip data that does not inflate: OpenVDB threw after allocating the node (leaked).
+  EXPECT_THAT(damaged([&](std::string& b) {
+                int64_t size;
+                std::memcpy(&size, &b[values0 + 1], 8);
+                ASSERT_GT(size, 2);
+                b[values0 + 1 + 8 + 2] ^= 0x55;
+              }),
+              HasSubstr("its tile values: its zip data does not inflate"));
+  // Both root children at one origin: OpenVDB kept the second, leaking the first.
+  EXPECT_THAT(damaged([&](std::string& b) {
+                const size_t child1 = b.find(std::string("\x00\x10\0\0\0\0\0\0\0\0\0\0", 12), values0);  // (4096, 0, 0)
+                ASSERT_NE(child1, std::string::npos);
+                put(b, child1, int32_t(0));
+              }),
+              HasSubstr("its root holds two nodes at (0, 0, 0)"));
+  EXPECT_THAT(damaged([&](std::string& b) { put(b, child0, int32_t(8)); }),
+              HasSubstr("a root child at (8, 0, 0) is not at a multiple of 4096"));
+  // A bit on in both masks: the child pointer would be read as an active tile's value.
+  EXPECT_THAT(damaged([&](std::string& b) { b[masks0 + 4096] = b[masks0]; }),
+              HasSubstr("the 32^3 node at (0, 0, 0): a child is also an active tile"));
+}
+
+TEST(VdbLeafReader, MetadataOpenVdbRefusesIsAnInputError) {
+  TempDir dir;
+  const std::string path = dir / "meta.vdb";
+  auto grid = levelSet();
+  grid->insertMeta("aa", openvdb::StringMetadata("text"));
+  grid->insertMeta("ab", openvdb::FloatMetadata(1.0f));
+  writeFile(path, {grid}, vio::COMPRESS_BLOSC | kMask, false);
+  std::string bytes = fileBytes(path);
+  const size_t ab = bytes.find(std::string("\x02\x00\x00\x00" "ab", 6));
+  ASSERT_NE(ab, std::string::npos);
+  bytes[ab + 5] = 'a';  // "aa" twice, a string and a float: OpenVDB's MetaMap threw its TypeError
+  writeBytes(path, bytes);
+  EXPECT_THAT(errorOf([&] { VdbLeafReader(path, "levelset", {}); }),
+              testing::HasSubstr(": metadata \"aa\" (float) is refused: "));
+}
+
+// The grid's metadata says "is_saved_as_half_float" too; OpenVDB read the topology by it, the walk of the
+// topology by the descriptor ("_HalfFloat"). The descriptor decides: the file reads as written.
+TEST(VdbLeafReader, HalfFlagInMetadataDoesNotOverrideTheDescriptor) {
+  TempDir dir;
+  const std::string path = dir / "half.vdb";
+  writeFile(path, {craftedGrid<openvdb::FloatGrid>("crafted", 2.5f, /*compact=*/true)}, vio::COMPRESS_ZIP, true);
+  std::string bytes = fileBytes(path);
+  const std::string flag = std::string("is_saved_as_half_float") + std::string("\x04\0\0\0bool\x01\0\0\0\x01", 13);
+  const size_t at = bytes.find(flag);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + flag.size() - 1] = 0;  // the metadata now says full floats
+  const std::string patched = dir / "patched.vdb";
+  writeBytes(patched, bytes);
+  const VdbLeafReader original(path, "crafted", {}), reader(patched, "crafted", {});
+  EXPECT_TRUE(reader.storedAsHalf());
+  ASSERT_EQ(reader.leafCount(), original.leafCount());
+  float a[512], b[512];
+  for (size_t i = 0; i < reader.leafCount(); ++i) {
+    original.readLeaf(i, a);
+    reader.readLeaf(i, b);
+    EXPECT_EQ(0, std::memcmp(a, b, sizeof a)) << "leaf " << i;
+  }
+}
+
+// The inputs fuzz_vdb_leaf_reader found, kept in its corpus: each opens or is refused with InputError.
+TEST(VdbLeafReader, FuzzRegressionInputsAreRefused) {
+  const std::filesystem::path corpus = std::filesystem::path(FCC_SOURCE_DIR) / "tests/fuzz/corpus/vdb_leaf_reader";
+  int seen = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
+    if (entry.path().filename().string().rfind("regress_", 0) != 0) continue;
+    ++seen;
+    SCOPED_TRACE(entry.path().string());
+    Outcome o;
+    for (const auto& g : VdbLeafReader::listGrids(entry.path().string())) openAndReadAll(entry.path().string(), g.name, o);
+    EXPECT_GT(o.refused, 0);
+  }
+  EXPECT_GE(seen, 3);
+}
+
+// ---------------------------------------------------------------------------------------------------------
 // Open time of a large file (run by hand: --gtest_also_run_disabled_tests). The file is made once in
 // /tmp: a level-set sphere of radius 1500 voxels, half width 3 (about a million leaves).
 
