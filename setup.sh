@@ -44,8 +44,8 @@ case "$mode" in
     python3 tools/make_demo_volume.py "$out/torus_64.raw" 64
     "$build/bin/fccvdb" convert "$out/torus_64.raw" "$out/torus_fcc.vdb" --dims 64,64,64 --type u8 --force --quiet
     "$build/bin/fccvdb" info "$out/torus_fcc.vdb"
-    "$build/bin/fccvdb" render "$out/torus_fcc.vdb" -o "$out/torus.png" --res 512x512 --iso 128
-    "$build/bin/fccvdb" render "$out/torus_fcc.vdb" -o "$out/torus.exr" --res 512x512 --iso 128 --quiet
+    "$build/bin/fccvdb" render "$out/torus_fcc.vdb" -o "$out/torus.png" --res 512x512 --iso 128 --force
+    "$build/bin/fccvdb" render "$out/torus_fcc.vdb" -o "$out/torus.exr" --res 512x512 --iso 128 --quiet --force
     echo "demo dataset: $(cd "$out" && pwd)/torus_fcc.vdb, images: $(cd "$out" && pwd)/torus.png, torus.exr"
     ;;
   test)

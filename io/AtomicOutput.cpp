@@ -13,21 +13,37 @@
 namespace fcc::io {
 namespace fs = std::filesystem;
 
+namespace {
+
+std::string directoryOf(const std::string& path) {
+  const fs::path dir = fs::path(path).parent_path();
+  return dir.empty() ? "." : dir.string();
+}
+
+}  // namespace
+
+void checkOutputPath(const std::string& path, bool overwrite) {
+  std::error_code ec;
+  if (fs::exists(path, ec) && !overwrite) throw OutputError(path + ": exists; pass --force to overwrite it");
+  const std::string dir = directoryOf(path);
+  if (!fs::is_directory(dir, ec)) throw OutputError(path + ": cannot write there (directory '" + dir + "' does not exist)");
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw OutputError(path + ": cannot write there (directory '" + dir + "' is not writable: " + std::strerror(errno) + ")");
+}
+
 AtomicOutput::AtomicOutput(std::string finalPath, bool overwrite, const std::string& input)
     : finalPath_(std::move(finalPath)) {
   std::error_code ec;
   if (!input.empty() && fs::exists(finalPath_, ec) && fs::equivalent(finalPath_, input, ec))
     throw OutputError(finalPath_ + ": output is the input file; choose another output path");
-  if (fs::exists(finalPath_, ec) && !overwrite)
-    throw OutputError(finalPath_ + ": exists; pass --force to overwrite it");
-  const fs::path dir = fs::path(finalPath_).parent_path();
-  if (!dir.empty() && !fs::is_directory(dir, ec))
-    throw OutputError(finalPath_ + ": directory " + dir.string() + " does not exist");
+  checkOutputPath(finalPath_, overwrite);
   // A unique name beside the output keeps the final rename on one file system.
-  std::string pattern = (dir.empty() ? std::string() : dir.string() + "/") + "." +
-                         fs::path(finalPath_).filename().string() + ".tmp.XXXXXX";
+  const std::string dir = directoryOf(finalPath_);
+  std::string pattern = dir + "/." + fs::path(finalPath_).filename().string() + ".tmp.XXXXXX";
   const int fd = mkstemp(pattern.data());
-  if (fd < 0) throw OutputError(finalPath_ + ": cannot create a file beside it: " + std::strerror(errno));
+  // access() passes for root everywhere; the file system may still refuse (read-only, /proc).
+  if (fd < 0)
+    throw OutputError(finalPath_ + ": cannot write there (directory '" + dir + "' is not writable: " + std::strerror(errno) + ")");
   ::close(fd);
   tempPath_ = pattern;
 }

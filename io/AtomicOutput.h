@@ -6,10 +6,15 @@
 
 namespace fcc::io {
 
+// The checks every output of fccvdb gets before any work, one policy for all (convert, synth, render,
+// view --screenshot): OutputError "PATH: exists; pass --force to overwrite it" unless `overwrite`,
+// "PATH: cannot write there (directory 'D' does not exist)" or "(... is not writable)".
+void checkOutputPath(const std::string& path, bool overwrite);
+
 class AtomicOutput {
  public:
-  // Refuses (OutputError) an existing `finalPath` unless `overwrite`, and a final path equal to any
-  // of `inputs` (same file, also through links).
+  // Refuses (OutputError) a final path equal to `input` (same file, also through links), then what
+  // checkOutputPath refuses.
   AtomicOutput(std::string finalPath, bool overwrite, const std::string& input = {});
   ~AtomicOutput();
   AtomicOutput(const AtomicOutput&) = delete;

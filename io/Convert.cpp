@@ -215,12 +215,13 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   BuildOptions build;
   build.prefilter = options.prefilter;
   build.tolerance = options.tolerance;
-  auto describe = [&](FccGrid& grid, float sampleMin, float sampleMax) {
+  auto describe = [&](FccGrid& grid, const SampleSummary& samples) {
     grid.setTransform(xform);
     grid.setName(summary.gridName);
-    provenance.sampleMin = sampleMin;
-    provenance.sampleMax = sampleMax;
+    provenance.sampleMin = samples.min;
+    provenance.sampleMax = samples.max;
     setFccMetadata(grid, provenance);
+    recordSampleHistogram(grid, samples);
     grid.setSaveFloatAsHalf(options.half);
     summary.activeSamples = grid.activeVoxelCount() * 4;
     summary.bricks = grid.tree().leafCount();
@@ -231,7 +232,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     // (a block's samples reach 2 * 8 + 1 sites beyond the field's bounds).
     if (!field->bounds().empty()) field->prepare({field->bounds().expandedBy(17)});
     BuildResult built = buildFccGrid(*field, build, interrupter);
-    describe(*built.grid, built.sampleMin, built.sampleMax);
+    describe(*built.grid, built.samples);
     openvdb::GridCPtrVec grids{built.grid};
     if (options.bounds) {
       // Bounds of the spline the renderer evaluates: of the prefiltered coefficients for a samples grid.
@@ -251,7 +252,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   const auto passStart = std::chrono::steady_clock::now();
   const StreamedBuild built = buildFccGridStreamed(builder, streamed, interrupter);
   const double pass1 = std::chrono::duration<double>(std::chrono::steady_clock::now() - passStart).count();
-  describe(*built.grid, built.sampleMin, built.sampleMax);
+  describe(*built.grid, built.samples);
   openvdb::GridCPtrVec grids{built.grid};
   if (options.bounds) {
     const BoundsGrid::Ptr bounds = boundsGridOf(built.bounds, *built.grid);

@@ -29,10 +29,17 @@ DenseVolume readRaw(const std::string& path, const RawLayout& layout) {
     throw InputError(path + ": header size " + std::to_string(layout.headerBytes) + " bytes is beyond any file");
   const uint64_t needed = layout.headerBytes + payload;
 
+  // Says what to try: bytes beyond the voxels are most often a header (brainsmall.den: 62 bytes).
   auto sizeError = [&](uint64_t holds, bool decompressed) {
+    std::string hint;
+    if (holds > needed)
+      hint = ": " + std::to_string(holds - needed) + " extra bytes; if they are a header, try --header-bytes " +
+             std::to_string(holds - payload) + ", else check --dims and --type";
+    else
+      hint = ": " + std::to_string(needed - holds) + " bytes short; check --dims, --type and --header-bytes";
     return InputError(path + ": file holds " + std::to_string(holds) + " bytes" + (decompressed ? " once decompressed" : "") +
                       " but --dims " + commaList(layout.dims) + " --type " + scalarTypeName(layout.type) + " needs " +
-                      std::to_string(payload) + " (+" + std::to_string(layout.headerBytes) + " header bytes)");
+                      std::to_string(payload) + " (+" + std::to_string(layout.headerBytes) + " header bytes)" + hint);
   };
 
   // A .gz name is always gzip. Otherwise the gzip magic decides, except that a plain file of exactly the

@@ -6,8 +6,8 @@
 
 namespace fcc::io {
 
-void describeSynthGrid(FccGrid& grid, const std::string& kind, const SynthField& synth, bool prefilter, float sampleMin,
-                       float sampleMax) {
+void describeSynthGrid(FccGrid& grid, const std::string& kind, const SynthField& synth, bool prefilter,
+                       const SampleSummary& samples) {
   auto xform = openvdb::math::Transform::createLinearTransform();
   const glm::dvec3 s = synth.worldFromIndexScale, o = synth.worldFromIndexOrigin;
   xform->preScale(openvdb::Vec3d(s.x, s.y, s.z));
@@ -17,10 +17,11 @@ void describeSynthGrid(FccGrid& grid, const std::string& kind, const SynthField&
   FccProvenance p;
   p.coefficients = prefilter;
   p.mode = "synth:" + kind;
-  p.sampleMin = sampleMin;
-  p.sampleMax = sampleMax;
+  p.sampleMin = samples.min;
+  p.sampleMax = samples.max;
   p.levelSet = synth.levelSet;
   setFccMetadata(grid, p);
+  recordSampleHistogram(grid, samples);
 }
 
 SynthSummary writeSynthFile(const std::string& output, const SynthOptions& options,
@@ -34,7 +35,7 @@ SynthSummary writeSynthFile(const std::string& output, const SynthOptions& optio
   streamed.half = options.half;
   streamed.kernels = options.preprocess;
   const StreamedBuild built = buildFccGridStreamed(builder, streamed, progress);
-  describeSynthGrid(*built.grid, options.spec.kind, synth, options.prefilter, built.sampleMin, built.sampleMax);
+  describeSynthGrid(*built.grid, options.spec.kind, synth, options.prefilter, built.samples);
   const BoundsGrid::Ptr bounds = boundsGridOf(built.bounds, *built.grid);
   // The grid's tree builds its leaves' values while it is written, from `synth`, alive until then.
   writeVdbAtomically(output, openvdb::GridCPtrVec{built.grid, bounds}, options.overwrite);

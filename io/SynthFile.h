@@ -8,6 +8,7 @@
 #include <string>
 
 #include "sparse/FccGrid.h"
+#include "sparse/SampleHistogram.h"
 #include "sparse/SynthFields.h"
 
 namespace fcc {
@@ -35,8 +36,8 @@ SynthSummary writeSynthFile(const std::string& output, const SynthOptions& optio
                             openvdb::util::NullInterrupter* progress = nullptr);
 
 // What a synth dataset's FCC grid carries: the kind as its name, the field's transform, and the
-// metadata (fcc_mode synth:<kind>, the sample range).
-void describeSynthGrid(FccGrid& grid, const std::string& kind, const SynthField& synth, bool prefilter, float sampleMin,
-                       float sampleMax);
+// metadata (fcc_mode synth:<kind>, the samples' range and histogram).
+void describeSynthGrid(FccGrid& grid, const std::string& kind, const SynthField& synth, bool prefilter,
+                       const SampleSummary& samples);
 
 }  // namespace fcc::io

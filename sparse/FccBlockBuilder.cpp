@@ -30,7 +30,7 @@ SiteBox FccBlockBuilder::sampleBox(const openvdb::Coord& block) const {
   return SiteBox{2 * leafOrigin - halo, 2 * leafOrigin + 2 * kLeafDim - 1 + halo};
 }
 
-FccBlockBuilder::Uniform FccBlockBuilder::uniform(const openvdb::Coord& block, SampleRange* range) const {
+FccBlockBuilder::Uniform FccBlockBuilder::uniform(const openvdb::Coord& block, SampleStats* stats) const {
   Uniform u;
   const SiteBox box = sampleBox(block);
   float v = 0.0f;
@@ -42,9 +42,8 @@ FccBlockBuilder::Uniform FccBlockBuilder::uniform(const openvdb::Coord& block, S
   }
   // build() adds the samples of the block's own sites (no halo) inside the field's bounds.
   const int halo = options_.prefilter ? 1 : 0;
-  const SiteBox own = box.expandedBy(-halo).intersection(bounds_);
-  const bool holdsASite = !own.empty() && (glm::any(glm::greaterThan(own.max, own.min)) || spline::isFccSite(own.min));
-  if (range && holdsASite) range->add(v);
+  const uint64_t ownSites = fccSiteCount(box.expandedBy(-halo).intersection(bounds_));
+  if (stats && ownSites > 0) stats->add(v, ownSites);
   const float background = field_.background();
   // Every site's coefficient is the same sum of the same values: the one computed here.
   const float c = options_.prefilter ? spline::prefilterAt(glm::ivec3(0), [&](const glm::ivec3&) { return v; }) : v;
@@ -91,7 +90,7 @@ void FccBlockBuilder::prepare(const std::vector<openvdb::Coord>& blocks) const {
 }
 
 std::unique_ptr<FccBlockBuilder::Leaf> FccBlockBuilder::build(const openvdb::Coord& block, Scratch& samples,
-                                                              SampleRange* range) const {
+                                                              SampleStats* stats) const {
   const float background = field_.background();
   const glm::ivec3 leafOrigin = glm::ivec3(block.x(), block.y(), block.z()) * kLeafDim;  // packed voxel
   const SiteBox siteBox = sampleBox(block);
@@ -113,8 +112,8 @@ std::unique_ptr<FccBlockBuilder::Leaf> FccBlockBuilder::build(const openvdb::Coo
     for (int c = 0; c < 4; ++c) {
       const glm::ivec3 site = siteOfChannel(packed, c);
       const float v = samples.at(site);
-      if (range && glm::all(glm::greaterThanEqual(site, bounds_.min)) && glm::all(glm::lessThanEqual(site, bounds_.max)))
-        range->add(v);
+      if (stats && glm::all(glm::greaterThanEqual(site, bounds_.min)) && glm::all(glm::lessThanEqual(site, bounds_.max)))
+        stats->add(v);
       value[c] = options_.prefilter ? spline::prefilterAt(site, [&](const glm::ivec3& s) { return samples.at(s); }) : v;
       active = active || !(std::abs(value[c] - background) <= options_.tolerance);
     }

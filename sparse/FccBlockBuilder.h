@@ -11,29 +11,13 @@
 
 #include "FccGrid.h"
 #include "SampleField.h"
+#include "SampleStats.h"
 
 namespace fcc {
 
 struct BuildOptions {
   bool prefilter = true;   // store coefficients c = q_fcc * V (what the renderer needs) or raw samples V
   float tolerance = 0.0f;  // a packed voxel whose four values are within this of the background is inactive
-};
-
-// Range of sample values seen (empty until a value is added).
-struct SampleRange {
-  float min = std::numeric_limits<float>::infinity();
-  float max = -std::numeric_limits<float>::infinity();
-  bool empty() const { return !(min <= max); }
-  void add(float v) {
-    min = std::min(min, v);
-    max = std::max(max, v);
-  }
-  void add(const SampleRange& r) {
-    min = std::min(min, r.min);
-    max = std::max(max, r.max);
-  }
-  // What the metadata records: (background, background) for a field that holds no samples.
-  SampleRange orBackground(float background) const { return empty() ? SampleRange{background, background} : *this; }
 };
 
 class FccBlockBuilder {
@@ -59,11 +43,13 @@ class FccBlockBuilder {
   // and, for coefficients, the one-site halo the prefilter spreads them by. Empty for an empty field.
   const openvdb::CoordBBox& blocks() const { return blocks_; }
   float background() const { return field_.background(); }
+  // The field's bounds: the sites whose samples build() and uniform() report (summarizeSamples).
+  const SiteBox& siteBounds() const { return bounds_; }
   const BuildOptions& options() const { return options_; }
 
-  // The leaf of `block`, or null when none of its voxels is active. Samples at sites inside the
-  // field's bounds are added to `range` (if not null). Thread-safe: one Scratch per thread.
-  std::unique_ptr<Leaf> build(const openvdb::Coord& block, Scratch& scratch, SampleRange* range) const;
+  // The leaf of `block`, or null when none of its voxels is active. Samples at the block's own sites
+  // inside the field's bounds are added to `stats` (if not null). Thread-safe: one Scratch per thread.
+  std::unique_ptr<Leaf> build(const openvdb::Coord& block, Scratch& scratch, SampleStats* stats) const;
 
   // What build() and the prune make of a block whose samples (halo included) are all one value,
   // found without visiting them (SampleField::uniformOver): nothing (`none`: no leaf, the
@@ -73,7 +59,8 @@ class FccBlockBuilder {
     bool none = false;
     openvdb::Vec4f value;  // the tile, all voxels active
   };
-  Uniform uniform(const openvdb::Coord& block, SampleRange* range) const;
+  // Adds the value to `stats` once for each of the block's own sites that build() would have added.
+  Uniform uniform(const openvdb::Coord& block, SampleStats* stats) const;
 
   // The blocks of x-slab `x` (block coordinates) that may hold active voxels, sorted: where the
   // field has data (SampleField::forEachDataBox), else every block of blocks() in the slab.

@@ -24,7 +24,7 @@ BuildResult buildFccGrid(const SampleField& field, const BuildOptions& options,
   const size_t totalBlocks = blocks.volume();
 
   tbb::enumerable_thread_specific<std::vector<Leaf*>> leavesPerThread;
-  tbb::enumerable_thread_specific<SampleRange> rangePerThread;
+  tbb::enumerable_thread_specific<SampleStats> statsPerThread;
   tbb::enumerable_thread_specific<FccBlockBuilder::Scratch> scratchPerThread;
   std::atomic<size_t> blocksDone{0};
   std::atomic<bool> interrupted{false};
@@ -32,13 +32,13 @@ BuildResult buildFccGrid(const SampleField& field, const BuildOptions& options,
 
   tbb::parallel_for(tbb::blocked_range<size_t>(0, totalBlocks, 16), [&](const tbb::blocked_range<size_t>& r) {
     auto& leaves = leavesPerThread.local();
-    auto& range = rangePerThread.local();
+    auto& stats = statsPerThread.local();
     auto& scratch = scratchPerThread.local();
     for (size_t b = r.begin(); b != r.end(); ++b) {
       if (interrupted.load(std::memory_order_relaxed)) return;
       const openvdb::Coord block = blocks.min().offsetBy(int(b % blockCount.x()), int((b / blockCount.x()) % blockCount.y()),
                                                          int(b / (size_t(blockCount.x()) * blockCount.y())));
-      if (std::unique_ptr<Leaf> leaf = builder.build(block, scratch, &range)) leaves.push_back(leaf.release());
+      if (std::unique_ptr<Leaf> leaf = builder.build(block, scratch, &stats)) leaves.push_back(leaf.release());
       const size_t done = ++blocksDone;
       if (interrupter && (done & 63) == 0 &&
           interrupter->wasInterrupted(int(100.0 * double(done) / double(totalBlocks))))
@@ -54,11 +54,9 @@ BuildResult buildFccGrid(const SampleField& field, const BuildOptions& options,
   openvdb::tools::prune(tree, openvdb::Vec4f(options.tolerance));
   if (interrupter) interrupter->end();
 
-  SampleRange total;
-  for (const SampleRange& r : rangePerThread) total.add(r);
-  total = total.orBackground(field.background());
-  result.sampleMin = total.min;
-  result.sampleMax = total.max;
+  SampleStats total;
+  for (const SampleStats& s : statsPerThread) total.add(s);
+  result.samples = summarizeSamples(total, builder.siteBounds(), field.background());
   return result;
 }
 

@@ -13,8 +13,7 @@ namespace fcc {
 
 struct BuildResult {
   FccGrid::Ptr grid;
-  float sampleMin = 0.0f;  // range of the samples V over the field's bounds
-  float sampleMax = 0.0f;
+  SampleSummary samples;  // range and histogram of the samples V over the field's bounds
 };
 
 // The grid's transform is left as identity (lattice index space = world); the caller sets it. Throws

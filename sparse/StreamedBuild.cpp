@@ -77,13 +77,13 @@ class SlabBuilder {
       for (size_t i = r.begin(); i != r.end(); ++i) {
         const Coord& block = blocks[i];
         Built& b = built[i];
-        const FccBlockBuilder::Uniform uniform = builder_.uniform(block, &ranges_.local());
+        const FccBlockBuilder::Uniform uniform = builder_.uniform(block, &stats_.local());
         if (uniform.known) {  // a tile without visiting the block's sites
           b.isTile = !uniform.none;
           b.tile = {block << Leaf::LOG2DIM, uniform.value, true};
           continue;
         }
-        b.leaf = builder_.build(block, scratch_.local(), &ranges_.local());
+        b.leaf = builder_.build(block, scratch_.local(), &stats_.local());
         if (!b.leaf) continue;
         b.isTile = prunesToTile(*b.leaf, background_, builder_.options().tolerance, b.tile);
         if (half_ && !b.isTile) roundAsStoredHalf(b.leaf->beginValueAll(), background_);
@@ -107,9 +107,9 @@ class SlabBuilder {
     return slab;
   }
 
-  SampleRange range() const {
-    SampleRange total;
-    for (const SampleRange& r : ranges_) total.add(r);
+  SampleStats stats() const {
+    SampleStats total;
+    for (const SampleStats& s : stats_) total.add(s);
     return total;
   }
 
@@ -119,7 +119,7 @@ class SlabBuilder {
   FccTree& topology_;
   Vec4f background_;
   tbb::enumerable_thread_specific<FccBlockBuilder::Scratch> scratch_;
-  tbb::enumerable_thread_specific<SampleRange> ranges_;
+  tbb::enumerable_thread_specific<SampleStats> stats_;
 };
 
 }  // namespace
@@ -177,9 +177,7 @@ StreamedBuild buildFccGridStreamed(const FccBlockBuilder& builder, const Streame
   openvdb::tools::pruneTiles(static_cast<FccTree&>(*topology), Vec4f(builder.options().tolerance));
   openvdb::tools::prune(*result.bounds);
   times.prune += lap(start);
-  const SampleRange range = slabs.range().orBackground(builder.background());
-  result.sampleMin = range.min;
-  result.sampleMax = range.max;
+  result.samples = summarizeSamples(slabs.stats(), builder.siteBounds(), builder.background());
   return result;
 }
 

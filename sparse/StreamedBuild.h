@@ -31,8 +31,7 @@ struct StreamedBuild {
   FccGrid::Ptr grid;
   // The bounds grid's tree, pruned: boundsGridOf(bounds, *grid) once the grid is named.
   openvdb::Vec2STree::Ptr bounds;
-  float sampleMin = 0.0f;  // range of the samples V over the field's bounds
-  float sampleMax = 0.0f;
+  SampleSummary samples;  // range and histogram of the samples V over the field's bounds
   // Wall seconds of pass 1's stages (what `convert --timings` prints): choosing a slab's blocks,
   // preparing the field for them, building them (in parallel), the slab window, the bounds, the prune.
   struct Times {

@@ -8,6 +8,7 @@
 
 #include "ProgressBar.h"
 #include "Triple.h"
+#include "io/AtomicOutput.h"
 #include "io/ImageOutput.h"
 #include "sparse/Error.h"
 
@@ -42,7 +43,9 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
   app.add_option("--grid", flags.grid, "The FCC grid to render (default: the first); for a Cartesian .vdb, the float grid to convert");
   addRawFlags(app, flags.source);
   app.add_flag("--no-cache", flags.noCache, "Convert a Cartesian FILE into a temporary file instead of the user cache ($XDG_CACHE_HOME/fccvdb)");
-  app.add_option("--iso", flags.iso, "Isovalue (default: 0 for a level set, else midway through the value range)");
+  app.add_option("--iso", flags.iso,
+                 "Isovalue (default: 0 for a level set; else Otsu's threshold of the samples' histogram, as "
+                 "`fccvdb info` suggests; the middle of the range the surface can take for files without one)");
   app.add_option("--res", flags.res, "Image size WxH")->capture_default_str();
   app.add_option("--eye", flags.eye, "Camera position X,Y,Z in world space (default: frames the data)");
   app.add_option("--lookat", flags.lookat, "Point looked at X,Y,Z (default: the data's centre)");
@@ -67,17 +70,13 @@ void warnIfIsoOutside(float iso, const io::BrickStore& store) {
                double(iso), store.path().c_str(), double(store.valueMin()), double(store.valueMax()));
 }
 
-float isoFromFlags(const RenderFlags& flags, const io::BrickStore& store) {
-  if (flags.iso.empty()) {
-    // A level set's surface is its zero crossing; anything else gets the middle of its range.
-    if (store.index().getGridClass() == openvdb::GRID_LEVEL_SET) return 0.0f;
-    return 0.5f * (store.valueMin() + store.valueMax());
-  }
+io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::BrickStore& store) {
+  if (flags.iso.empty()) return io::defaultIsovalue(store);
   char* end = nullptr;
   const double v = std::strtod(flags.iso.c_str(), &end);
   if (end == flags.iso.c_str() || *end != '\0' || !std::isfinite(v) || !std::isfinite(float(v)))
     throw ValueError("--iso '" + flags.iso + "': the isovalue must be a finite number");
-  return float(v);
+  return {float(v), "--iso"};
 }
 
 void resolutionFromFlags(const std::string& res, int& width, int& height, const char* flag) {
@@ -130,12 +129,11 @@ render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags) {
   return options;
 }
 
-void checkOutputWritable(const std::string& path) {
+void checkOutputWritable(const std::string& path, bool overwrite) {
   io::checkImageExtension(path);
-  const auto slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-  if (::access(dir.c_str(), W_OK) != 0)
-    throw OutputError(path + ": cannot write there (directory '" + dir + "' is missing or not writable)");
+  // A temporary file created and removed: what the writer will do, so root and read-only file
+  // systems fail here too, before any rendering.
+  io::AtomicOutput probe(path, overwrite);
 }
 
 }  // namespace fcc::cli

@@ -10,6 +10,7 @@
 #include "SourceFlags.h"
 #include "io/BrickStore.h"
 #include "io/ConversionCache.h"
+#include "io/DefaultIsovalue.h"
 #include "viewer/Camera.h"
 #include "viewer/Raycaster.h"
 
@@ -31,8 +32,8 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags);
 // --no-cache), saying so in one line on stderr with a progress bar unless `quiet`.
 std::unique_ptr<io::FccInput> openFccInput(const RenderFlags& flags, bool quiet);
 
-// --iso (default: midway through the data's value range); ValueError if not a finite number.
-float isoFromFlags(const RenderFlags& flags, const io::BrickStore& store);
+// --iso, or the default (io/DefaultIsovalue.h, with its basis); ValueError if not a finite number.
+io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::BrickStore& store);
 // One line on stderr if `iso` lies outside the range the spline takes (the hull of the bounds): the
 // image would show no surface. Not an error: the user may want exactly that.
 void warnIfIsoOutside(float iso, const io::BrickStore& store);
@@ -42,8 +43,8 @@ void resolutionFromFlags(const std::string& res, int& width, int& height, const 
 render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect);
 render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags);
 
-// Fails before any rendering if `path` cannot be written: not .exr/.png, or its directory missing
-// or read-only (OutputError).
-void checkOutputWritable(const std::string& path);
+// Fails before any rendering if `path` cannot be written: not .exr/.png (ValueError), an existing
+// file without `overwrite` (--force), or its directory missing or read-only (io::AtomicOutput's checks).
+void checkOutputWritable(const std::string& path, bool overwrite);
 
 }  // namespace fcc::cli

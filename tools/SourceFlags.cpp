@@ -23,7 +23,8 @@ std::optional<io::RawLayout> rawLayoutFromFlags(const SourceFlags& f, const std:
     for (const CLI::Option* o : {f.dimsOption, f.typeOption, f.endianOption, f.spacingOption, f.headerBytesOption})
       if (o && o->count() > 0)
         throw ValueError(o->get_name() + " is for raw input only; " + input +
-                         " is read by its extension (.vdb, .nrrd/.nhdr, .nii/.nii.gz)");
+                         " is read by its own header (.vdb, .nrrd/.nhdr, .nii/.nii.gz, .mha/.mhd, DICOM): drop " +
+                         o->get_name());
     return std::nullopt;
   }
   if (f.dims.empty()) return std::nullopt;

@@ -4,13 +4,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "BenchOrbit.h"
 #include "Command.h"
 #include "JsonText.h"
+#include "ProgressBar.h"
 #include "RenderFlags.h"
+#include "sparse/Error.h"
 #include "viewer/EglContext.h"
 
 namespace fcc::cli {
@@ -26,20 +30,36 @@ struct Measurement {
   double gpuSeconds = 0.0;  // --gpu-time
 };
 
+// Calls `tick` after every frame it renders (the progress bar).
 Measurement measureOrbit(render::Raycaster& raycaster, const render::Camera& camera, int width, int height,
-                         int warmup, int frames, double arc) {
+                         int warmup, int frames, double arc, const std::function<void()>& tick) {
   Measurement m;
-  for (int i = 0; i < warmup; ++i) raycaster.render(orbitStep(camera, i, std::max(warmup, 1), arc), width, height);
+  for (int i = 0; i < warmup; ++i) {
+    raycaster.render(orbitStep(camera, i, std::max(warmup, 1), arc), width, height);
+    tick();
+  }
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < frames; ++i) {
     const render::FrameStats s = raycaster.render(orbitStep(camera, i, frames, arc), width, height);
     m.uploads += s.bricksUploaded;
     m.passes += s.passes;
     m.gpuSeconds += s.gpuSeconds;
+    tick();
   }
   m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   m.frames = frames;
   return m;
+}
+
+// What a CPU renderer times unless told otherwise: about a second a frame for llvmpipe on two cores.
+constexpr int kCpuFrames = 8, kCpuWarmup = 1;
+constexpr const char* kCpuRes = "128x128";
+
+// Mesa's software rasterizers: the GPU pipeline run on the CPU, tens to hundreds of times slower.
+bool isCpuRenderer(const std::string& renderer) {
+  for (const char* name : {"llvmpipe", "softpipe", "lavapipe", "SwiftShader"})
+    if (renderer.find(name) != std::string::npos) return true;
+  return false;
 }
 
 }  // namespace
@@ -58,6 +78,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
   args->flags.res = "512x512";
   CLI::App* app = bench.add_subcommand("render", "Frames per second over a camera orbit (skipping on/off, analytic/finite-difference normals)");
   addRenderFlags(*app, args->flags);
+  app->get_option("--res")->capture_default_str();  // 512x512 here
   app->add_option("--frames", args->frames, "Timed frames per variant (one orbit)")->capture_default_str()->check(CLI::PositiveNumber);
   app->add_option("--warmup", args->warmup, "Untimed frames before each variant (the same arc)")->capture_default_str()->check(CLI::NonNegativeNumber);
   app->add_option("--arc", args->arc,
@@ -68,38 +89,82 @@ Command addBenchRenderCommand(CLI::App& bench) {
   app->add_option("--variants", args->variants, "Variants to time (default: all four)")
       ->check(CLI::IsMember({"skip+analytic", "skip+fd", "noskip+analytic", "noskip+fd"}));
   args->flags.layout = "all";
-  app->get_option("--layout")->description("Brick layout to time, or all (the default)");
+  std::string layouts;
+  for (render::BrickLayout l : render::allBrickLayouts()) layouts += ", " + render::brickLayoutName(l);
+  app->get_option("--layout")
+      ->description("Brick layout to time: all (each in turn, with fresh caches), auto (the one render chooses)" + layouts)
+      ->capture_default_str();
   app->add_flag("--gpu-time", args->gpuTime, "Also time the raycasting passes on the GPU (timestamp queries)");
   app->add_flag("--json", args->json, "A JSON list of objects: variant, skip, normals, fps, frame_ms, ...");
-  return {app, [args]() {
+  return {app, [args, app]() {
+            if (args->flags.layout != "all" && args->flags.layout != "auto") {
+              try {
+                render::parseBrickLayout(args->flags.layout);
+              } catch (const ValueError& e) {
+                throw ValueError("--layout: " + std::string(e.what()) + ", auto or all");
+              }
+            }
+            const EglContext gl;
+            // A CPU renderer takes minutes over the defaults: time less, unless the user chose, and say so.
+            if (isCpuRenderer(gl.renderer())) {
+              std::string scaled;
+              auto unless = [&](const char* flag, const std::function<void()> apply, const std::string& now) {
+                if (app->get_option(flag)->count() > 0) return;
+                apply();
+                scaled += (scaled.empty() ? "" : ", ") + std::string(flag) + " " + now;
+              };
+              unless("--layout", [&] { args->flags.layout = "auto"; }, "auto");
+              unless("--frames", [&] { args->frames = kCpuFrames; }, std::to_string(kCpuFrames));
+              unless("--warmup", [&] { args->warmup = kCpuWarmup; }, std::to_string(kCpuWarmup));
+              unless("--res", [&] { args->flags.res = kCpuRes; }, kCpuRes);
+              if (!scaled.empty())
+                std::fprintf(stderr,
+                             "fccvdb: warning: %s renders on the CPU: timing %s instead of the defaults (give the flags "
+                             "to choose); its figures say nothing about a GPU\n",
+                             gl.renderer().c_str(), scaled.c_str());
+            }
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
             const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);
             const io::BrickStore store(input->path(), args->flags.grid);
-            const float iso = isoFromFlags(args->flags, store);
+            const float iso = isoFromFlags(args->flags, store).value;
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
-            const EglContext gl;
-            // --layout all: every layout in turn, each with fresh caches.
-            std::vector<render::BrickLayout> layouts = render::allBrickLayouts();
+            // --layout all: every layout in turn, each with fresh caches; auto: the renderer's choice.
+            std::vector<std::optional<render::BrickLayout>> layouts;
             RenderFlags flags = args->flags;
-            if (flags.layout == "all") flags.layout = render::brickLayoutName(layouts.front());
-            else layouts = {render::parseBrickLayout(flags.layout)};
+            if (flags.layout == "all") {
+              for (render::BrickLayout l : render::allBrickLayouts()) layouts.push_back(l);
+              flags.layout = "auto";
+            } else {
+              layouts.push_back(renderOptionsFromFlags(flags).layout);  // nullopt for auto
+            }
             render::RenderOptions options = renderOptionsFromFlags(flags);
             options.iso = iso;
             options.timeGpu = args->gpuTime;
             resolutionFromFlags(args->workGroup, options.workGroup.x, options.workGroup.y, "--work-group");
 
+            // Frames to render: per layout one cold frame, then warm-up and timed frames per variant.
+            const long totalFrames = long(layouts.size()) * (1 + long(args->variants.size()) * (args->warmup + args->frames));
+            long framesDone = 0;
+            ProgressBar progress(false);
+            progress.start("timing frames");
+            auto tick = [&] { progress.wasInterrupted(int(100 * ++framesDone / std::max(totalFrames, 1L))); };
+
             std::vector<Measurement> results;
             render::FrameStats cold;
+            std::string coldLayout;
             double poolMiB = 0.0;
             uint32_t slotCount = 0;
-            for (const render::BrickLayout layout : layouts) {
+            for (const std::optional<render::BrickLayout>& layout : layouts) {
               options.layout = layout;
               // Cold: a fresh pool and host cache, one complete frame (reported for the first layout).
               render::Raycaster raycaster(store, options);
               const render::FrameStats c = raycaster.render(camera, width, height);
-              if (layout == layouts.front()) {
+              tick();
+              const std::string layoutName = render::brickLayoutName(*raycaster.options().layout);
+              if (coldLayout.empty()) {
                 cold = c;
+                coldLayout = layoutName;
                 poolMiB = double(raycaster.poolBytes()) / (1 << 20);
                 slotCount = raycaster.slotCount();
               }
@@ -109,14 +174,15 @@ Command addBenchRenderCommand(CLI::App& bench) {
                   if (std::find(args->variants.begin(), args->variants.end(), variant) == args->variants.end()) continue;
                   raycaster.setSkipEmpty(skip);
                   raycaster.setFiniteDifferenceNormals(fd);
-                  Measurement m = measureOrbit(raycaster, camera, width, height, args->warmup, args->frames, args->arc);
-                  m.layout = render::brickLayoutName(layout);
+                  Measurement m = measureOrbit(raycaster, camera, width, height, args->warmup, args->frames, args->arc, tick);
+                  m.layout = layoutName;
                   m.skip = skip;
                   m.normals = fd ? "finite-difference" : "analytic";
                   m.variant = variant;
                   results.push_back(m);
                 }
             }
+            progress.end();
 
             if (args->json) {
               std::printf("[");
@@ -143,7 +209,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
                         gl.renderer().c_str(), args->flags.file.c_str(), double(iso), width, height, poolMiB, slotCount,
                         args->arc);
             std::printf("first complete frame (cold caches, %s): %.3f s, %llu bricks streamed (%.0f bricks/s), %d passes\n",
-                        render::brickLayoutName(layouts.front()).c_str(), cold.seconds, (unsigned long long)cold.bricksUploaded, cold.bricksUploaded / cold.seconds,
+                        coldLayout.c_str(), cold.seconds, (unsigned long long)cold.bricksUploaded, cold.bricksUploaded / cold.seconds,
                         cold.passes);
             std::printf("%-16s %-18s %10s %10s %10s %8s %14s\n", "layout", "variant", "fps", "frame ms", "gpu ms", "passes",
                         "bricks/s");

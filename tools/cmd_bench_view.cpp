@@ -170,7 +170,7 @@ Command addBenchViewCommand(CLI::App& bench) {
             const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);
             const io::BrickStore store(input->path(), args->flags.grid);
             render::RenderOptions options = renderOptionsFromFlags(args->flags);
-            options.iso = isoFromFlags(args->flags, store);
+            options.iso = isoFromFlags(args->flags, store).value;
             options.timeGpu = args->gpuTime;
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;

@@ -47,12 +47,19 @@ Command addConvertCommand(CLI::App& parent) {
             o.preprocess = kernels.get();
             ProgressBar progress(args->quiet);
             const io::ConvertSummary s = io::convertToFcc(args->input, args->output, o, &progress);
+            // Each figure says what it counts: stored values are 4 per active packed voxel (with the
+            // prefilter, the coefficients reach one site beyond the data), so they are not "half the
+            // input voxels"; bounds bricks include the neighbours of the bricks with data.
             if (!args->quiet)
-              std::fprintf(stderr, "wrote %s: grid '%s', %llu active samples in %llu bricks (from %llu input voxels); "
-                           "bounds: %llu varying bricks (%s)\n",
+              std::fprintf(stderr,
+                           "wrote %s: grid '%s', %llu stored values in %llu bricks (4 per active packed voxel%s), from "
+                           "%llu input voxels; bounds: %llu bricks where the spline may vary (those with data and "
+                           "their neighbours) (%s)\n",
                            args->output.c_str(), s.gridName.c_str(), (unsigned long long)s.activeSamples,
-                           (unsigned long long)s.bricks, (unsigned long long)s.inputVoxels,
-                           (unsigned long long)s.boundsBricks, kernels->describe().c_str());
+                           (unsigned long long)s.bricks,
+                           o.prefilter ? ": the coefficients of the FCC sites with data and the sites next to them" : "",
+                           (unsigned long long)s.inputVoxels, (unsigned long long)s.boundsBricks,
+                           kernels->describe().c_str());
             if (args->timings && !s.timings.empty()) std::fprintf(stderr, "timings: %s\n", s.timings.c_str());
             return 0;
           }};

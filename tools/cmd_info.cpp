@@ -10,9 +10,11 @@
 #include <tbb/parallel_for.h>
 
 #include "io/BrickStore.h"
+#include "io/DefaultIsovalue.h"
 #include "sparse/BoundsHierarchy.h"
 #include "sparse/Error.h"
 #include "sparse/FccGrid.h"
+#include "sparse/SampleHistogram.h"
 
 namespace fcc::cli {
 namespace {
@@ -60,13 +62,26 @@ std::string checkJson(const std::optional<io::BrickStore::Damage>& damage) {
 
 double percent(uint64_t part, uint64_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0.0; }
 
+// The percentiles info reports of the samples (from the histogram the file records).
+constexpr double kPercentiles[] = {1, 5, 25, 50, 75, 95, 99};
+
+// `{"1": v, "5": v, ...}`, or null without a histogram.
+std::string percentilesJson(const std::optional<SampleSummary>& samples) {
+  if (!samples || samples->histogram.empty()) return "null";
+  std::string out;
+  for (const double p : kPercentiles)
+    out += (out.empty() ? "{" : ", ") + jsonString(std::to_string(int(p))) + ": " + jsonNumber(samplePercentile(*samples, p));
+  return out + "}";
+}
+
 struct Summary {
   std::string name, lattice, values, gridClass;
   openvdb::CoordBBox siteBox;  // in the lattice's index space
   uint64_t samples = 0, bricks = 0, bytes = 0, tiles = 0;
-  double min = 0, max = 0;                // the values the spline takes: the hull of the bounds
+  double min = 0, max = 0;                // the range the surface can take: the hull of the bounds
   bool rangeFromBounds = false;           // else the samples' range (metadata), a file without bounds
-  std::optional<double> sampleMin, sampleMax;  // the samples' range as converted (metadata)
+  std::optional<SampleSummary> data;      // the data: the samples' range and histogram (metadata)
+  io::IsoChoice suggested;                // the isovalue render/view use without --iso
   openvdb::Vec3d voxelSize;
   std::vector<std::pair<std::string, std::string>> metadata;
 };
@@ -85,8 +100,8 @@ Summary summarize(const io::BrickStore& store) {
   s.tiles = grid.tree().activeTileCount();
   // Decoded size of the active data: a brick is a full 8^3 block of Vec4f, a tile one value.
   s.bytes = s.bricks * FccTree::LeafNodeType::SIZE * sizeof(openvdb::Vec4f) + s.tiles * sizeof(openvdb::Vec4f);
-  if (const auto lo = grid.getMetadata<openvdb::FloatMetadata>(meta::kSampleMin)) s.sampleMin = lo->value();
-  if (const auto hi = grid.getMetadata<openvdb::FloatMetadata>(meta::kSampleMax)) s.sampleMax = hi->value();
+  s.data = recordedSamples(grid);
+  s.suggested = io::defaultIsovalue(store);
   s.rangeFromBounds = store.boundsFromFile();
   s.min = store.valueMin();  // the bounds' hull, or the recorded sample range without bounds
   s.max = store.valueMax();
@@ -123,7 +138,12 @@ Command addInfoCommand(CLI::App& parent) {
   app->add_option("--grid", args->grid, "The FCC grid to describe (default: the first)");
   auto* isoOption = app->add_option("--iso", args->iso, "Isovalue: how many bricks and internal nodes of the bounds hierarchy it leaves active");
   app->add_flag("--check", args->check, "Read every brick and name the damaged ones (exit 1 if any is)");
-  app->add_flag("--json", args->json, "One JSON object (keys: file, grid, lattice, values, dims, samples, bricks, bytes, min, max, metadata, bounds: {bricks, nodes1, nodes2[, iso, bricks_kept, nodes1_kept, nodes2_kept]} or null)");
+  app->add_flag("--json", args->json,
+                "One JSON object (keys: file, grid, lattice, values, class, dims (of the active box), samples, bricks, "
+                "tiles, bytes, min, max (the range the surface can take), range_from, sample_min, sample_max (the "
+                "data's range), percentiles ({\"1\": v, ... \"99\": v} or null), suggested_iso, suggested_iso_basis, "
+                "voxel_size, metadata, bounds: {bricks, nodes1, nodes2[, iso, bricks_kept, nodes1_kept, nodes2_kept]} "
+                "or null)");
   return {app, [args, isoOption]() {
             std::optional<float> iso;
             if (isoOption->count() > 0) {
@@ -143,39 +163,65 @@ Command addInfoCommand(CLI::App& parent) {
               std::printf("{\"file\": %s, \"grid\": %s, \"lattice\": %s, \"values\": %s, \"class\": %s, "
                           "\"dims\": [%d, %d, %d], \"samples\": %llu, \"bricks\": %llu, \"tiles\": %llu, "
                           "\"bytes\": %llu, \"min\": %s, \"max\": %s, \"range_from\": %s, \"sample_min\": %s, "
-                          "\"sample_max\": %s, \"voxel_size\": [%s, %s, %s], \"metadata\": {%s}, \"bounds\": %s%s}\n",
+                          "\"sample_max\": %s, \"percentiles\": %s, \"suggested_iso\": %s, \"suggested_iso_basis\": %s, "
+                          "\"voxel_size\": [%s, %s, %s], \"metadata\": {%s}, \"bounds\": %s%s}\n",
                           jsonString(args->file).c_str(), jsonString(s.name).c_str(), jsonString(s.lattice).c_str(),
                           jsonString(s.values).c_str(), jsonString(s.gridClass).c_str(), dims.x(), dims.y(), dims.z(),
                           (unsigned long long)s.samples, (unsigned long long)s.bricks, (unsigned long long)s.tiles,
                           (unsigned long long)s.bytes, jsonNumber(s.min).c_str(), jsonNumber(s.max).c_str(),
                           jsonString(s.rangeFromBounds ? "bounds" : "samples").c_str(),
-                          s.sampleMin ? jsonNumber(*s.sampleMin).c_str() : "null",
-                          s.sampleMax ? jsonNumber(*s.sampleMax).c_str() : "null", jsonNumber(s.voxelSize.x()).c_str(),
+                          s.data ? jsonNumber(s.data->min).c_str() : "null",
+                          s.data ? jsonNumber(s.data->max).c_str() : "null", percentilesJson(s.data).c_str(),
+                          jsonNumber(s.suggested.value).c_str(), jsonString(s.suggested.basis).c_str(),
+                          jsonNumber(s.voxelSize.x()).c_str(),
                           jsonNumber(s.voxelSize.y()).c_str(), jsonNumber(s.voxelSize.z()).c_str(), meta.c_str(),
                           boundsJson(b).c_str(), checkJson(damage).c_str());
               return damage && damage->bricks > 0 ? 1 : 0;
             }
-            std::printf("file:      %s\n", args->file.c_str());
-            std::printf("grid:      %s (%s, %s)\n", s.name.c_str(), s.lattice.c_str(), s.gridClass.c_str());
-            std::printf("values:    %s\n", s.values.c_str());
-            std::printf("dims:      %d x %d x %d lattice points (FCC sites are those with an even coordinate sum)\n",
-                        dims.x(), dims.y(), dims.z());
-            std::printf("voxel:     %g x %g x %g world units\n", s.voxelSize.x(), s.voxelSize.y(), s.voxelSize.z());
-            std::printf("samples:   %llu active\n", (unsigned long long)s.samples);
-            std::printf("bricks:    %llu (8^3 packed voxels each), %llu active tiles\n", (unsigned long long)s.bricks,
+            std::printf("file:          %s\n", args->file.c_str());
+            std::printf("grid:          %s (%s, %s)\n", s.name.c_str(), s.lattice.c_str(), s.gridClass.c_str());
+            std::printf("values:        %s\n", s.values.c_str());
+            // Not the input's size: inactive background is not stored, and the prefilter spreads the data by
+            // one site (so up to a packed voxel) beyond the input's.
+            std::printf("dims:          %d x %d x %d lattice points: the box of the active (stored) data, from (%d, %d, %d) "
+                        "to (%d, %d, %d) (FCC sites are its points with an even coordinate sum)\n",
+                        dims.x(), dims.y(), dims.z(), s.siteBox.min().x(), s.siteBox.min().y(), s.siteBox.min().z(),
+                        s.siteBox.max().x(), s.siteBox.max().y(), s.siteBox.max().z());
+            std::printf("voxel:         %g x %g x %g world units\n", s.voxelSize.x(), s.voxelSize.y(), s.voxelSize.z());
+            std::printf("samples:       %llu stored values (4 per active packed voxel)\n", (unsigned long long)s.samples);
+            std::printf("bricks:        %llu (8^3 packed voxels each), %llu active tiles\n", (unsigned long long)s.bricks,
                         (unsigned long long)s.tiles);
-            std::printf("bytes:     %llu decoded\n", (unsigned long long)s.bytes);
+            std::printf("bytes:         %llu decoded\n", (unsigned long long)s.bytes);
+            // Two ranges, named the same everywhere (the viewer's panel too): the data's and the surface's.
+            if (s.data)
+              std::printf("data range:    %.9g .. %.9g (the samples, before the prefilter; fcc_sample_min/max)\n",
+                          s.data->min, s.data->max);
             if (s.rangeFromBounds)
-              std::printf("range:     %.9g .. %.9g (the values the spline takes, so the isovalues with a surface: the hull of the bounds)\n",
+              std::printf("surface range: %.9g .. %.9g (the values the spline takes, so the isovalues with a surface: "
+                          "the hull of the bounds)\n",
                           s.min, s.max);
             else
-              std::printf("range:     %.9g .. %.9g (the samples' range: the file has no bounds)\n", s.min, s.max);
-            if (s.sampleMin && s.sampleMax)
-              std::printf("data:      %.9g .. %.9g (the range of the samples as converted)\n", *s.sampleMin, *s.sampleMax);
-            if (!b.present) {
-              std::printf("bounds:    none (written before bounds existed; convert again to add them)\n");
+              std::printf("surface range: %.9g .. %.9g (taken from the data range: the file has no bounds)\n", s.min, s.max);
+            if (s.data && !s.data->histogram.empty()) {
+              std::string line;
+              for (const double p : kPercentiles) {
+                char item[64];
+                std::snprintf(item, sizeof item, "%s%g%%: %.6g", line.empty() ? "" : ", ", p, samplePercentile(*s.data, p));
+                line += item;
+              }
+              const double background = percent(s.data->histogram[size_t(s.data->binOf(store.background()))],
+                                                s.data->total());
+              std::printf("percentiles:   %s (of the samples; %.1f%% of them lie in the background's bin, %g)\n",
+                          line.c_str(), background, double(store.background()));
             } else {
-              std::printf("bounds:    %llu bricks where the spline varies, in %llu level-1 and %llu level-2 nodes\n",
+              std::printf("percentiles:   none (the file records no histogram of its samples; convert it again)\n");
+            }
+            std::printf("suggested iso: %.6g (%s; render, view and bench render use it without --iso)\n",
+                        double(s.suggested.value), s.suggested.basis.c_str());
+            if (!b.present) {
+              std::printf("bounds:        none (written before bounds existed; convert again to add them)\n");
+            } else {
+              std::printf("bounds:        %llu bricks where the spline varies, in %llu level-1 and %llu level-2 nodes\n",
                           (unsigned long long)b.total.bricks, (unsigned long long)b.total.nodes1,
                           (unsigned long long)b.total.nodes2);
               if (b.iso)
@@ -184,11 +230,17 @@ Command addInfoCommand(CLI::App& parent) {
                             (unsigned long long)b.kept.nodes1, percent(b.kept.nodes1, b.total.nodes1),
                             (unsigned long long)b.kept.nodes2, percent(b.kept.nodes2, b.total.nodes2));
             }
-            for (const auto& [k, v] : s.metadata) std::printf("meta:      %s = %s\n", k.c_str(), v.c_str());
+            for (const auto& [k, v] : s.metadata) {
+              if (k == meta::kSampleHistogram && s.data && !s.data->histogram.empty())  // a long list: --json has it whole
+                std::printf("meta:          %s = (%zu counts over the data range; --json lists them)\n", k.c_str(),
+                            s.data->histogram.size());
+              else
+                std::printf("meta:          %s = %s\n", k.c_str(), v.c_str());
+            }
             if (damage) {
-              std::printf("check:     %llu bricks read, %llu damaged\n", (unsigned long long)s.bricks,
+              std::printf("check:         %llu bricks read, %llu damaged\n", (unsigned long long)s.bricks,
                           (unsigned long long)damage->bricks);
-              for (const std::string& m : damage->messages) std::printf("damaged:   %s\n", m.c_str());
+              for (const std::string& m : damage->messages) std::printf("damaged:       %s\n", m.c_str());
               if (damage->bricks > 0) {
                 std::fprintf(stderr, "fccvdb: %s: %llu damaged bricks (first: %s)\n", args->file.c_str(),
                              (unsigned long long)damage->bricks, damage->first.c_str());

@@ -1,5 +1,5 @@
-// fccvdb render FILE -o OUT.(exr|png): one headless frame of the isosurface (FILE: an FCC .vdb, or any
-// input convert takes, converted once into the cache).
+// fccvdb render FILE OUT.(exr|png) (or -o OUT): one headless frame of the isosurface (FILE: an FCC
+// .vdb, or any input convert takes, converted once into the cache).
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -17,13 +17,23 @@ namespace fcc::cli {
 Command addRenderCommand(CLI::App& parent) {
   struct Args {
     RenderFlags flags;
-    std::string output;
-    bool quiet = false, allowDamaged = false, timings = false;
+    std::string output, positionalOutput;
+    bool quiet = false, allowDamaged = false, force = false, timings = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* app = parent.add_subcommand("render", "Render the isosurface headless (EGL) to EXR (R,G,B,A,Z,N.X,N.Y,N.Z) or PNG");
   addRenderFlags(*app, args->flags);
-  app->add_option("-o,--output", args->output, "Output image, .exr or .png")->required();
+  // OUTPUT as a positional, like convert and synth; -o stays for scripts. One of them is needed.
+  auto* positional = app->add_option("OUTPUT", args->positionalOutput, "Output image, .exr or .png (or -o OUTPUT)");
+  auto* named = app->add_option("-o,--output", args->output, "Output image, .exr or .png (or as the second positional)");
+  positional->excludes(named);
+  named->excludes(positional);
+  app->parse_complete_callback([args] {
+    if (args->output.empty() && args->positionalOutput.empty())
+      throw CLI::RequiredError("OUTPUT (the image to write, .exr or .png; or -o OUTPUT) is required",
+                               int(CLI::ExitCodes::RequiredError));
+  });
+  app->add_flag("--force", args->force, "Overwrite an existing output image");
   app->add_flag("--quiet", args->quiet, "No summary on stderr");
   app->add_flag("--timings", args->timings, "Print where the wall time went (open, EGL, renderer set-up, frame, image) on stderr");
   app->add_flag("--allow-damaged", args->allowDamaged,
@@ -34,14 +44,16 @@ Command addRenderCommand(CLI::App& parent) {
             const auto mark = [&](const char* stage) {
               times.emplace_back(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
             };
+            if (args->output.empty()) args->output = args->positionalOutput;
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
-            checkOutputWritable(args->output);
+            checkOutputWritable(args->output, args->force);
             const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, args->quiet);
             mark("input");
             const io::BrickStore store(input->path(), args->flags.grid);
             mark("open");
-            const float iso = isoFromFlags(args->flags, store);
+            const io::IsoChoice isoChoice = isoFromFlags(args->flags, store);
+            const float iso = isoChoice.value;
             warnIfIsoOutside(iso, store);
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;
@@ -67,12 +79,17 @@ Command addRenderCommand(CLI::App& parent) {
               }
               std::fprintf(stderr, "%s; total %.3f\n", line.c_str(), before);
             }
+            // Rays load only the bricks they reach: of those whose bounds hold the isovalue, the ones
+            // hidden behind the surface or outside the view are never needed, so "N of M" read as stuck.
+            const std::string isoBasis = isoChoice.basis == "--iso" ? "" : " (default: " + isoChoice.basis + ")";
             if (!args->quiet)
               std::fprintf(stderr,
-                           "wrote %s: %dx%d, iso %g, %d passes, %llu of %llu needed bricks uploaded, %.3f s on %s\n",
-                           args->output.c_str(), width, height, double(iso), stats.passes,
-                           (unsigned long long)stats.bricksUploaded, (unsigned long long)stats.bricksNeeded,
-                           stats.seconds, gl.renderer().c_str());
+                           "wrote %s: %dx%d, iso %g%s, %d passes, %llu bricks loaded (the rays reached them; %llu "
+                           "bricks hold the isovalue), %.3f s on %s\n",
+                           args->output.c_str(), width, height, double(iso),
+                           isoBasis.c_str(),
+                           stats.passes, (unsigned long long)stats.bricksUploaded,
+                           (unsigned long long)stats.bricksNeeded, stats.seconds, gl.renderer().c_str());
             const io::BrickStore::Damage damage = store.damage();
             if (damage.bricks > 0) {
               std::fprintf(stderr, "fccvdb: %llu damaged brick%s rendered as holes in %s (first: %s)%s\n",

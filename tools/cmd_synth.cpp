@@ -41,7 +41,9 @@ Command addSynthCommand(CLI::App& parent) {
             ProgressBar progress(args->quiet);
             const io::SynthSummary summary = io::writeSynthFile(args->output, options, &progress);
             if (!args->quiet)
-              std::fprintf(stderr, "wrote %s: %s, %llu active samples in %llu bricks; bounds: %llu varying bricks (%s)\n",
+              std::fprintf(stderr,
+                           "wrote %s: %s, %llu stored values in %llu bricks (4 per active packed voxel); bounds: %llu "
+                           "bricks where the spline may vary (those with data and their neighbours) (%s)\n",
                            args->output.c_str(), args->kind.c_str(), (unsigned long long)summary.activeSamples,
                            (unsigned long long)summary.bricks, (unsigned long long)summary.boundsBricks,
                            kernels->describe().c_str());

@@ -15,7 +15,7 @@ Command addViewCommand(CLI::App& parent) {
     RenderFlags flags;
     std::string screenshot;
     int frames = 30;
-    bool convert = false;
+    bool convert = false, force = false;
   };
   auto args = std::make_shared<Args>();
   args->flags.res = "1280x800";
@@ -29,16 +29,17 @@ Command addViewCommand(CLI::App& parent) {
   app->add_option("--frames", args->frames, "Frames before --screenshot is taken")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app->add_flag("--force", args->force, "Overwrite an existing --screenshot file");
   // Cartesian inputs are converted (and cached) without being asked now; the flag stays for old scripts.
   app->add_flag("--convert", args->convert, "Accepted for old scripts: Cartesian inputs are always converted")->group("");
   return {app, [args]() {
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
-            if (!args->screenshot.empty()) checkOutputWritable(args->screenshot);
+            if (!args->screenshot.empty()) checkOutputWritable(args->screenshot, args->force);
 
             const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);
             const auto store = std::make_unique<io::BrickStore>(input->path(), args->flags.grid);
-            const float iso = isoFromFlags(args->flags, *store);
+            const float iso = isoFromFlags(args->flags, *store).value;
             warnIfIsoOutside(iso, *store);
             render::RenderOptions options = renderOptionsFromFlags(args->flags);
             options.iso = iso;

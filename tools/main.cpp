@@ -3,6 +3,7 @@
 #include <exception>
 
 #include "Command.h"
+#include "ParseErrorLine.h"
 #include "sparse/Error.h"
 
 int main(int argc, char** argv) {
@@ -28,7 +29,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "fccvdb: %s (see fccvdb --help)\n", e.what());
+    std::fprintf(stderr, "fccvdb: %s\n", fcc::cli::parseErrorLine(app, e, argc, argv).c_str());
     return 2;
   }
   try {

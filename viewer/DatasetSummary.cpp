@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "sparse/SampleHistogram.h"
+
 namespace fcc::render {
 
 DatasetSummary summarizeDataset(const io::BrickStore& store, std::size_t maxBricks, int bins) {
@@ -14,6 +16,11 @@ DatasetSummary summarizeDataset(const io::BrickStore& store, std::size_t maxBric
   s.bytes = s.bricks * sizeof(io::BrickValues);
   s.valueMin = store.valueMin();
   s.valueMax = store.valueMax();
+  if (const std::optional<SampleSummary> samples = recordedSamples(index)) {
+    s.hasDataRange = true;
+    s.dataMin = samples->min;
+    s.dataMax = samples->max;
+  }
   s.histogram.assign(std::size_t(std::max(bins, 1)), 0.0f);
 
   const std::size_t stride = std::max<std::size_t>(1, (s.bricks + maxBricks - 1) / std::max<std::size_t>(maxBricks, 1));

@@ -17,7 +17,11 @@ struct DatasetSummary {
   uint64_t samples = 0;     // active FCC samples (four per active packed voxel)
   uint64_t bricks = 0;      // leaves
   uint64_t bytes = 0;       // decoded size of the leaves' values
-  float valueMin = 0.0f, valueMax = 0.0f;  // range of the spline (the bounds' hull)
+  float valueMin = 0.0f, valueMax = 0.0f;  // the range the surface can take: the spline's (the bounds' hull)
+  // The data's range: the samples' before the prefilter, as convert/synth recorded them
+  // (fcc_sample_min/max); the spline overshoots it where the data jumps. False for other files.
+  bool hasDataRange = false;
+  float dataMin = 0.0f, dataMax = 0.0f;
   // Counts of the active values of up to `maxBricks` bricks spread evenly over the file, in equal
   // bins over [valueMin, valueMax] (values outside go to the end bins).
   std::vector<float> histogram;

@@ -69,7 +69,7 @@ void ViewerSession::drawPanel(int windowHeight) {
       // Logarithmic counts: a large background bin would flatten everything else.
       std::vector<float> logCounts(h.size());
       std::transform(h.begin(), h.end(), logCounts.begin(), [](float c) { return std::log1p(c); });
-      ImGui::PlotHistogram("##histogram", logCounts.data(), int(logCounts.size()), 0, "values (log count)", 0.0f,
+      ImGui::PlotHistogram("##histogram", logCounts.data(), int(logCounts.size()), 0, "coefficients (log count)", 0.0f,
                            FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 56.0f * scale));
       // The isovalue's place under the histogram.
       const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
@@ -105,9 +105,15 @@ void ViewerSession::drawPanel(int windowHeight) {
     row("samples", count(summary_.samples));
     row("bricks", count(summary_.bricks));
     row("memory", mib(double(summary_.bytes)) + " decoded");
+    // Two ranges, named as `fccvdb info` names them: the samples' (the data) and the spline's (the
+    // isovalues with a surface: the slider's range).
     char range[64];
+    if (summary_.hasDataRange) {
+      std::snprintf(range, sizeof range, "%.4g .. %.4g", double(summary_.dataMin), double(summary_.dataMax));
+      row("data range", range);
+    }
     std::snprintf(range, sizeof range, "%.4g .. %.4g", double(summary_.valueMin), double(summary_.valueMax));
-    row("values", range);
+    row("surface range", range);
     const io::BrickStore::Damage damage = store_.damage();
     if (damage.bricks > 0) {
       // Damaged bricks are never trusted: they show as holes; the panel says so, and which.
@@ -121,9 +127,11 @@ void ViewerSession::drawPanel(int windowHeight) {
     char frame[64];
     std::snprintf(frame, sizeof frame, "%.2f ms (%.0f fps)", stats_.frameMs, stats_.fps);
     row("frame", frame);
+    // Bricks "at the isovalue" are all those whose bounds hold it, in the whole dataset; rays load only
+    // those they reach, so a complete image leaves the hidden and off-screen ones unloaded.
     row("resident", count(stats_.resident) + " bricks");
-    row("needed", count(stats_.needed) + " bricks");
-    row("missing", count(stats_.missing) + " bricks");
+    row("at isovalue", count(stats_.needed) + " bricks");
+    row("not loaded", count(stats_.missing) + (stats_.complete ? " (no ray reaches them)" : " (streaming or unreached)"));
     row("requested", count(stats_.requested) + " (last pass)");
     row("streaming", count(stats_.streaming) + " bricks");
     usageBar("GPU cache", double(stats_.resident) * double(raycaster_.slotBytes()), double(raycaster_.poolBytes()));
@@ -132,8 +140,9 @@ void ViewerSession::drawPanel(int windowHeight) {
     std::snprintf(rate, sizeof rate, "%.1f MiB/s", stats_.uploadMiBPerSecond);
     row("uploads", rate);
     char drawn[32];
+    // Pixels each frame drew again (RedrawTracker), not how complete the image is.
     std::snprintf(drawn, sizeof drawn, "%.0f%% of the image", 100.0 * stats_.imageDrawnAverage);
-    row("drawn", drawn);
+    row("redrawn", drawn);
   }
   ImGui::TextDisabled("H or F1: help");
   ImGui::PopItemWidth();
@@ -167,7 +176,8 @@ void ViewerSession::drawStreamingLine(int windowHeight) {
   if (stats_.complete && stats_.streaming == 0) return;
   char text[96];
   if (stats_.streaming > 0)
-    std::snprintf(text, sizeof text, "streaming %zu bricks (%zu missing)", stats_.streaming, stats_.missing);
+    std::snprintf(text, sizeof text, "streaming %zu bricks (%zu at the isovalue not loaded)", stats_.streaming,
+                  stats_.missing);
   else
     std::snprintf(text, sizeof text, "refining (%u bricks requested)", stats_.requested);
   const ImVec2 at(panelWidth() + 10.0f, float(windowHeight) - ImGui::GetFontSize() - 10.0f);

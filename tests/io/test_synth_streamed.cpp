@@ -29,7 +29,7 @@ std::string describe(const Variant& v) {
   return std::string(v.prefilter ? "coefficients" : "--no-prefilter") + (v.half ? " --half" : "");
 }
 
-using Describe = std::function<void(FccGrid&, float sampleMin, float sampleMax)>;
+using Describe = std::function<void(FccGrid&, const SampleSummary& samples)>;
 
 // The dataset as `synth` wrote it before it streamed: the whole grid in memory, then its bounds.
 void writeInMemory(const std::string& path, const SampleField& field, const Variant& v, BrickKernels* kernels,
@@ -37,7 +37,7 @@ void writeInMemory(const std::string& path, const SampleField& field, const Vari
   BuildOptions build;
   build.prefilter = v.prefilter;
   const BuildResult built = buildFccGrid(field, build);
-  describeGrid(*built.grid, built.sampleMin, built.sampleMax);
+  describeGrid(*built.grid, built.samples);
   built.grid->setSaveFloatAsHalf(v.half);
   const BoundsGrid::Ptr bounds = computeBrickBounds(*coefficientsOf(valuesAsStored(built.grid), kernels), kernels);
   writeVdbAtomically(path, openvdb::GridCPtrVec{built.grid, bounds}, false);
@@ -53,7 +53,7 @@ void writeStreamed(const std::string& path, const SampleField& field, const Vari
   options.half = v.half;
   options.kernels = kernels;
   const StreamedBuild built = buildFccGridStreamed(builder, options);
-  describeGrid(*built.grid, built.sampleMin, built.sampleMax);
+  describeGrid(*built.grid, built.samples);
   writeVdbAtomically(path, openvdb::GridCPtrVec{built.grid, boundsGridOf(built.bounds, *built.grid)}, false);
 }
 
@@ -71,8 +71,8 @@ TEST(SynthStreamed, EqualsTheInMemoryBuild) {
       const std::string streamed = dir / (kind + "_streamed.vdb"), inMemory = dir / (kind + "_memory.vdb");
       writeSynthFile(streamed, options);
       const SynthField synth = makeSynthField(options.spec);
-      writeInMemory(inMemory, *synth.field, v, reference.get(), [&](FccGrid& grid, float lo, float hi) {
-        describeSynthGrid(grid, kind, synth, v.prefilter, lo, hi);
+      writeInMemory(inMemory, *synth.field, v, reference.get(), [&](FccGrid& grid, const SampleSummary& samples) {
+        describeSynthGrid(grid, kind, synth, v.prefilter, samples);
       });
       test::expectSameFccFiles(inMemory, streamed);
       std::filesystem::remove(streamed);
@@ -94,8 +94,8 @@ TEST(SynthStreamed, EqualsTheInMemoryBuildWithOpenCl) {
     options.preprocess = kernels.get();
     writeSynthFile(dir / "streamed.vdb", options);
     const SynthField synth = makeSynthField(options.spec);
-    writeInMemory(dir / "memory.vdb", *synth.field, v, kernels.get(), [&](FccGrid& grid, float lo, float hi) {
-      describeSynthGrid(grid, "blobs", synth, v.prefilter, lo, hi);
+    writeInMemory(dir / "memory.vdb", *synth.field, v, kernels.get(), [&](FccGrid& grid, const SampleSummary& samples) {
+      describeSynthGrid(grid, "blobs", synth, v.prefilter, samples);
     });
     test::expectSameFccFiles(dir / "memory.vdb", dir / "streamed.vdb");
     std::filesystem::remove(dir / "streamed.vdb");
@@ -130,14 +130,15 @@ TEST(SynthStreamed, UniformLeavesBecomeTheSameTiles) {
   const std::unique_ptr<BrickKernels> kernels = makeBrickKernels("auto");
   for (const Variant v : {Variant{true, true}, Variant{false, false}}) {
     SCOPED_TRACE(describe(v));
-    auto name = [&](FccGrid& grid, float lo, float hi) {
+    auto name = [&](FccGrid& grid, const SampleSummary& samples) {
       grid.setName("box");
       FccProvenance p;
       p.coefficients = v.prefilter;
       p.mode = "test";
-      p.sampleMin = lo;
-      p.sampleMax = hi;
+      p.sampleMin = samples.min;
+      p.sampleMax = samples.max;
       setFccMetadata(grid, p);
+      recordSampleHistogram(grid, samples);
     };
     writeInMemory(dir / "memory.vdb", field, v, kernels.get(), name);
     writeStreamed(dir / "streamed.vdb", field, v, kernels.get(), name);
@@ -160,7 +161,7 @@ TEST(SynthStreamed, LeavesHoldNoValuesBeforeOrAfterWriting) {
   const SynthField synth = makeSynthField(SynthSpec{"sphere", glm::ivec3(48), 1});
   const FccBlockBuilder builder(*synth.field, BuildOptions{});
   const StreamedBuild built = buildFccGridStreamed(builder, StreamedBuildOptions{});
-  describeSynthGrid(*built.grid, "sphere", synth, true, built.sampleMin, built.sampleMax);
+  describeSynthGrid(*built.grid, "sphere", synth, true, built.samples);
   auto allocated = [&] {
     size_t n = 0;
     for (auto leaf = built.grid->tree().cbeginLeaf(); leaf; ++leaf) n += !leaf->buffer().empty();

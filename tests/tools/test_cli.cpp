@@ -206,7 +206,7 @@ TEST(Cli, FilesWithoutBoundsSayNone) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("\"bounds\": null"));
   r = runFccvdb("info " + vdb);
-  EXPECT_THAT(r.out, HasSubstr("bounds:    none"));
+  EXPECT_THAT(r.out, HasSubstr("bounds:        none"));
 }
 
 TEST(Cli, BenchPreprocessJsonHasTheRequiredKeys) {

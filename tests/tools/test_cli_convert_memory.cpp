@@ -32,9 +32,9 @@ TEST(CliMemory, ConvertOfALevelSetFollowsTheBandAndRendersTheSphere) {
   const MeasuredRun run = runMeasured({"convert", input, output, "--cl-device", "reference"}, dir);
   ASSERT_EQ(run.status, 0) << run.err;
   unsigned long long bandVoxels = 0;
-  const size_t at = run.err.find("(from ");
+  const size_t at = run.err.find(", from ");
   ASSERT_NE(at, std::string::npos) << run.err;
-  ASSERT_EQ(std::sscanf(run.err.c_str() + at, "(from %llu input voxels", &bandVoxels), 1) << run.err;
+  ASSERT_EQ(std::sscanf(run.err.c_str() + at, ", from %llu input voxels", &bandVoxels), 1) << run.err;
   const double bandMiB = double(bandVoxels) * sizeof(float) / double(1 << 20);
   const double peakMiB = double(run.peakRssKiB) / 1024.0;
   std::printf("convert level-set sphere r=%g: peak RSS %.0f MiB; band %.0f MiB as floats, interior %.0f MiB as voxels\n",

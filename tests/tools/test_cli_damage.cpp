@@ -138,7 +138,7 @@ TEST(CliDamage, DamagedBrickIsAHoleNamedInOneLine) {
   EXPECT_EQ(check.status, 1);
   EXPECT_EQ(lineCount(check.err), 1) << check.err;
   EXPECT_THAT(check.out, HasSubstr("1 damaged"));
-  EXPECT_THAT(check.out, HasSubstr("damaged:   " + bad + ": leaf at"));
+  EXPECT_THAT(check.out, HasSubstr("damaged:       " + bad + ": leaf at"));
   const CommandResult checkJson = runFccvdb("info " + bad + " --check --json");
   EXPECT_THAT(checkJson.out, HasSubstr("\"bricks_damaged\": 1"));
   const CommandResult cleanCheck = runFccvdb("info " + good + " --check");

@@ -28,9 +28,9 @@ TEST(CliMemory, SynthOfDenseDataGrowsFarLessThanTheData) {
   const MeasuredRun dense = synth(320);
   ASSERT_EQ(dense.status, 0) << dense.err;
   unsigned long long leaves = 0;
-  const size_t at = dense.err.find(" active samples in ");
+  const size_t at = dense.err.find(" stored values in ");
   ASSERT_NE(at, std::string::npos) << dense.err;
-  ASSERT_EQ(std::sscanf(dense.err.c_str() + at, " active samples in %llu bricks", &leaves), 1) << dense.err;
+  ASSERT_EQ(std::sscanf(dense.err.c_str() + at, " stored values in %llu bricks", &leaves), 1) << dense.err;
   const long dataKiB = long(leaves * 512 * 16 / 1024);  // 512 packed voxels of 4 floats a leaf
   const long growthKiB = dense.peakRssKiB - tiny.peakRssKiB;
   ASSERT_GE(dataKiB, 64 * 1024) << "the dataset must be large against the process' own memory";

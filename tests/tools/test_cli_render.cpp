@@ -56,7 +56,7 @@ TEST(CliRender, BadInputsGiveOneLineStatus1AndNoOutput) {
       {"render " + vdb + " -o " + (dir / "c.png") + " --iso inf", "finite"},
       {"render " + vdb + " -o " + (dir / "d.png") + " --res 0x64", "--res"},
       {"render " + vdb + " -o " + (dir / "e.png") + " --res 64", "WIDTHxHEIGHT"},
-      {"render " + vdb + " -o " + dir.path.string() + "/missing/f.png", "not writable"},
+      {"render " + vdb + " -o " + dir.path.string() + "/missing/f.png", "cannot write there"},
       {"render " + vdb + " -o " + (dir / "g.jpg"), ".exr or .png"},
       {"render " + (dir / "nothere.vdb") + " -o " + (dir / "h.png"), "nothere.vdb"},
       {"render " + vdb + " -o " + (dir / "i.png") + " --eye 1,1,1 --lookat 1,1,1", "coincide"},
@@ -117,7 +117,7 @@ TEST(CliRender, CartesianInputConvertsOnceIntoTheCacheAndIsReused) {
   std::filesystem::copy_file(std::string(FCC_SHARED_DATA_DIR) + "/sphere.vdb", source);
   const std::string env = "FCCVDB_CACHE_DIR=" + cache + " TMPDIR=" + tmp + " ";
   auto render = [&](const std::string& input, const std::string& extra) {
-    return runShell(env + FCC_FCCVDB_EXE + " render " + input + " -o " + (dir / "out.png") + " --res 48x48" + extra);
+    return runShell(env + FCC_FCCVDB_EXE + " render " + input + " -o " + (dir / "out.png") + " --res 48x48 --force" + extra);
   };
   auto cached = [&] {
     int n = 0;
@@ -128,7 +128,7 @@ TEST(CliRender, CartesianInputConvertsOnceIntoTheCacheAndIsReused) {
   if (failedForLackOfGl(first)) GTEST_SKIP() << first.err;
   ASSERT_EQ(first.status, 0) << first.err;
   EXPECT_THAT(first.err, HasSubstr("converting " + source + " to FCC once"));
-  EXPECT_THAT(first.err, HasSubstr("iso 0,")) << "a level set's default isovalue is 0";
+  EXPECT_THAT(first.err, HasSubstr("iso 0 (default: a level set's zero crossing),")) << "a level set's default isovalue is 0";
   EXPECT_EQ(cached(), 1);
   const CommandResult second = render(source, "");
   ASSERT_EQ(second.status, 0) << second.err;
@@ -145,7 +145,7 @@ TEST(CliRender, CartesianInputConvertsOnceIntoTheCacheAndIsReused) {
 
   // The cache is bounded: with room for none, only the conversion in use stays.
   const CommandResult bounded = runShell("FCCVDB_CACHE_MAX_MIB=0 " + env + FCC_FCCVDB_EXE + " render " + source +
-                                         " -o " + (dir / "out.png") + " --res 48x48 --iso 0.01");
+                                         " -o " + (dir / "out.png") + " --res 48x48 --iso 0.01 --force");
   ASSERT_EQ(bounded.status, 0) << bounded.err;
   EXPECT_EQ(cached(), 2) << "a cache hit evicts nothing";
 
@@ -168,7 +168,7 @@ TEST(CliRender, CartesianInputConvertsOnceIntoTheCacheAndIsReused) {
   EXPECT_EQ(cached(), 3);
   // Another conversion (other flags) into a cache with room for none evicts every other one.
   const CommandResult evicting = runShell("FCCVDB_CACHE_MAX_MIB=0 " + env + FCC_FCCVDB_EXE + " render " + raw + " -o " +
-                                          (dir / "out.png") + " --res 48x48 --dims 16,16,16 --spacing 2,2,2 --iso 100");
+                                          (dir / "out.png") + " --res 48x48 --dims 16,16,16 --spacing 2,2,2 --iso 100 --force");
   ASSERT_EQ(evicting.status, 0) << evicting.err;
   EXPECT_EQ(cached(), 1);
   const CommandResult noDims = render(raw, "");

@@ -29,8 +29,8 @@ inline void writeFccFile(const std::string& path, const SampleField& field, doub
   built.grid->setName("test");
   FccProvenance p;
   p.mode = "test";
-  p.sampleMin = built.sampleMin;
-  p.sampleMax = built.sampleMax;
+  p.sampleMin = built.samples.min;
+  p.sampleMax = built.samples.max;
   setFccMetadata(*built.grid, p);
   io::writeVdbAtomically(path, openvdb::GridCPtrVec{built.grid}, /*overwrite=*/true);
 }
