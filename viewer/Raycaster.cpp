@@ -86,8 +86,9 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   if (options.timeGpu) passTimer_ = std::make_unique<GpuInterval>();
   slotUse_ = std::make_unique<GlBuffer>(slots * sizeof(uint32_t));
   slotUse_->clear();
-  // Four batches ready: decoding goes on while render() uploads one (16 MB of blocks).
-  loader_ = std::make_unique<BrickLoader>(store, *hostCache_, 4 * kUploadBatch);
+  // Four batches ready, so decoding goes on while render() uploads one (16 MB of blocks); no more than
+  // the pool has slots: a pass cannot use more, and the blocks count against the process's memory.
+  loader_ = std::make_unique<BrickLoader>(store, *hostCache_, std::min<std::size_t>(4 * kUploadBatch, std::max<std::size_t>(slots, kStepUploadBatch)));
   setIso(std::isnan(options.iso) ? 0.5f * (store.valueMin() + store.valueMax()) : options.iso);
 }
 
