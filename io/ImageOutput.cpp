@@ -1,5 +1,7 @@
 #include "ImageOutput.h"
 
+#include <tbb/parallel_for.h>
+
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -74,14 +76,17 @@ void writePngRgb8(const std::string& path, int w, int h, const std::vector<unsig
 void writePng(const std::string& path, const RenderedImage& image, const glm::vec3& background) {
   const int w = image.width, h = image.height;
   std::vector<unsigned char> pixels(std::size_t(w) * h * 3);
-  for (std::size_t i = 0; i < std::size_t(w) * h; ++i) {
-    const float* p = image.rgba->data() + 4 * i;
-    for (int c = 0; c < 3; ++c) {
-      const float v = p[c] + (1.0f - p[3]) * background[c];  // premultiplied over the background
-      const float srgb = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(std::max(v, 0.0f), 1.0f / 2.4f) - 0.055f;
-      pixels[3 * i + c] = (unsigned char)std::lround(std::clamp(srgb, 0.0f, 1.0f) * 255.0f);
+  // Rows in parallel: three pow() a pixel took a tenth of a second at 1080p on one core.
+  tbb::parallel_for(0, h, [&](int y) {
+    for (std::size_t i = std::size_t(y) * w; i < std::size_t(y + 1) * w; ++i) {
+      const float* p = image.rgba->data() + 4 * i;
+      for (int c = 0; c < 3; ++c) {
+        const float v = p[c] + (1.0f - p[3]) * background[c];  // premultiplied over the background
+        const float srgb = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(std::max(v, 0.0f), 1.0f / 2.4f) - 0.055f;
+        pixels[3 * i + c] = (unsigned char)std::lround(std::clamp(srgb, 0.0f, 1.0f) * 255.0f);
+      }
     }
-  }
+  });
   writePngRgb8(path, w, h, pixels);
 }
 
@@ -106,6 +111,8 @@ void checkImageExtension(const std::string& path) {
   if (ext != ".exr" && ext != ".png")
     throw ValueError(path + ": unknown image type '" + ext + "'; valid outputs end in .exr or .png");
 }
+
+bool imageHoldsNormalDepth(const std::string& path) { return lowerExtension(path) == ".exr"; }
 
 void writeRenderedImage(const std::string& path, const RenderedImage& image, const glm::vec3& background) {
   checkImageExtension(path);

@@ -16,6 +16,8 @@ struct RenderedImage {
   const std::vector<float>* normalDepth = nullptr;  // 4 per pixel: N.X, N.Y, N.Z, Z
 };
 
+// True for the outputs that store depth and normals (EXR), false for colour only (PNG).
+bool imageHoldsNormalDepth(const std::string& path);
 // By extension: ".exr" or ".png" (case-insensitive); anything else is a ValueError listing both.
 void writeRenderedImage(const std::string& path, const RenderedImage& image, const glm::vec3& background);
 

@@ -64,7 +64,7 @@ Command addRenderCommand(CLI::App& parent) {
             mark("renderer");
             const render::FrameStats stats = raycaster.render(camera, width, height);
             mark("frame");
-            const render::FrameImages images = raycaster.readImages();
+            const render::FrameImages images = raycaster.readImages(/*withNormalDepth=*/io::imageHoldsNormalDepth(args->output));
             io::RenderedImage image{images.width, images.height, &images.rgba, &images.normalDepth};
             io::writeRenderedImage(args->output, image, glm::vec3(0.08f, 0.09f, 0.11f));
             mark("image");

@@ -67,6 +67,7 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   slotBoundsProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/slot_bounds.comp"), defines),
                                           "shaders/slot_bounds.comp");
   slotBoundsPassUniform_ = slotBoundsProgram_.uniformLocation("uPass");
+  pageUpdateProgram_ = GlProgram::compute(embedded::shaders("shaders/page_update.comp"), "shaders/page_update.comp");
   pool_->setUniforms(program_);
   pool_->setUniforms(slotBoundsProgram_);
 
@@ -145,7 +146,32 @@ void Raycaster::computeSlotBounds(const std::vector<uint32_t>& slots) {
   checkGl("computing the cell bounds of " + std::to_string(slots.size()) + " uploaded bricks");
 }
 
+void Raycaster::updatePageTable() {
+  const std::size_t entries = residency_->pageEntries().size();
+  const bool all = residency_->allEntriesChanged();
+  const std::vector<uint32_t> changed = residency_->takeChangedEntries();
+  if (all || changed.size() > entries / 8) {  // a scatter would write as much as the table
+    pageTable_->write(residency_->pageEntries());
+    return;
+  }
+  if (changed.empty()) return;
+  std::vector<uint32_t> pairs;
+  pairs.reserve(2 * changed.size());
+  for (uint32_t index : changed) {
+    pairs.push_back(index);
+    pairs.push_back(residency_->pageEntries()[index]);
+  }
+  if (!pageChanges_ || pageChanges_->size() < pairs.size() * sizeof(uint32_t))
+    pageChanges_ = std::make_unique<GlBuffer>(std::max<std::size_t>(pairs.size(), 2 * 4096) * sizeof(uint32_t));
+  pageChanges_->write(pairs);
+  pageTable_->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+  pageChanges_->bindBase(GL_SHADER_STORAGE_BUFFER, 11);
+  glProgramUniform1ui(pageUpdateProgram_.id(), pageUpdateProgram_.uniformLocation("uCount"), GLuint(changed.size()));
+  pageUpdateProgram_.dispatch("updating the page table", GLuint(changed.size()));
+}
+
 void Raycaster::uploadPageTable() {
+  (void)residency_->takeChangedEntries();  // all of them are written now
   pageTable_->write(residency_->pageEntries());
   if (options_.skipEmpty) {
     nodeTable_->write(residency_->nodeEntries());
@@ -281,11 +307,11 @@ std::vector<uint32_t> Raycaster::readSlotUse() const {
   return slotUse;
 }
 
-uint32_t Raycaster::upload(const std::vector<LoadedBrick>& loaded, std::vector<uint32_t>& slotLastUse) {
+uint32_t Raycaster::upload(const std::vector<LoadedBrick>& loaded) {
   std::vector<glm::ivec3> bricks;
   bricks.reserve(loaded.size());
   for (const LoadedBrick& b : loaded) bricks.push_back(b.brick);
-  const auto assigned = residency_->assign(bricks, slotLastUse);  // skips bricks resident meanwhile
+  const auto assigned = residency_->assign(bricks);  // skips bricks resident meanwhile
   if (assigned.empty()) return 0;
   std::vector<uint32_t> slots;
   std::vector<const float*> blocks;
@@ -294,8 +320,7 @@ uint32_t Raycaster::upload(const std::vector<LoadedBrick>& loaded, std::vector<u
     while (loaded[next].brick != brick) ++next;  // assign() keeps the order
     blocks.push_back(loaded[next].halo.data());
     // Freshly loaded slots count as used now (computeSlotBounds marks them on the GPU), so the next
-    // assignment does not evict them first; on the host they are pinned until the next pass reports.
-    slotLastUse[slot] = std::numeric_limits<uint32_t>::max();
+    // pass's eviction order does not evict them first; this pass's order never hands a slot out twice.
     slots.push_back(slot);
   }
   pool_->upload(slots, blocks);
@@ -324,16 +349,16 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
     if (stats.passes >= kMaxPasses) throw Error("renderer: the frame did not complete in " + std::to_string(kMaxPasses) + " passes");
     lastRequests_ = requestedBricks(requested);
     loader_->request(lastRequests_);
-    std::vector<uint32_t> slotUse = readSlotUse();
+    residency_->startAssigning(readSlotUse());
     uint64_t uploaded = 0;
     for (;;) {
       std::vector<LoadedBrick> loaded = loader_->take(kUploadBatch, true);
       if (loaded.empty()) break;
-      uploaded += upload(loaded, slotUse);
+      uploaded += upload(loaded);
       loader_->recycle(std::move(loaded));
     }
     if (uploaded == 0) throw Error("renderer: rays requested bricks but none could be given a pool slot");
-    uploadPageTable();
+    updatePageTable();
     stats.bricksUploaded += uploaded;
   }
   // No glFinish: the last pass's read-back waited for every command of the frame.
@@ -368,15 +393,16 @@ void Raycaster::startStep(const Camera& camera, int width, int height, double up
   // Uploads first, so this step's pass already sees them; also once the frame is complete, so that
   // bricks still arriving (look-ahead requests) do not wait in the loader forever.
   const auto start = std::chrono::steady_clock::now();
-  std::vector<uint32_t> slotUse;
+  bool assigning = false;
   do {
     std::vector<LoadedBrick> loaded = loader_->take(kStepUploadBatch, false);
     if (loaded.empty()) break;
-    if (slotUse.empty()) slotUse = readSlotUse();
-    stats.uploaded += upload(loaded, slotUse);
+    if (!assigning) residency_->startAssigning(readSlotUse());
+    assigning = true;
+    stats.uploaded += upload(loaded);
     loader_->recycle(std::move(loaded));
   } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < uploadSeconds);
-  if (stats.uploaded) uploadPageTable();
+  if (stats.uploaded) updatePageTable();
 
   stepStarted_ = true;
   if (stepComplete_) return;
@@ -400,12 +426,12 @@ StepStats Raycaster::finishStep() {
   return stats;
 }
 
-FrameImages Raycaster::readImages() const {
+FrameImages Raycaster::readImages(bool withNormalDepth) const {
   FrameImages out;
   out.width = color_.width();
   out.height = color_.height();
   out.rgba = color_.read(GL_RGBA, 4);
-  out.normalDepth = normalDepth_.read(GL_RGBA, 4);
+  if (withNormalDepth) out.normalDepth = normalDepth_.read(GL_RGBA, 4);
   return out;
 }
 

@@ -105,7 +105,8 @@ class Raycaster {
   // waits for the pass and queues the bricks its rays asked for. Calls alternate.
   void startStep(const Camera& camera, int width, int height, double uploadSeconds, int coveredColumns = 0);
   StepStats finishStep();
-  FrameImages readImages() const;
+  // The last frame's images; `withNormalDepth` false leaves normalDepth empty (a PNG needs only colour).
+  FrameImages readImages(bool withNormalDepth = true) const;
   // The colour image (RGBA32F, premultiplied, row 0 at the top) for drawing on screen.
   const GlTexture2D& colorTexture() const { return color_; }
   // The pixels of the colour image that show the surface (A = 1), as of the last pass; the rest shows
@@ -146,9 +147,10 @@ class Raycaster {
   void dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn);
   PassResult collectPass();  // waits for the pass dispatched last and reads what it tells the host
   std::vector<glm::ivec3> requestedBricks(uint32_t requestCount) const;  // after collectPass()
-  uint32_t upload(const std::vector<LoadedBrick>& loaded, std::vector<uint32_t>& slotLastUse);
+  uint32_t upload(const std::vector<LoadedBrick>& loaded);  // after residency_->startAssigning
   std::vector<uint32_t> readSlotUse() const;
-  void uploadPageTable();
+  void uploadPageTable();  // the whole page and node tables (a new isovalue or skip setting)
+  void updatePageTable();  // the page entries changed since (uploads), scattered on the GPU
   void computeSlotBounds(const std::vector<uint32_t>& slots);
 
   const io::BrickStore& store_;
@@ -173,7 +175,7 @@ class Raycaster {
   bool stepComplete_ = false;
   bool stepStarted_ = false;  // startStep() ran, finishStep() has not
   StepStats startedStep_;     // what startStep() did
-  GlProgram program_, slotBoundsProgram_;
+  GlProgram program_, slotBoundsProgram_, pageUpdateProgram_;
   GLint slotBoundsPassUniform_ = -1;  // its uPass: the pass that marks freshly uploaded slots used
   // raycast.comp's uniform locations, looked up once.
   struct Uniforms {
@@ -186,6 +188,7 @@ class Raycaster {
   std::unique_ptr<GpuInterval> passTimer_;
   std::unique_ptr<BrickPool> pool_;
   std::unique_ptr<GlBuffer> slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;
+  std::unique_ptr<GlBuffer> pageChanges_;  // (index, value) pairs for updatePageTable
   GlTexture2D color_, normalDepth_, resume_;
 };
 

@@ -15,6 +15,7 @@ Residency::Residency(const glm::ivec3& brickMin, const glm::ivec3& brickDims, ui
   if (bricks >= kMissing) throw ValueError("the data spans too many bricks for one page table");
   pageEntries_.assign(bricks, kSkip);
   needed_.assign(bricks, 0);
+  changedMark_.assign(bricks, 0);
   nodeEntries_.assign(std::size_t(nodeDims_.x) * nodeDims_.y * nodeDims_.z, 0);
   slotBrick_.assign(slotCount, -1);
 }
@@ -40,6 +41,7 @@ void Residency::setNeeded(const std::vector<glm::ivec3>& bricks) {
     nodeEntries_[(std::size_t(node.z) * nodeDims_.y + node.y) * nodeDims_.x + node.x] = 1;
   }
   neededCount_ = bricks.size();
+  allChanged_ = true;
   residentNeeded_ = 0;
   for (const auto& [index, slot] : brickSlot_) residentNeeded_ += needed_[index];
   for (std::size_t i = 0; i < pageEntries_.size(); ++i) {
@@ -56,35 +58,52 @@ std::size_t Residency::missingCount() const { return neededCount_ - residentNeed
 
 bool Residency::isResident(const glm::ivec3& brick) const { return brickSlot_.count(brickIndex(brick)) != 0; }
 
-std::vector<std::pair<glm::ivec3, uint32_t>> Residency::assign(const std::vector<glm::ivec3>& bricks,
-                                                                 const std::vector<uint32_t>& slotLastUse) {
-  // Slots in eviction order: free ones first, then by last use, oldest first.
-  std::vector<uint32_t> order(slotBrick_.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+void Residency::startAssigning(const std::vector<uint32_t>& slotLastUse) {
+  evictionOrder_.resize(slotBrick_.size());
+  std::iota(evictionOrder_.begin(), evictionOrder_.end(), 0u);
+  std::stable_sort(evictionOrder_.begin(), evictionOrder_.end(), [&](uint32_t a, uint32_t b) {
     const bool freeA = slotBrick_[a] < 0, freeB = slotBrick_[b] < 0;
     if (freeA != freeB) return freeA;
     const uint32_t useA = a < slotLastUse.size() ? slotLastUse[a] : 0;
     const uint32_t useB = b < slotLastUse.size() ? slotLastUse[b] : 0;
     return useA < useB;
   });
+  nextInOrder_ = 0;
+}
+
+void Residency::markChanged(uint32_t index) {
+  if (allChanged_ || changedMark_[index]) return;
+  changedMark_[index] = 1;
+  changed_.push_back(index);
+}
+
+std::vector<uint32_t> Residency::takeChangedEntries() {
+  std::vector<uint32_t> out;
+  out.swap(changed_);
+  for (uint32_t index : out) changedMark_[index] = 0;
+  allChanged_ = false;
+  return out;
+}
+
+std::vector<std::pair<glm::ivec3, uint32_t>> Residency::assign(const std::vector<glm::ivec3>& bricks) {
   std::vector<std::pair<glm::ivec3, uint32_t>> out;
-  std::size_t next = 0;
   for (const glm::ivec3& brick : bricks) {
-    if (next == order.size()) break;
+    if (nextInOrder_ == evictionOrder_.size()) break;
     const uint32_t index = brickIndex(brick);
     if (brickSlot_.count(index)) continue;
-    const uint32_t slot = order[next++];
+    const uint32_t slot = evictionOrder_[nextInOrder_++];
     if (slotBrick_[slot] >= 0) {  // evict
       const uint32_t old = uint32_t(slotBrick_[slot]);
       brickSlot_.erase(old);
       residentNeeded_ -= needed_[old];
       pageEntries_[old] = needed_[old] ? kMissing : kSkip;
+      markChanged(old);
     }
     slotBrick_[slot] = index;
     brickSlot_[index] = slot;
     residentNeeded_ += needed_[index];
     pageEntries_[index] = needed_[index] ? slot : kSkip;
+    markChanged(index);
     out.emplace_back(brick, slot);
   }
   return out;

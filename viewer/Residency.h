@@ -34,11 +34,24 @@ class Residency {
   void setNeeded(const std::vector<glm::ivec3>& bricks);
   std::size_t neededCount() const { return neededCount_; }
 
-  // Assigns pool slots to `bricks` (not yet resident), in order, at most slotCount(): free slots
-  // first, then the least recently used (slotLastUse, the pass that last read each slot), never a
-  // slot assigned in this call. Returns (brick, slot) pairs; the page table already points to them.
+  // Orders the slots for eviction once per pass: free slots first, then the least recently used
+  // (slotLastUse, the pass that last read each slot). Sorting the whole pool for every upload batch
+  // took milliseconds a batch with 40 k slots.
+  void startAssigning(const std::vector<uint32_t>& slotLastUse);
+  // Assigns pool slots to `bricks` (not yet resident), in order, taking slots in the order
+  // startAssigning made and never one assigned since then. Returns (brick, slot) pairs (fewer when
+  // the order runs out); the page table already points to them.
+  std::vector<std::pair<glm::ivec3, uint32_t>> assign(const std::vector<glm::ivec3>& bricks);
+  // Both at once: one call's worth of assignments.
   std::vector<std::pair<glm::ivec3, uint32_t>> assign(const std::vector<glm::ivec3>& bricks,
-                                                      const std::vector<uint32_t>& slotLastUse);
+                                                      const std::vector<uint32_t>& slotLastUse) {
+    startAssigning(slotLastUse);
+    return assign(bricks);
+  }
+  // The page entries changed since the last call (indices into pageEntries(), each once; all of them
+  // after setNeeded), cleared by the call: what an upload of the page table must write.
+  std::vector<uint32_t> takeChangedEntries();
+  bool allEntriesChanged() const { return allChanged_; }
 
   bool isResident(const glm::ivec3& brick) const;
   uint32_t residentCount() const { return uint32_t(brickSlot_.size()); }
@@ -55,6 +68,12 @@ class Residency {
   std::vector<uint8_t> needed_;            // per brick index
   std::vector<int64_t> slotBrick_;         // per slot: brick index, or -1 when free
   std::unordered_map<uint32_t, uint32_t> brickSlot_;
+  std::vector<uint32_t> evictionOrder_;  // startAssigning's order of the slots
+  std::size_t nextInOrder_ = 0;
+  std::vector<uint32_t> changed_;         // page entries changed since takeChangedEntries
+  std::vector<uint8_t> changedMark_;      // per page entry: in changed_
+  bool allChanged_ = true;
+  void markChanged(uint32_t index);
   std::size_t neededCount_ = 0;
   std::size_t residentNeeded_ = 0;  // needed bricks that are resident (kept up to date: read every frame)
 };

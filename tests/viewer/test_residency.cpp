@@ -1,6 +1,9 @@
 // The pool bookkeeping (viewer/Residency.h): page entries, node occupancy, eviction order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "viewer/Camera.h"
 #include "sparse/Error.h"
 #include "viewer/Residency.h"
@@ -59,6 +62,40 @@ TEST(Residency, EvictsTheLeastRecentlyUsedAndNeverWhatItJustAssigned) {
   EXPECT_NE(third[1].second, third[2].second);
   EXPECT_NE(third[0].second, third[2].second);
   EXPECT_EQ(r.residentCount(), 3u);
+}
+
+TEST(Residency, OnePassOrderServesSeveralBatchesAndNamesTheChangedEntries) {
+  Residency r(glm::ivec3(0), glm::ivec3(16, 1, 1), 4);
+  std::vector<glm::ivec3> all;
+  for (int x = 0; x < 16; ++x) all.push_back(glm::ivec3(x, 0, 0));
+  r.setNeeded(all);
+  EXPECT_TRUE(r.allEntriesChanged()) << "a new need rewrites the whole table";
+  EXPECT_TRUE(r.takeChangedEntries().empty());
+  EXPECT_FALSE(r.allEntriesChanged());
+  const auto first = r.assign({all[0], all[1], all[2], all[3]}, {0, 0, 0, 0});
+  ASSERT_EQ(first.size(), 4u);
+  std::vector<uint32_t> changed = r.takeChangedEntries();
+  std::sort(changed.begin(), changed.end());
+  EXPECT_EQ(changed, (std::vector<uint32_t>{0, 1, 2, 3}));
+  // Next pass: slots used in passes 4, 1, 3, 2 (by brick 0..3). Two batches within the pass take the
+  // two oldest slots, then the next two, never one twice (the order is made once per pass).
+  std::vector<uint32_t> lastUse(4);
+  for (int i = 0; i < 4; ++i) lastUse[first[i].second] = uint32_t(std::vector<int>{4, 1, 3, 2}[i]);
+  r.startAssigning(lastUse);
+  const auto batch1 = r.assign({all[4], all[5]});
+  const auto batch2 = r.assign({all[6], all[7], all[8]});
+  ASSERT_EQ(batch1.size(), 2u);
+  ASSERT_EQ(batch2.size(), 2u) << "four slots: the pass's order runs out";
+  EXPECT_EQ(batch1[0].second, first[1].second);
+  EXPECT_EQ(batch1[1].second, first[3].second);
+  EXPECT_EQ(batch2[0].second, first[2].second);
+  EXPECT_EQ(batch2[1].second, first[0].second);
+  // Changed: the four evicted bricks (back to missing) and the four loaded ones, each once.
+  changed = r.takeChangedEntries();
+  std::sort(changed.begin(), changed.end());
+  EXPECT_EQ(changed, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 6, 7}));
+  for (uint32_t index = 0; index < 4; ++index) EXPECT_EQ(r.pageEntries()[index], Residency::kMissing);
+  EXPECT_TRUE(r.takeChangedEntries().empty());
 }
 
 TEST(Camera, PixelRaysAndFraming) {
