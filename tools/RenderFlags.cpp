@@ -91,6 +91,17 @@ void resolutionFromFlags(const std::string& res, int& width, int& height, const 
   height = int(h);
 }
 
+std::string cameraFlags(const render::Camera& camera) {
+  const auto number = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", v);
+    return std::string(text);
+  };
+  const auto triple = [&](const glm::dvec3& v) { return number(v.x) + "," + number(v.y) + "," + number(v.z); };
+  return "--eye " + triple(camera.eye) + " --lookat " + triple(camera.lookat) + " --up " + triple(camera.up) +
+         " --fov " + number(camera.fovYDegrees);
+}
+
 render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect) {
   double fov = 40.0;
   if (!flags.fov.empty()) {

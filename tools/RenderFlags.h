@@ -40,6 +40,9 @@ void warnIfIsoOutside(float iso, const io::BrickStore& store);
 // --res (or `flag`) "WxH"; ValueError naming the flag for anything else or a zero size.
 void resolutionFromFlags(const std::string& res, int& width, int& height, const char* flag = "--res");
 // The camera: frames the data unless --eye/--lookat/--up/--fov say otherwise.
+// The flags that give `camera` again, ready to paste: "--eye X,Y,Z --lookat X,Y,Z --up X,Y,Z --fov F",
+// every number with all the digits a double needs to come back the same.
+std::string cameraFlags(const render::Camera& camera);
 render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect);
 render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags);
 

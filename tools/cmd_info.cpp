@@ -142,8 +142,9 @@ Command addInfoCommand(CLI::App& parent) {
                 "One JSON object (keys: file, grid, lattice, values, class, dims (of the active box), samples, bricks, "
                 "tiles, bytes, min, max (the range the surface can take), range_from, sample_min, sample_max (the "
                 "data's range), percentiles ({\"1\": v, ... \"99\": v} or null), suggested_iso, suggested_iso_basis, "
-                "voxel_size, metadata, bounds: {bricks, nodes1, nodes2[, iso, bricks_kept, nodes1_kept, nodes2_kept]} "
-                "or null)");
+                "voxel_size, world_bounds: {min: [x, y, z], max: [x, y, z]} (the active data's box in world space, "
+                "what the default camera frames), metadata, bounds: {bricks, nodes1, nodes2[, iso, bricks_kept, "
+                "nodes1_kept, nodes2_kept]} or null)");
   return {app, [args, isoOption]() {
             std::optional<float> iso;
             if (isoOption->count() > 0) {
@@ -158,13 +159,19 @@ Command addInfoCommand(CLI::App& parent) {
             if (args->check) damage = checkBricks(store);
             const openvdb::Coord dims = s.siteBox.dim();
             if (args->json) {
+              glm::dvec3 worldLo, worldHi;
+              store.worldBounds(worldLo, worldHi);
+              const auto triple = [](const glm::dvec3& v) {
+                return "[" + jsonNumber(v.x) + ", " + jsonNumber(v.y) + ", " + jsonNumber(v.z) + "]";
+              };
+              const std::string worldBounds = "{\"min\": " + triple(worldLo) + ", \"max\": " + triple(worldHi) + "}";
               std::string meta;
               for (const auto& [k, v] : s.metadata) meta += (meta.empty() ? "" : ", ") + jsonString(k) + ": " + jsonString(v);
               std::printf("{\"file\": %s, \"grid\": %s, \"lattice\": %s, \"values\": %s, \"class\": %s, "
                           "\"dims\": [%d, %d, %d], \"samples\": %llu, \"bricks\": %llu, \"tiles\": %llu, "
                           "\"bytes\": %llu, \"min\": %s, \"max\": %s, \"range_from\": %s, \"sample_min\": %s, "
                           "\"sample_max\": %s, \"percentiles\": %s, \"suggested_iso\": %s, \"suggested_iso_basis\": %s, "
-                          "\"voxel_size\": [%s, %s, %s], \"metadata\": {%s}, \"bounds\": %s%s}\n",
+                          "\"voxel_size\": [%s, %s, %s], \"world_bounds\": %s, \"metadata\": {%s}, \"bounds\": %s%s}\n",
                           jsonString(args->file).c_str(), jsonString(s.name).c_str(), jsonString(s.lattice).c_str(),
                           jsonString(s.values).c_str(), jsonString(s.gridClass).c_str(), dims.x(), dims.y(), dims.z(),
                           (unsigned long long)s.samples, (unsigned long long)s.bricks, (unsigned long long)s.tiles,
@@ -174,7 +181,8 @@ Command addInfoCommand(CLI::App& parent) {
                           s.data ? jsonNumber(s.data->max).c_str() : "null", percentilesJson(s.data).c_str(),
                           jsonNumber(s.suggested.value).c_str(), jsonString(s.suggested.basis).c_str(),
                           jsonNumber(s.voxelSize.x()).c_str(),
-                          jsonNumber(s.voxelSize.y()).c_str(), jsonNumber(s.voxelSize.z()).c_str(), meta.c_str(),
+                          jsonNumber(s.voxelSize.y()).c_str(), jsonNumber(s.voxelSize.z()).c_str(),
+                          worldBounds.c_str(), meta.c_str(),
                           boundsJson(b).c_str(), checkJson(damage).c_str());
               return damage && damage->bricks > 0 ? 1 : 0;
             }

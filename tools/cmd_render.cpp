@@ -90,6 +90,7 @@ Command addRenderCommand(CLI::App& parent) {
                            isoBasis.c_str(),
                            stats.passes, (unsigned long long)stats.bricksUploaded,
                            (unsigned long long)stats.bricksNeeded, stats.seconds, gl.renderer().c_str());
+            if (!args->quiet) std::fprintf(stderr, "camera: %s\n", cameraFlags(camera).c_str());
             const io::BrickStore::Damage damage = store.damage();
             if (damage.bricks > 0) {
               std::fprintf(stderr, "fccvdb: %llu damaged brick%s rendered as holes in %s (first: %s)%s\n",

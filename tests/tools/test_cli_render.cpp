@@ -42,6 +42,36 @@ TEST(CliRender, WritesExrWithTheContractChannelsAndPng) {
   EXPECT_EQ(dir.fileCount(), 3) << "no temporary files left behind";
 }
 
+// The camera render prints is the one it used: pasted back, it gives the same image bit for bit; by
+// default it looks at the centre of info's world_bounds.
+TEST(CliRender, PrintedCameraReproducesTheImageAndFramesTheWorldBounds) {
+  TempDir dir;
+  const std::string vdb = dir / "s.vdb", first = dir / "a.png", second = dir / "b.png";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 24,20,28 --quiet").status, 0);
+  const auto r = runFccvdb("render " + vdb + " " + first + " --res 48x32 --iso 0.25");
+  if (failedForLackOfGl(r)) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::size_t at = r.err.find("camera: ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const std::string flags = r.err.substr(at + 8, r.err.find('\n', at) - at - 8);
+  EXPECT_THAT(flags, ::testing::MatchesRegex("--eye [^ ]+,[^ ]+,[^ ]+ --lookat [^ ]+ --up [^ ]+ --fov [^ ]+")) << flags;
+  const auto again = runFccvdb("render " + vdb + " " + second + " --res 48x32 --iso 0.25 --quiet " + flags);
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(readText(first), readText(second)) << "the pasted camera gives another image: " << flags;
+  // The default camera looks at the world bounds' centre.
+  const auto info = runFccvdb("info " + vdb + " --json");
+  ASSERT_EQ(info.status, 0) << info.err;
+  const std::string lookat = flags.substr(flags.find("--lookat ") + 9, flags.find(" --up") - flags.find("--lookat ") - 9);
+  EXPECT_EQ(checkJsonWithPython(dir, info.out,
+                                "b = rows['world_bounds']\n"
+                                "centre = [(lo + hi) / 2 for lo, hi in zip(b['min'], b['max'])]\n"
+                                "lookat = [float(v) for v in '" + lookat + "'.split(',')]\n"
+                                "assert all(lo < hi for lo, hi in zip(b['min'], b['max'])), b\n"
+                                "assert all(abs(c - l) < 1e-6 * (1 + abs(c)) for c, l in zip(centre, lookat)), (centre, lookat)\n"),
+            0)
+      << info.out;
+}
+
 TEST(CliRender, BadInputsGiveOneLineStatus1AndNoOutput) {
   TempDir dir;
   const std::string vdb = dir / "s.vdb";
