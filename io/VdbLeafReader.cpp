@@ -348,7 +348,9 @@ void parseValues(const uint8_t* p, uint64_t avail, uint64_t at, uint32_t total, 
   r.payloadAt = at + 8;
   if (stored <= 0) {  // stored raw: -stored bytes follow
     if (stored != -int64_t(r.decodedBytes))
-      throw Damaged{"raw values of " + std::to_string(-stored) + " bytes where " + std::to_string(r.valueCount) +
+      // The magnitude in unsigned arithmetic: -stored overflows for the most negative size (found by fuzzing).
+      throw Damaged{"raw values of " + std::to_string(uint64_t(0) - uint64_t(stored)) + " bytes where " +
+                    std::to_string(r.valueCount) +
                     " values take " + std::to_string(r.decodedBytes)};
     r.payloadBytes = r.decodedBytes;
     return;
