@@ -334,6 +334,12 @@ DenseVolume readNrrd(const std::string& path) {
     const std::filesystem::path named(dataFile->value);
     dataPath = (named.is_absolute() ? named : std::filesystem::path(path).parent_path() / named).string();
     dataStart = 0;
+    // A device or a pipe (/dev/zero, /dev/stdin) would be read up to the voxel limit, or block: only
+    // files on disk hold a volume's data. (A missing file is reported where it is opened.)
+    std::error_code ec;
+    const auto status = std::filesystem::status(dataPath, ec);
+    if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+      parser.fail(*dataFile, "data file " + quotedText(dataFile->value) + " is not a regular file; the data must be in a file");
   } else if (!header.endsWithBlankLine) {
     throw InputError(path + ": header has no \"data file:\" field and no blank line before attached data");
   }

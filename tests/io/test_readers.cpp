@@ -540,6 +540,9 @@ TEST_F(ReaderFiles, NrrdBadHeaders) {
               HasSubstr("list.nhdr: line 11: data file \"LIST\" is not supported"));
   EXPECT_THAT(errorOf([&] { readNrrd(file("nodata.nhdr", textBytes(nrrdHeader("raw", "data file: absent.raw\n")))); }),
               HasSubstr("absent.raw: cannot open: No such file or directory"));
+  // A device as the data file would be read up to the voxel limit (fuzzing review): refused in one line.
+  EXPECT_THAT(errorOf([&] { readNrrd(file("device.nhdr", textBytes(nrrdHeader("raw", "data file: /dev/zero\n")))); }),
+              HasSubstr("device.nhdr: line 11: data file \"/dev/zero\" is not a regular file"));
   EXPECT_THAT(errorOf([&] { readNrrd(file("noblank.nrrd", textBytes(nrrdHeader("raw", "")))); }),
               HasSubstr("noblank.nrrd: header has no \"data file:\" field and no blank line"));
   const std::string shortData = file("short.nrrd", concat(textBytes(nrrdHeader("raw", "\n")), Bytes(data.begin(), data.end() - 1)));
