@@ -11,9 +11,6 @@ uint64_t brickKey(const glm::ivec3& b) {
   return u(b.x) | (u(b.y) << 21) | (u(b.z) << 42);
 }
 
-}  // namespace
-
-namespace {
 // Shards: enough that 16+ loader threads, each touching 27 bricks a block, rarely meet on one lock
 // (64 were too few on the H200 machine), few enough that each keeps a useful share of a small budget
 // (at least 64 bricks a shard).

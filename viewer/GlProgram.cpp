@@ -203,6 +203,18 @@ void GlBuffer::clear() {
   checkGl("clearing a buffer");
 }
 
+namespace {
+// Waits for `fence` however long it takes (the first wait flushes the commands before it), deletes it
+// and nulls it; GlError naming `what` if the wait failed.
+void waitAndDelete(GLsync& fence, const char* what) {
+  GLenum status = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
+  while (status == GL_TIMEOUT_EXPIRED) status = glClientWaitSync(fence, 0, 1'000'000'000);
+  glDeleteSync(fence);
+  fence = nullptr;
+  if (status == GL_WAIT_FAILED) throw GlError(std::string("waiting for ") + what + " failed");
+}
+}  // namespace
+
 GlReadbackBuffer::GlReadbackBuffer(std::size_t bytes) : bytes_(bytes) {
   constexpr GLbitfield kFlags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
   glCreateBuffers(1, &id_);
@@ -232,11 +244,7 @@ void GlReadbackBuffer::copy(const GlBuffer& source, std::size_t bytes, std::size
 
 const void* GlReadbackBuffer::wait() {
   if (!fence_) throw GlError("waiting for a read-back that was never started");
-  GLenum status = glClientWaitSync(fence_, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
-  while (status == GL_TIMEOUT_EXPIRED) status = glClientWaitSync(fence_, 0, 1'000'000'000);
-  glDeleteSync(fence_);
-  fence_ = nullptr;
-  if (status == GL_WAIT_FAILED) throw GlError("waiting for a read-back failed");
+  waitAndDelete(fence_, "a read-back");
   checkGl("reading back a buffer");
   return mapped_;
 }
@@ -270,14 +278,7 @@ GlUploadBuffer::~GlUploadBuffer() {
 }
 
 void* GlUploadBuffer::begin(std::size_t& offset) {
-  GLsync& fence = fences_[next_];
-  if (fence) {
-    GLenum status = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
-    while (status == GL_TIMEOUT_EXPIRED) status = glClientWaitSync(fence, 0, 1'000'000'000);
-    glDeleteSync(fence);
-    fence = nullptr;
-    if (status == GL_WAIT_FAILED) throw GlError("waiting for an upload buffer failed");
-  }
+  if (fences_[next_]) waitAndDelete(fences_[next_], "an upload buffer");
   offset = next_ * segmentBytes_;
   return static_cast<char*>(mapped_) + offset;
 }

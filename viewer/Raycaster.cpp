@@ -21,7 +21,6 @@ constexpr int kMaxPasses = 1 << 20;       // a frame that needs more has a bug, 
 
 glm::ivec3 toGlm(const openvdb::Coord& c) { return {c.x(), c.y(), c.z()}; }
 
-// `source` with `defines` inserted after its #version line (which must stay first).
 }  // namespace
 
 BrickLayout chooseBrickLayout(const io::BrickStore& store, std::size_t gpuCacheBytes) {
@@ -68,6 +67,7 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
                                           "shaders/slot_bounds.comp");
   slotBoundsPassUniform_ = slotBoundsProgram_.uniformLocation("uPass");
   pageUpdateProgram_ = GlProgram::compute(embedded::shaders("shaders/page_update.comp"), "shaders/page_update.comp");
+  pageUpdateCountUniform_ = pageUpdateProgram_.uniformLocation("uCount");
   pool_->setUniforms(program_);
   pool_->setUniforms(slotBoundsProgram_);
 
@@ -166,7 +166,7 @@ void Raycaster::updatePageTable() {
   pageChanges_->write(pairs);
   pageTable_->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
   pageChanges_->bindBase(GL_SHADER_STORAGE_BUFFER, 11);
-  glProgramUniform1ui(pageUpdateProgram_.id(), pageUpdateProgram_.uniformLocation("uCount"), GLuint(changed.size()));
+  glProgramUniform1ui(pageUpdateProgram_.id(), pageUpdateCountUniform_, GLuint(changed.size()));
   pageUpdateProgram_.dispatch("updating the page table", GLuint(changed.size()));
 }
 

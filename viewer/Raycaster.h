@@ -177,6 +177,7 @@ class Raycaster {
   StepStats startedStep_;     // what startStep() did
   GlProgram program_, slotBoundsProgram_, pageUpdateProgram_;
   GLint slotBoundsPassUniform_ = -1;  // its uPass: the pass that marks freshly uploaded slots used
+  GLint pageUpdateCountUniform_ = -1; // pageUpdateProgram_'s uCount: the pairs to write
   // raycast.comp's uniform locations, looked up once.
   struct Uniforms {
     GLint resolution, eye, forward, right, up, indexFromWorld, normalFromIndex, iso, brickMin, brickDims, nodeDims,
