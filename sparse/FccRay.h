@@ -9,73 +9,7 @@
 #ifndef FCC_RAY_H
 #define FCC_RAY_H
 
-#if defined(FCC_CPP)
-namespace fcc {
-namespace spline {
-#endif
-
-// Value of the Bernstein cubic with coefficients b on [0, 1] at u.
-FCC_FUNC float fcc_bernstein3(FCC_VEC4 b, float u) {
-  float v = 1.0f - u;
-  return v * v * (v * b.x + 3.0f * u * b.y) + u * u * (3.0f * v * b.z + u * b.w);
-}
-
-// The first u in [0, 1] where the cubic with Bernstein coefficients b is zero, or -1 if it has none.
-// Exact up to float rounding: the cubic is monotone between its critical points, so the first
-// monotone interval whose ends differ in sign holds the first root, found by bisection.
-FCC_FUNC float fcc_first_root_bernstein3(FCC_VEC4 b) {
-  if (min(min(b.x, b.y), min(b.z, b.w)) > 0.0f || max(max(b.x, b.y), max(b.z, b.w)) < 0.0f) return -1.0f;
-  // Derivative (over 3) in power form A u^2 + B u + C.
-  float d0 = b.y - b.x, d1 = b.z - b.y, d2 = b.w - b.z;
-  float A = d0 - 2.0f * d1 + d2, B = 2.0f * (d1 - d0), C = d0;
-  float r1 = 2.0f, r2 = 2.0f;  // critical points in (0, 1); 2 = none
-  float scale = max(FCC_ABS(A), max(FCC_ABS(B), FCC_ABS(C)));
-  if (FCC_ABS(A) > 1e-7f * scale) {
-    float disc = B * B - 4.0f * A * C;
-    if (disc >= 0.0f) {
-      float q = -0.5f * (B + (B >= 0.0f ? 1.0f : -1.0f) * sqrt(disc));
-      r1 = q / A;
-      r2 = q != 0.0f ? C / q : 2.0f;
-    }
-  } else if (B != 0.0f) {
-    r1 = -C / B;
-  }
-  if (!(r1 > 0.0f && r1 < 1.0f)) r1 = 2.0f;
-  if (!(r2 > 0.0f && r2 < 1.0f)) r2 = 2.0f;
-  float k1 = min(r1, r2), k2 = max(r1, r2);
-  FCC_VEC4 knots = FCC_MAKE_VEC4(0.0f, min(k1, 1.0f), min(k2, 1.0f), 1.0f);
-  float ua = 0.0f, ga = b.x;
-  for (int i = 1; i < 4; ++i) {
-    float ub = i == 1 ? knots.y : (i == 2 ? knots.z : knots.w);
-    if (ub <= ua) continue;
-    float gb = fcc_bernstein3(b, ub);
-    if (ga == 0.0f) return ua;
-    if ((ga < 0.0f) != (gb < 0.0f) || gb == 0.0f) {
-      float lo = ua, hi = ub;
-      bool loNegative = ga < 0.0f;
-      for (int it = 0; it < 26; ++it) {
-        float mid = 0.5f * (lo + hi);
-        float gm = fcc_bernstein3(b, mid);
-        if (gm == 0.0f) return mid;
-        if ((gm < 0.0f) == loNegative) lo = mid;
-        else hi = mid;
-      }
-      return 0.5f * (lo + hi);
-    }
-    ua = ub;
-    ga = gb;
-  }
-  return -1.0f;
-}
-
-// The first root on a piece sub-segment that continues the previous one along the ray, whose end
-// value was negative (prevSign -1), non-negative (+1) or is unknown (0): a sign change at the join is
-// a root at u = 0. Each piece evaluates the shared point with its own rounding, so without this a root
-// within rounding of a split (a few 1e-4 voxels) could lie in neither sub-segment.
-FCC_FUNC float fcc_first_root_after(FCC_VEC4 b, int prevSign) {
-  if (prevSign != 0 && (b.x < 0.0f ? -1 : 1) != prevSign) return 0.0f;
-  return fcc_first_root_bernstein3(b);
-}
+FCC_NAMESPACE_BEGIN
 
 // Bernstein coefficients on u in [0, 1] of s(o + (s0 + u (s1 - s0)) d) - iso, where the segment lies
 // in the piece `frame` whose scaled BB-coefficients are `cubic`. They are the cubic's blossom at the
@@ -131,9 +65,6 @@ FCC_FUNC FCC_VEC4 fcc_cell_splits(FCC_IVEC3 cell, FCC_VEC3 o, FCC_VEC3 d, float 
   return s;
 }
 
-#if defined(FCC_CPP)
-}  // namespace spline
-}  // namespace fcc
-#endif
+FCC_NAMESPACE_END
 
 #endif  // FCC_RAY_H

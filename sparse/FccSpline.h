@@ -1,9 +1,7 @@
 // FccSpline.h — the FCC six-direction box spline M_fcc, written once for C++17, OpenCL C 1.2 and
 // GLSL 4.50 (in the spirit of NanoVDB's PNanoVDB.h).
 //
-// The including file picks the dialect: C++ is detected by __cplusplus (include sparse/Spline.h, which
-// brings GLM), OpenCL C by __OPENCL_VERSION__, GLSL by `#define FCC_GLSL 1` before the include.
-// No pointers and no dialect-only syntax below the macro block: what differs is spelled by macros.
+// The dialect macros are in Dialect.h (C++ users include sparse/Spline.h, which brings GLM first).
 //
 // Coordinates: `xyz` is a position in the FCC lattice's index space (the Cartesian embedding, where
 // FCC sites are the integer points with an even coordinate sum). Evaluating the spline at xyz takes
@@ -16,67 +14,10 @@
 #ifndef FCC_SPLINE_H
 #define FCC_SPLINE_H
 
-#if defined(__cplusplus)
-#define FCC_CPP 1
-#define FCC_FUNC inline
-#define FCC_VEC3 glm::vec3
-#define FCC_IVEC3 glm::ivec3
-#define FCC_VEC4 glm::vec4
-#define FCC_MAKE_VEC3(x, y, z) glm::vec3(x, y, z)
-#define FCC_MAKE_IVEC3(x, y, z) glm::ivec3(x, y, z)
-#define FCC_MAKE_VEC4(x, y, z, w) glm::vec4(x, y, z, w)
-#define FCC_FLOOR3(v) glm::floor(v)
-#define FCC_ABS(x) std::abs(x)
-#define FCC_IVEC3_FROM_VEC3(v) glm::ivec3(v)
-#define FCC_VEC3_FROM_IVEC3(v) glm::vec3(v)
-#define FCC_CONST_INT_ARRAY(name, n) static constexpr int name[n] =
-#define FCC_ARRAY_OPEN(T, n) {
-#define FCC_ARRAY_CLOSE }
-#define FCC_STRUCT_BEGIN(name) struct name {
-#define FCC_STRUCT_END(name) };
-namespace fcc {
-namespace spline {
-using glm::max;
-using glm::min;
-using std::sqrt;
-#elif defined(__OPENCL_VERSION__)
-#define FCC_OPENCL 1
-#define FCC_FUNC
-#define FCC_VEC3 float3
-#define FCC_IVEC3 int3
-#define FCC_VEC4 float4
-#define FCC_MAKE_VEC3(x, y, z) ((float3)((x), (y), (z)))
-#define FCC_MAKE_IVEC3(x, y, z) ((int3)((x), (y), (z)))
-#define FCC_MAKE_VEC4(x, y, z, w) ((float4)((x), (y), (z), (w)))
-#define FCC_FLOOR3(v) floor(v)
-#define FCC_ABS(x) fabs(x)
-#define FCC_IVEC3_FROM_VEC3(v) convert_int3(v)
-#define FCC_VEC3_FROM_IVEC3(v) convert_float3(v)
-#define FCC_CONST_INT_ARRAY(name, n) __constant int name[n] =
-#define FCC_ARRAY_OPEN(T, n) {
-#define FCC_ARRAY_CLOSE }
-#define FCC_STRUCT_BEGIN(name) typedef struct name {
-#define FCC_STRUCT_END(name) } name;
-#elif defined(FCC_GLSL)
-#define FCC_FUNC
-#define FCC_VEC3 vec3
-#define FCC_IVEC3 ivec3
-#define FCC_VEC4 vec4
-#define FCC_MAKE_VEC3(x, y, z) vec3(x, y, z)
-#define FCC_MAKE_IVEC3(x, y, z) ivec3(x, y, z)
-#define FCC_MAKE_VEC4(x, y, z, w) vec4(x, y, z, w)
-#define FCC_FLOOR3(v) floor(v)
-#define FCC_ABS(x) abs(x)
-#define FCC_IVEC3_FROM_VEC3(v) ivec3(v)
-#define FCC_VEC3_FROM_IVEC3(v) vec3(v)
-#define FCC_CONST_INT_ARRAY(name, n) const int name[n] =
-#define FCC_ARRAY_OPEN(T, n) T[n](
-#define FCC_ARRAY_CLOSE )
-#define FCC_STRUCT_BEGIN(name) struct name {
-#define FCC_STRUCT_END(name) };
-#else
-#error "FccSpline.h: unknown dialect (C++, OpenCL C, or define FCC_GLSL for GLSL)"
-#endif
+#include "Dialect.h"
+#include "ReconCommon.h"
+
+FCC_NAMESPACE_BEGIN
 
 // The 19 prefiltered coefficients of one piece's stencil, in fcc_stencil_d{x,y,z} order.
 FCC_STRUCT_BEGIN(FccSamples)
@@ -107,17 +48,6 @@ FCC_STRUCT_BEGIN(FccFrame)
   FCC_VEC3 q;
   int type;
 FCC_STRUCT_END(FccFrame)
-
-// A value interval [lo, hi].
-FCC_STRUCT_BEGIN(FccRange)
-  float lo;
-  float hi;
-FCC_STRUCT_END(FccRange)
-
-FCC_STRUCT_BEGIN(FccValueGradient)
-  float value;
-  FCC_VEC3 gradient;  // d/dxyz, in index space
-FCC_STRUCT_END(FccValueGradient)
 
 #include "FccSplineTables.h"
 
@@ -243,9 +173,6 @@ FCC_FUNC FCC_VEC3 fcc_piece_centroid(FCC_IVEC3 corner, int piece) {
   return FCC_VEC3_FROM_IVEC3(corner) + p;
 }
 
-#if defined(FCC_CPP)
-}  // namespace spline
-}  // namespace fcc
-#endif
+FCC_NAMESPACE_END
 
 #endif  // FCC_SPLINE_H

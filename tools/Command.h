@@ -20,6 +20,7 @@ struct Command {
   std::function<int()> run;
 };
 
+Command addCompareCommand(CLI::App& parent);
 Command addConvertCommand(CLI::App& parent);
 Command addInfoCommand(CLI::App& parent);
 Command addProbeCommand(CLI::App& parent);

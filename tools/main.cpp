@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "fccvdb 0.1.0");
   const std::vector<fcc::cli::Command> commands = {
       fcc::cli::addBenchCommand(app),
+      fcc::cli::addCompareCommand(app),
       fcc::cli::addConvertCommand(app),
       fcc::cli::addInfoCommand(app),
       fcc::cli::addProbeCommand(app),

@@ -46,7 +46,26 @@ class OpenCl : public test::ClSuite<ClRunner> {
     return results;
   }
 
+  static std::vector<glm::vec4> evaluateReconstruction(const DenseBlock& block, const std::vector<glm::vec4>& points,
+                                                       int id, const glm::ivec3& params) {
+    cl::Kernel kernel = device->kernel(std::string(embedded::kernels("kernels/recon_eval.cl")), "fcc_recon_eval");
+    cl::Buffer pointBuffer = device->upload(points);
+    cl::Buffer valueBuffer = device->upload(block.values);
+    cl::Buffer resultBuffer = device->allocate(points.size() * sizeof(glm::vec4), CL_MEM_WRITE_ONLY);
+    const cl_int4 paramsCl = {{params.x, params.y, params.z, 0}};
+    const cl_int4 origin = {{block.origin.x, block.origin.y, block.origin.z, 0}};
+    const cl_int4 dims = {{block.dims.x, block.dims.y, block.dims.z, 0}};
+    device->launch("reconstruction evaluation", kernel, points.size(), pointBuffer, cl_uint(points.size()), cl_int(id),
+                   paramsCl, valueBuffer, origin, dims, cl_float(block.background), resultBuffer);
+    std::vector<glm::vec4> results(points.size());
+    device->download(resultBuffer, results);
+    return results;
+  }
 };
+
+TEST_F(OpenCl, EveryReconstructionMatchesCpp) {
+  test::expectReconstructionsMatchCpp("OpenCL", evaluateReconstruction);
+}
 
 TEST_F(OpenCl, SplineMatchesCppAtRandomPoints) { test::expectMatchesCppAtRandomPoints("OpenCL", evaluateOnDevice); }
 

@@ -24,11 +24,13 @@ namespace fcc {
 namespace {
 
 constexpr const char* kShaderPath = "shaders/spline_eval.comp";
+constexpr const char* kReconPath = "shaders/recon_eval.comp";
 
 class Glsl : public test::GlSuite {
  protected:
   static void TearDownTestSuite() {
     program.reset();  // before its context
+    reconProgram.reset();
     GlSuite::TearDownTestSuite();
   }
 
@@ -60,7 +62,30 @@ class Glsl : public test::GlSuite {
     return results;
   }
 
+  static std::vector<glm::vec4> evaluateReconstruction(const DenseBlock& block, const std::vector<glm::vec4>& points,
+                                                       int id, const glm::ivec3& params) {
+    if (!reconProgram) reconProgram = GlProgram::compute(embedded::shaders(kReconPath), kReconPath);
+    const GlProgram& p = *reconProgram;
+    const GlBuffer pointBuffer(points), valueBuffer(block.values);
+    const GlBuffer resultBuffer(points.size() * sizeof(glm::vec4));
+    pointBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    valueBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+    resultBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
+    p.use();
+    glUniform4i(p.uniformLocation("uOrigin"), block.origin.x, block.origin.y, block.origin.z, 0);
+    glUniform4i(p.uniformLocation("uDims"), block.dims.x, block.dims.y, block.dims.z, 0);
+    glUniform1f(p.uniformLocation("uBackground"), block.background);
+    glUniform1ui(p.uniformLocation("uCount"), GLuint(points.size()));
+    glUniform1i(p.uniformLocation("uId"), id);
+    glUniform3i(p.uniformLocation("uParams"), params.x, params.y, params.z);
+    p.dispatch("reconstruction evaluation", GLuint(points.size()));
+    std::vector<glm::vec4> results(points.size());
+    resultBuffer.read(results);
+    return results;
+  }
+
   static inline std::optional<GlProgram> program;
+  static inline std::optional<GlProgram> reconProgram;
 };
 
 TEST(GlslEmbedding, VersionLineStaysFirst) {
@@ -86,6 +111,10 @@ TEST_F(Glsl, ContextIsOpenGL45Core) {
 TEST_F(Glsl, SplineMatchesCppAtRandomPoints) { test::expectMatchesCppAtRandomPoints("GLSL", evaluateOnDevice); }
 
 TEST_F(Glsl, SplineUsesTheBackgroundOutsideTheBlock) { test::expectBackgroundOutsideTheBlock("GLSL", evaluateOnDevice); }
+
+TEST_F(Glsl, EveryReconstructionMatchesCpp) {
+  test::expectReconstructionsMatchCpp("GLSL", evaluateReconstruction);
+}
 
 TEST_F(Glsl, CompileErrorCarriesTheInfoLog) {
   const char* broken = "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() { fcc_no_such_name = 1.0; }\n";

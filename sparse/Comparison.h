@@ -1,0 +1,63 @@
+// The measurement behind `fccvdb compare`: an analytic field sampled on the CC, BCC and FCC lattices at
+// equal sample budgets, reconstructed by every reconstruction of the layer, and measured against the
+// field itself at seeded random points.
+//
+// A budget N is the number of sites inside the domain [-1, 1]^3: a lattice of density rho sites per
+// unit of index volume gets the spacing h = (8 rho / N)^(1/3) world units per index unit (site ijk is
+// at h * ijk). Samples outside the domain are taken too (the stencils and prefilters read them), so no
+// reconstruction is measured against a boundary.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "AnalyticFields.h"
+#include "Reconstruction.h"
+
+namespace fcc {
+
+// One lattice at one budget.
+struct LatticeSampling {
+  Lattice lattice;
+  int64_t budget;
+  double worldPerIndex;  // h
+  int64_t samples;       // sites inside [-1, 1]^3
+  glm::ivec3 boxMin, boxDims;  // the sampled index box, padded for stencils and prefilters
+};
+LatticeSampling samplingFor(Lattice lattice, int64_t budget);
+// World distance between nearest sites: h times 1 (CC), sqrt(3) (BCC), sqrt(2) (FCC).
+double nearestSiteDistance(const LatticeSampling& sampling);
+
+struct CompareOptions {
+  std::vector<int64_t> budgets;
+  double iso = 0.5;
+  int points = 20000;   // uniform points for value and gradient errors, and points on the isosurface
+  uint64_t seed = 1;
+  std::vector<std::string> reconstructions;  // empty: all of them
+};
+
+struct CompareRow {
+  std::string lattice;
+  std::string reconstruction;
+  int64_t budget = 0;
+  int64_t samples = 0;
+  double spacing = 0.0;  // nearestSiteDistance
+  int stencil = 0;
+  // |s - f| at uniform random points of the domain.
+  double valueRmsError = 0.0, valueMaxError = 0.0;
+  // Angle between grad s and grad f at the same points (degrees).
+  double gradientErrorMeanDeg = 0.0, gradientErrorP95Deg = 0.0, gradientErrorMaxDeg = 0.0;
+  // The same angle at points on the true isosurface f = iso: the surface normal's error.
+  double normalErrorMeanDeg = 0.0, normalErrorP95Deg = 0.0, normalErrorMaxDeg = 0.0;
+  int surfacePoints = 0;
+  std::optional<double> fps;  // none: no GPU timing
+};
+
+// Seeded points on the isosurface f = iso inside [-0.95, 0.95]^3 (Newton steps from uniform points).
+std::vector<glm::dvec3> isosurfacePoints(const AnalyticField& field, double iso, int count, uint64_t seed);
+
+std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const CompareOptions& options);
+
+}  // namespace fcc
