@@ -10,6 +10,7 @@
 #include "CubicBSpline.h"
 #include "Error.h"
 #include "LatticeSamples.h"
+#include "ReferenceRaycast.h"
 
 namespace fcc {
 namespace {
@@ -47,7 +48,138 @@ std::vector<glm::dvec3> uniformPoints(int count, uint64_t seed) {
   return points;
 }
 
+// Steps of the field's own raycast: a 25th of its shortest wavelength (marschner-lobb's radial detail,
+// about 1/9.4 of a unit; random-waves', 1/3).
+constexpr double kTruthStep = 0.004;
+
+struct PixelRay {
+  glm::dvec3 o, d;
+  double t0 = 0.0, t1 = -1.0;  // inside [-1, 1]^3; empty when t1 < t0
+};
+
+PixelRay cameraRay(const CompareCamera& cam, int x, int y, int width, int height) {
+  const glm::dvec3 forward = glm::normalize(cam.lookAt - cam.eye);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, cam.up));
+  const glm::dvec3 up = glm::cross(right, forward);
+  const double tanHalf = std::tan(cam.fovDeg * kPi / 360.0), aspect = double(width) / height;
+  const double nx = (x + 0.5) / width * 2.0 - 1.0, ny = (y + 0.5) / height * 2.0 - 1.0;
+  PixelRay ray;
+  ray.o = cam.eye;
+  ray.d = glm::normalize(forward + nx * tanHalf * aspect * right - ny * tanHalf * up);
+  const glm::dvec3 inv = 1.0 / ray.d;
+  const glm::dvec3 ta = (glm::dvec3(-1.0) - ray.o) * inv, tb = (glm::dvec3(1.0) - ray.o) * inv;
+  const glm::dvec3 lo = glm::min(ta, tb), hi = glm::max(ta, tb);
+  ray.t0 = std::max(0.0, std::max(std::max(lo.x, lo.y), lo.z));
+  ray.t1 = std::min(std::min(hi.x, hi.y), hi.z);
+  return ray;
+}
+
+const glm::vec3 kBackground(0.12f, 0.12f, 0.14f);
+
+void putPixel(RgbImage& image, int x, int y, const glm::vec3& c) {
+  const size_t i = (size_t(y) * image.width + x) * 3;
+  for (int k = 0; k < 3; ++k) image.rgb[i + k] = (unsigned char)std::lround(255.0f * std::clamp(c[k], 0.0f, 1.0f));
+}
+
+RgbImage blankImage(int width, int height) {
+  RgbImage image{width, height, std::vector<unsigned char>(size_t(width) * height * 3)};
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) putPixel(image, x, y, kBackground);
+  return image;
+}
+
+// Two-sided Lambert, lit from the eye.
+glm::vec3 shade(const glm::dvec3& normal, const glm::dvec3& d) {
+  const double len = glm::length(normal);
+  const double lambert = len > 0.0 ? std::abs(glm::dot(normal / len, d)) : 0.0;
+  return glm::vec3(0.9f, 0.75f, 0.5f) * float(0.15 + 0.85 * lambert);
+}
+
+// 0 degrees dark blue, through cyan and yellow, to red at 20 degrees and beyond.
+glm::vec3 heat(double angleDeg) {
+  const float t = float(std::clamp(angleDeg / 20.0, 0.0, 1.0));
+  const glm::vec3 stops[4] = {{0.05f, 0.05f, 0.45f}, {0.0f, 0.8f, 0.9f}, {1.0f, 0.9f, 0.1f}, {0.9f, 0.05f, 0.05f}};
+  const float s = t * 3.0f;
+  const int i = std::min(2, int(s));
+  return glm::mix(stops[i], stops[i + 1], s - float(i));
+}
+
+struct TruthRender {
+  int width = 0, height = 0;
+  std::vector<WorldHit> hits;
+};
+
+TruthRender renderTruthHits(const AnalyticField& field, double iso, int width, int height) {
+  TruthRender truth{width, height, std::vector<WorldHit>(size_t(width) * height)};
+  const CompareCamera cam;
+  tbb::parallel_for(0, height, [&](int y) {
+    for (int x = 0; x < width; ++x) {
+      const PixelRay ray = cameraRay(cam, x, y, width, height);
+      if (ray.t1 > ray.t0) truth.hits[size_t(y) * width + x] = firstHitAnalytic(field, ray.o, ray.d, ray.t0, ray.t1, iso, kTruthStep);
+    }
+  });
+  return truth;
+}
+
+// Renders one method and measures it against the truth's render.
+void renderAndMeasure(const Reconstruction& recon, const SiteValue& at, const CellBounds& bounds, double h, double iso,
+                      const TruthRender& truth, CompareRow& row) {
+  const int width = truth.width, height = truth.height;
+  const CompareCamera cam;
+  row.shaded = blankImage(width, height);
+  row.normalError = blankImage(width, height);
+  std::vector<double> angles(size_t(width) * height, -1.0), depthErrors(size_t(width) * height, -1.0);
+  std::vector<char> disagree(size_t(width) * height, 0);
+  tbb::parallel_for(0, height, [&](int y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t i = size_t(y) * width + x;
+      const PixelRay ray = cameraRay(cam, x, y, width, height);
+      RayHit hit;
+      if (ray.t1 > ray.t0)
+        hit = firstHit(recon, at, bounds, glm::vec3(ray.o / h), glm::vec3(ray.d / h), float(ray.t0), float(ray.t1), float(iso));
+      const WorldHit& t = truth.hits[i];
+      if (hit.hit) putPixel(row.shaded, x, y, shade(glm::dvec3(hit.gradient), ray.d));
+      if (hit.hit && t.hit) {
+        angles[i] = angleDeg(glm::dvec3(hit.gradient), t.gradient);
+        depthErrors[i] = std::abs(double(hit.t) - t.t);
+        putPixel(row.normalError, x, y, heat(angles[i]));
+      } else if (hit.hit != t.hit) {
+        disagree[i] = 1;
+        putPixel(row.normalError, x, y, glm::vec3(1.0f, 0.0f, 1.0f));
+      }
+    }
+  });
+  std::vector<double> both;
+  double depthSum = 0.0;
+  for (size_t i = 0; i < angles.size(); ++i) {
+    if (angles[i] >= 0.0) {
+      both.push_back(angles[i]);
+      depthSum += depthErrors[i];
+    }
+    row.renderHitMissPixels += disagree[i];
+  }
+  row.renderBothHitPixels = int64_t(both.size());
+  if (!both.empty()) {
+    const AngleStats stats = statsOf(both);
+    row.renderNormalErrorMeanDeg = stats.mean;
+    row.renderNormalErrorP95Deg = stats.p95;
+    row.renderDepthErrorMean = depthSum / double(both.size());
+  }
+}
+
 }  // namespace
+
+RgbImage renderTruth(const AnalyticField& field, double iso, int width, int height) {
+  const TruthRender truth = renderTruthHits(field, iso, width, height);
+  RgbImage image = blankImage(width, height);
+  const CompareCamera cam;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const WorldHit& hit = truth.hits[size_t(y) * width + x];
+      if (hit.hit) putPixel(image, x, y, shade(hit.gradient, cameraRay(cam, x, y, width, height).d));
+    }
+  return image;
+}
 
 LatticeSampling samplingFor(Lattice lattice, int64_t budget) {
   if (budget < 64) throw ValueError("a budget must be at least 64 samples (got " + std::to_string(budget) + ")");
@@ -106,6 +238,9 @@ std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const
   for (const auto& name : options.reconstructions) findReconstruction(name);  // ValueError for unknown ones
   const std::vector<glm::dvec3> uniform = uniformPoints(options.points, options.seed);
   const std::vector<glm::dvec3> surface = isosurfacePoints(field, options.iso, options.points, options.seed + 1);
+  const bool render = options.width > 0 && options.height > 0;
+  TruthRender truth;
+  if (render) truth = renderTruthHits(field, options.iso, options.width, options.height);
   std::vector<CompareRow> rows;
   for (int64_t budget : options.budgets) {
     for (Lattice lattice : {Lattice::Cc, Lattice::Bcc, Lattice::Fcc}) {
@@ -158,6 +293,14 @@ std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const
         row.normalErrorP95Deg = n.p95;
         row.normalErrorMaxDeg = n.max;
         row.surfacePoints = int(surface.size());
+        if (render) {
+          // The stack schemes take their planes from the view, as a raycaster would.
+          const auto viewed = makeReconstruction(info.name);
+          const CompareCamera cam;
+          viewed->setView(glm::vec3(glm::normalize(cam.lookAt - cam.eye)));
+          const CellBounds bounds(*samples);
+          renderAndMeasure(*viewed, at, bounds, h, options.iso, truth, row);
+        }
         rows.push_back(row);
       }
     }

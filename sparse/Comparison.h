@@ -36,6 +36,19 @@ struct CompareOptions {
   int points = 20000;   // uniform points for value and gradient errors, and points on the isosurface
   uint64_t seed = 1;
   std::vector<std::string> reconstructions;  // empty: all of them
+  int width = 0, height = 0;  // renders of this size against the field's own (0: none)
+};
+
+// The camera every render of a comparison uses (world space): the domain seen from above at a slant.
+struct CompareCamera {
+  glm::dvec3 eye{1.9, -2.7, 2.3}, lookAt{0.0}, up{0.0, 0.0, 1.0};
+  double fovDeg = 38.0;
+};
+
+// An 8-bit RGB image, row 0 at the top.
+struct RgbImage {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
 };
 
 struct CompareRow {
@@ -52,8 +65,16 @@ struct CompareRow {
   // The same angle at points on the true isosurface f = iso: the surface normal's error.
   double normalErrorMeanDeg = 0.0, normalErrorP95Deg = 0.0, normalErrorMaxDeg = 0.0;
   int surfacePoints = 0;
+  // From a render against the field's own render (same camera): the angle between the normals where
+  // both hit, pixels where only one hits, and the mean distance between the hits along the ray.
+  std::optional<double> renderNormalErrorMeanDeg, renderNormalErrorP95Deg, renderDepthErrorMean;
+  int64_t renderHitMissPixels = 0, renderBothHitPixels = 0;
+  RgbImage shaded, normalError;  // the method's isosurface, and its normal error as a heat map
   std::optional<double> fps;  // none: no GPU timing
 };
+
+// The field's own isosurface from CompareCamera (the first row of the image grid).
+RgbImage renderTruth(const AnalyticField& field, double iso, int width, int height);
 
 // Seeded points on the isosurface f = iso inside [-0.95, 0.95]^3 (Newton steps from uniform points).
 std::vector<glm::dvec3> isosurfacePoints(const AnalyticField& field, double iso, int count, uint64_t seed);

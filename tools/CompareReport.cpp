@@ -27,7 +27,29 @@ std::vector<std::pair<std::string, std::string>> methodsOf(const std::vector<Com
   return methods;
 }
 
+std::string optionalNumber(const std::optional<double>& v) { return v ? jsonNumber(*v) : std::string("null"); }
+
 }  // namespace
+
+RgbImage imageGrid(const RgbImage& truth, const std::vector<CompareRow>& rows, int64_t budget) {
+  const int w = truth.width, h = truth.height, gap = 4;
+  std::vector<const CompareRow*> picked;
+  for (const auto& r : rows)
+    if (r.budget == budget && r.shaded.width == w && r.shaded.height == h) picked.push_back(&r);
+  RgbImage grid{2 * w + gap, int(picked.size() + 1) * (h + gap) - gap, {}};
+  grid.rgb.assign(size_t(grid.width) * grid.height * 3, 255);
+  auto blit = [&](const RgbImage& image, int x0, int y0) {
+    for (int y = 0; y < h; ++y)
+      std::copy_n(&image.rgb[size_t(y) * w * 3], size_t(w) * 3, &grid.rgb[(size_t(y0 + y) * grid.width + x0) * 3]);
+  };
+  blit(truth, 0, 0);
+  for (size_t i = 0; i < picked.size(); ++i) {
+    const int y0 = int(i + 1) * (h + gap);
+    blit(picked[i]->shaded, 0, y0);
+    blit(picked[i]->normalError, w + gap, y0);
+  }
+  return grid;
+}
 
 double convergenceSlope(const std::vector<CompareRow>& rows, const std::string& lattice, const std::string& reconstruction) {
   double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -49,17 +71,19 @@ double convergenceSlope(const std::vector<CompareRow>& rows, const std::string& 
 std::string compareTable(const std::vector<CompareRow>& rows) {
   std::string out;
   char line[512];
-  std::snprintf(line, sizeof line, "%-4s %-18s %9s %9s %8s %4s %10s %10s %9s %9s %9s %9s %6s\n", "lat", "reconstruction",
-                "budget", "samples", "spacing", "sten", "val_rms", "val_max", "grad_mean", "norm_mean", "norm_p95",
-                "slope", "fps");
+  std::snprintf(line, sizeof line, "%-4s %-18s %9s %9s %8s %4s %10s %10s %9s %9s %9s %9s %9s %7s %6s %6s\n", "lat",
+                "reconstruction", "budget", "samples", "spacing", "sten", "val_rms", "val_max", "grad_mean", "norm_mean",
+                "norm_p95", "img_norm", "img_depth", "img_hm", "slope", "fps");
   out += line;
   for (const auto& r : rows) {
     const double slope = convergenceSlope(rows, r.lattice, r.reconstruction);
-    std::snprintf(line, sizeof line, "%-4s %-18s %9lld %9lld %8.5f %4d %10.3e %10.3e %9.3f %9.3f %9.3f %9s %6s\n",
+    std::snprintf(line, sizeof line, "%-4s %-18s %9lld %9lld %8.5f %4d %10.3e %10.3e %9.3f %9.3f %9.3f %9s %9s %7s %6s %6s\n",
                   r.lattice.c_str(), r.reconstruction.c_str(), (long long)r.budget, (long long)r.samples, r.spacing,
                   r.stencil, r.valueRmsError, r.valueMaxError, r.gradientErrorMeanDeg, r.normalErrorMeanDeg,
-                  r.normalErrorP95Deg, std::isfinite(slope) ? format("%.2f", slope).c_str() : "-",
-                  r.fps ? format("%.1f", *r.fps).c_str() : "-");
+                  r.normalErrorP95Deg, r.renderNormalErrorMeanDeg ? format("%.3f", *r.renderNormalErrorMeanDeg).c_str() : "-",
+                  r.renderDepthErrorMean ? format("%.2e", *r.renderDepthErrorMean).c_str() : "-",
+                  r.shaded.width > 0 ? std::to_string(r.renderHitMissPixels).c_str() : "-",
+                  std::isfinite(slope) ? format("%.2f", slope).c_str() : "-", r.fps ? format("%.1f", *r.fps).c_str() : "-");
     out += line;
   }
   return out;
@@ -80,6 +104,11 @@ std::string compareJson(const std::vector<CompareRow>& rows) {
            ", \"normal_error_p95_deg\": " + jsonNumber(r.normalErrorP95Deg) +
            ", \"normal_error_max_deg\": " + jsonNumber(r.normalErrorMaxDeg) +
            ", \"surface_points\": " + std::to_string(r.surfacePoints) +
+           ", \"render_normal_error_mean_deg\": " + optionalNumber(r.renderNormalErrorMeanDeg) +
+           ", \"render_normal_error_p95_deg\": " + optionalNumber(r.renderNormalErrorP95Deg) +
+           ", \"render_depth_error_mean\": " + optionalNumber(r.renderDepthErrorMean) +
+           ", \"render_hit_miss_pixels\": " + (r.shaded.width > 0 ? std::to_string(r.renderHitMissPixels) : "null") +
+           ", \"render_both_hit_pixels\": " + (r.shaded.width > 0 ? std::to_string(r.renderBothHitPixels) : "null") +
            ", \"fps\": " + (r.fps ? jsonNumber(*r.fps) : std::string("null")) + "}";
     out += i + 1 < rows.size() ? ",\n" : "\n";
   }

@@ -15,6 +15,10 @@ double convergenceSlope(const std::vector<CompareRow>& rows, const std::string& 
 
 std::string compareTable(const std::vector<CompareRow>& rows);
 std::string compareJson(const std::vector<CompareRow>& rows);
+// One row per method at `budget`: its isosurface and its normal-error heat map (0 dark blue, 20 degrees
+// and more red; magenta where only one of it and the truth hits), under a first row with the truth.
+RgbImage imageGrid(const RgbImage& truth, const std::vector<CompareRow>& rows, int64_t budget);
+
 std::string convergenceSvg(const std::vector<CompareRow>& rows, const std::string& title);
 
 }  // namespace fcc::cli

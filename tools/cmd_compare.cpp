@@ -12,6 +12,7 @@
 #include "Command.h"
 #include "CompareReport.h"
 #include "io/AtomicOutput.h"
+#include "io/ImageOutput.h"
 #include "sparse/Comparison.h"
 #include "sparse/Error.h"
 
@@ -57,11 +58,27 @@ void writeText(const std::string& path, const std::string& text, bool overwrite)
   out.commit();
 }
 
+// The Markdown lines that show the image grids and say what their rows are.
+std::string gridNote(const std::vector<CompareRow>& rows, const std::vector<int64_t>& budgets, bool rendered) {
+  if (!rendered) return "";
+  std::string note = "\nImage grids (left: the isosurface; right: its normal error, 0 dark blue to 20 degrees and more red, "
+                     "magenta where only one of the method and the truth hits). Rows from the top: the field itself, then ";
+  bool first = true;
+  for (const auto& r : rows)
+    if (r.budget == budgets.front()) {
+      note += std::string(first ? "" : ", ") + r.lattice + " " + r.reconstruction;
+      first = false;
+    }
+  note += ".\n";
+  for (int64_t b : budgets) note += "\n![budget " + std::to_string(b) + "](compare_" + std::to_string(b) + ".png)\n";
+  return note;
+}
+
 }  // namespace
 
 Command addCompareCommand(CLI::App& parent) {
   struct Args {
-    std::string field, budgets, outDir, reconstructions;
+    std::string field, budgets, outDir, reconstructions, res = "256x256";
     double iso = NAN;
     int points = 20000;
     uint64_t seed = 1;
@@ -80,6 +97,8 @@ Command addCompareCommand(CLI::App& parent) {
   app->add_option("--seed", args->seed, "Seed of the points (and of random-waves)")->capture_default_str();
   app->add_option("--reconstruction", args->reconstructions,
                   "Only these, comma-separated (default: all: " + reconstructionNames() + ")");
+  app->add_option("--res", args->res, "Size WxH of the renders measured against the field's own render (0x0: none)")
+      ->capture_default_str();
   app->add_flag("--json", args->json, "Print the rows as a JSON list instead of the table");
   app->add_option("-o,--output-dir", args->outDir, "Also write compare.json, compare.md and convergence.svg into DIR");
   app->add_flag("--force", args->force, "Overwrite those files in DIR");
@@ -90,26 +109,44 @@ Command addCompareCommand(CLI::App& parent) {
             options.iso = std::isfinite(args->iso) ? args->iso : field->defaultIso();
             options.points = args->points;
             options.seed = args->seed;
+            int width = 0, height = 0;
+            char x = 0, extra = 0;
+            if (std::sscanf(args->res.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 || x != 'x' || width < 0 ||
+                height < 0 || width > 8192 || height > 8192 || (width == 0) != (height == 0))
+              throw ValueError("--res: '" + args->res + "' is not WxH (valid: e.g. 256x256, up to 8192x8192; 0x0 for no renders)");
+            options.width = width;
+            options.height = height;
             std::stringstream names(args->reconstructions);
             for (std::string n; std::getline(names, n, ',');)
               if (!n.empty()) options.reconstructions.push_back(n);
             const std::vector<CompareRow> rows = compareReconstructions(*field, options);
             if (rows.empty()) throw ValueError("--reconstruction: nothing to compare");
-            char header[512];
+            char header[1024];
             std::snprintf(header, sizeof header,
-                          "field %s, iso %g, %d uniform points and %d on the isosurface (seed %llu); stack schemes "
-                          "with planes normal to z; fps: not timed (no GPU path for CC/BCC yet)\nmachine: %s\n",
+                          "field %s, iso %g, %d uniform points and %d on the isosurface (seed %llu; the stack schemes' "
+                          "planes normal to z there, from the view in the renders); renders %dx%d against the field's "
+                          "own (img_norm: mean normal error in degrees, img_depth: mean hit distance error, img_hm: "
+                          "pixels where only one hits); fps: not timed (no GPU path for CC/BCC yet)\nmachine: %s\n",
                           args->field.c_str(), options.iso, options.points, rows.front().surfacePoints,
-                          (unsigned long long)options.seed, machineLine().c_str());
+                          (unsigned long long)options.seed, width, height, machineLine().c_str());
             const std::string table = compareTable(rows);
             if (args->json) std::fputs(compareJson(rows).c_str(), stdout);
             else std::printf("%s%s", header, table.c_str());
             if (!args->outDir.empty()) {
               const std::string dir = args->outDir + "/";
               writeText(dir + "compare.json", compareJson(rows), args->force);
-              writeText(dir + "compare.md", "# fccvdb compare\n\n```\n" + std::string(header) + "\n" + table + "```\n\n![convergence](convergence.svg)\n", args->force);
+              writeText(dir + "compare.md", "# fccvdb compare\n\n```\n" + std::string(header) + "\n" + table + "```\n\n![convergence](convergence.svg)\n" + gridNote(rows, options.budgets, width > 0), args->force);
               writeText(dir + "convergence.svg",
                         convergenceSvg(rows, args->field + ": value RMS error against samples"), args->force);
+              if (width > 0) {
+                const RgbImage truth = renderTruth(*field, options.iso, width, height);
+                for (int64_t budget : options.budgets) {
+                  const RgbImage grid = imageGrid(truth, rows, budget);
+                  const std::string path = dir + "compare_" + std::to_string(budget) + ".png";
+                  io::checkOutputPath(path, args->force);
+                  io::writeScreenPng(path, grid.width, grid.height, grid.rgb);
+                }
+              }
             }
             return 0;
           }};

@@ -40,7 +40,7 @@ constexpr int kPoints = 10000;
 constexpr int kBlockSide = 24;
 constexpr float kBackground = 0.25f;
 
-std::string str(const glm::vec3& v) {
+inline std::string str(const glm::vec3& v) {
   char b[96];
   std::snprintf(b, sizeof b, "(%.9g, %.9g, %.9g)", v.x, v.y, v.z);
   return b;
@@ -68,7 +68,7 @@ struct DenseBlock {
 };
 
 // Points uniformly in [origin + margin, origin + dims - 1 - margin] per axis.
-std::vector<glm::vec4> randomPoints(const DenseBlock& block, int count, float margin, uint32_t seed) {
+inline std::vector<glm::vec4> randomPoints(const DenseBlock& block, int count, float margin, uint32_t seed) {
   test::PointSource source(seed, margin, float(block.dims.x - 1) - margin);
   std::vector<glm::vec4> points(static_cast<size_t>(count));
   for (glm::vec4& p : points) p = glm::vec4(source.next() + glm::vec3(block.origin), 1.0f);
