@@ -1,9 +1,12 @@
 #include "AnalyticFields.h"
 
 #include <cmath>
+#include <algorithm>
 #include <random>
 
+#include "CubicBSpline.h"
 #include "Error.h"
+#include "SampleHistogram.h"
 
 namespace fcc {
 namespace {
@@ -66,7 +69,46 @@ class RandomWaves final : public AnalyticField {
   std::vector<Wave> waves_;
 };
 
+class VolumeField final : public AnalyticField {
+ public:
+  VolumeField(std::string name, const glm::ivec3& dims, const glm::dvec3& spacing, const std::vector<float>& values)
+      : name_(std::move(name)), spline_(dims, values), dims_(dims), spacing_(spacing) {
+    const glm::dvec3 extent = glm::dvec3(dims - 1) * spacing;
+    worldPerVoxel_ = 2.0 / std::max(std::max(extent.x, extent.y), std::max(extent.z, 1e-300)) * spacing;
+    halfExtent_ = 0.5 * glm::dvec3(dims - 1) * worldPerVoxel_;
+    SampleSummary summary;
+    summary.min = *std::min_element(values.begin(), values.end());
+    summary.max = *std::max_element(values.begin(), values.end());
+    summary.histogram.assign(kSampleHistogramBins, 0);
+    for (float v : values) ++summary.histogram[size_t(summary.binOf(v))];
+    iso_ = otsuThreshold(summary, values.front()).value_or(0.5 * (double(summary.min) + double(summary.max)));
+  }
+  std::string_view name() const override { return name_; }
+  double defaultIso() const override { return iso_; }
+  glm::dvec3 halfExtent() const override { return halfExtent_; }
+  double rootSeparatingStep() const override {
+    return 0.25 * std::min(worldPerVoxel_.x, std::min(worldPerVoxel_.y, worldPerVoxel_.z));
+  }
+  double value(const glm::dvec3& p) const override { return spline_.value(voxelOf(p)); }
+  glm::dvec3 gradient(const glm::dvec3& p) const override { return spline_.gradient(voxelOf(p)) / worldPerVoxel_; }
+
+ private:
+  glm::dvec3 voxelOf(const glm::dvec3& p) const { return (p + halfExtent_) / worldPerVoxel_; }
+  std::string name_;
+  CubicBSplineVolume spline_;
+  glm::ivec3 dims_;
+  glm::dvec3 spacing_, worldPerVoxel_, halfExtent_;
+  double iso_ = 0.0;
+};
+
 }  // namespace
+
+std::unique_ptr<AnalyticField> makeVolumeField(std::string name, const glm::ivec3& dims, const glm::dvec3& spacing,
+                                               const std::vector<float>& values) {
+  if (glm::any(glm::lessThan(dims, glm::ivec3(4))))
+    throw ValueError(name + ": a volume to compare against needs at least 4 voxels along every axis");
+  return std::make_unique<VolumeField>(std::move(name), dims, spacing, values);
+}
 
 const std::vector<std::string>& analyticFieldNames() {
   static const std::vector<std::string> names = {"marschner-lobb", "random-waves"};

@@ -40,24 +40,20 @@ AngleStats statsOf(std::vector<double> angles) {
   return s;
 }
 
-std::vector<glm::dvec3> uniformPoints(int count, uint64_t seed) {
+std::vector<glm::dvec3> uniformPoints(int count, uint64_t seed, const glm::dvec3& halfExtent) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<glm::dvec3> points(static_cast<size_t>(count));
-  for (auto& p : points) p = glm::dvec3(u(rng), u(rng), u(rng));
+  for (auto& p : points) p = halfExtent * glm::dvec3(u(rng), u(rng), u(rng));
   return points;
 }
-
-// Steps of the field's own raycast: a 25th of its shortest wavelength (marschner-lobb's radial detail,
-// about 1/9.4 of a unit; random-waves', 1/3).
-constexpr double kTruthStep = 0.004;
 
 struct PixelRay {
   glm::dvec3 o, d;
   double t0 = 0.0, t1 = -1.0;  // inside [-1, 1]^3; empty when t1 < t0
 };
 
-PixelRay cameraRay(const CompareCamera& cam, int x, int y, int width, int height) {
+PixelRay cameraRay(const CompareCamera& cam, const glm::dvec3& halfExtent, int x, int y, int width, int height) {
   const glm::dvec3 forward = glm::normalize(cam.lookAt - cam.eye);
   const glm::dvec3 right = glm::normalize(glm::cross(forward, cam.up));
   const glm::dvec3 up = glm::cross(right, forward);
@@ -67,7 +63,7 @@ PixelRay cameraRay(const CompareCamera& cam, int x, int y, int width, int height
   ray.o = cam.eye;
   ray.d = glm::normalize(forward + nx * tanHalf * aspect * right - ny * tanHalf * up);
   const glm::dvec3 inv = 1.0 / ray.d;
-  const glm::dvec3 ta = (glm::dvec3(-1.0) - ray.o) * inv, tb = (glm::dvec3(1.0) - ray.o) * inv;
+  const glm::dvec3 ta = (-halfExtent - ray.o) * inv, tb = (halfExtent - ray.o) * inv;
   const glm::dvec3 lo = glm::min(ta, tb), hi = glm::max(ta, tb);
   ray.t0 = std::max(0.0, std::max(std::max(lo.x, lo.y), lo.z));
   ray.t1 = std::min(std::min(hi.x, hi.y), hi.z);
@@ -111,11 +107,13 @@ struct TruthRender {
 
 TruthRender renderTruthHits(const AnalyticField& field, double iso, int width, int height) {
   TruthRender truth{width, height, std::vector<WorldHit>(size_t(width) * height)};
-  const CompareCamera cam;
+  const glm::dvec3 e = field.halfExtent();
+  const CompareCamera cam(e);
+  const double step = field.rootSeparatingStep();
   tbb::parallel_for(0, height, [&](int y) {
     for (int x = 0; x < width; ++x) {
-      const PixelRay ray = cameraRay(cam, x, y, width, height);
-      if (ray.t1 > ray.t0) truth.hits[size_t(y) * width + x] = firstHitAnalytic(field, ray.o, ray.d, ray.t0, ray.t1, iso, kTruthStep);
+      const PixelRay ray = cameraRay(cam, e, x, y, width, height);
+      if (ray.t1 > ray.t0) truth.hits[size_t(y) * width + x] = firstHitAnalytic(field, ray.o, ray.d, ray.t0, ray.t1, iso, step);
     }
   });
   return truth;
@@ -123,9 +121,9 @@ TruthRender renderTruthHits(const AnalyticField& field, double iso, int width, i
 
 // Renders one method and measures it against the truth's render.
 void renderAndMeasure(const Reconstruction& recon, const SiteValue& at, const CellBounds& bounds, double h, double iso,
-                      const TruthRender& truth, CompareRow& row) {
+                      const glm::dvec3& halfExtent, const TruthRender& truth, CompareRow& row) {
   const int width = truth.width, height = truth.height;
-  const CompareCamera cam;
+  const CompareCamera cam(halfExtent);
   row.shaded = blankImage(width, height);
   row.normalError = blankImage(width, height);
   std::vector<double> angles(size_t(width) * height, -1.0), depthErrors(size_t(width) * height, -1.0);
@@ -133,7 +131,7 @@ void renderAndMeasure(const Reconstruction& recon, const SiteValue& at, const Ce
   tbb::parallel_for(0, height, [&](int y) {
     for (int x = 0; x < width; ++x) {
       const size_t i = size_t(y) * width + x;
-      const PixelRay ray = cameraRay(cam, x, y, width, height);
+      const PixelRay ray = cameraRay(cam, halfExtent, x, y, width, height);
       RayHit hit;
       if (ray.t1 > ray.t0)
         hit = firstHit(recon, at, bounds, glm::vec3(ray.o / h), glm::vec3(ray.d / h), float(ray.t0), float(ray.t1), float(iso));
@@ -172,28 +170,30 @@ void renderAndMeasure(const Reconstruction& recon, const SiteValue& at, const Ce
 RgbImage renderTruth(const AnalyticField& field, double iso, int width, int height) {
   const TruthRender truth = renderTruthHits(field, iso, width, height);
   RgbImage image = blankImage(width, height);
-  const CompareCamera cam;
+  const glm::dvec3 e = field.halfExtent();
+  const CompareCamera cam(e);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const WorldHit& hit = truth.hits[size_t(y) * width + x];
-      if (hit.hit) putPixel(image, x, y, shade(hit.gradient, cameraRay(cam, x, y, width, height).d));
+      if (hit.hit) putPixel(image, x, y, shade(hit.gradient, cameraRay(cam, e, x, y, width, height).d));
     }
   return image;
 }
 
-LatticeSampling samplingFor(Lattice lattice, int64_t budget) {
+LatticeSampling samplingFor(Lattice lattice, int64_t budget, const glm::dvec3& halfExtent) {
   if (budget < 64) throw ValueError("a budget must be at least 64 samples (got " + std::to_string(budget) + ")");
   LatticeSampling s;
   s.lattice = lattice;
   s.budget = budget;
-  s.worldPerIndex = std::cbrt(8.0 * latticeDensity(lattice) / double(budget));
-  const int reach = int(std::floor(1.0 / s.worldPerIndex + 1e-9));
-  s.boxMin = glm::ivec3(-reach - kPad);
-  s.boxDims = glm::ivec3(2 * (reach + kPad) + 1);
+  const double volume = 8.0 * halfExtent.x * halfExtent.y * halfExtent.z;
+  s.worldPerIndex = std::cbrt(volume * latticeDensity(lattice) / double(budget));
+  const glm::ivec3 reach(glm::floor(halfExtent / s.worldPerIndex + 1e-9));
+  s.boxMin = -reach - kPad;
+  s.boxDims = 2 * (reach + kPad) + 1;
   int64_t inside = 0;
-  for (int z = -reach; z <= reach; ++z)
-    for (int y = -reach; y <= reach; ++y)
-      for (int x = -reach; x <= reach; ++x) inside += isLatticeSite(lattice, {x, y, z}) ? 1 : 0;
+  for (int z = -reach.z; z <= reach.z; ++z)
+    for (int y = -reach.y; y <= reach.y; ++y)
+      for (int x = -reach.x; x <= reach.x; ++x) inside += isLatticeSite(lattice, {x, y, z}) ? 1 : 0;
   s.samples = inside;
   return s;
 }
@@ -210,9 +210,11 @@ double nearestSiteDistance(const LatticeSampling& s) {
 std::vector<glm::dvec3> isosurfacePoints(const AnalyticField& field, double iso, int count, uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-0.95, 0.95);
+  const glm::dvec3 e = field.halfExtent();
+  const double scale = std::max(e.x, std::max(e.y, e.z));
   std::vector<glm::dvec3> points;
   for (int attempt = 0; attempt < 50 * count && int(points.size()) < count; ++attempt) {
-    glm::dvec3 p(u(rng), u(rng), u(rng));
+    glm::dvec3 p = e * glm::dvec3(u(rng), u(rng), u(rng));
     bool converged = false;
     for (int it = 0; it < 30; ++it) {
       const double f = field.value(p) - iso;
@@ -226,17 +228,18 @@ std::vector<glm::dvec3> isosurfacePoints(const AnalyticField& field, double iso,
       glm::dvec3 step = f / g2 * g;
       // At most a tenth of the domain a step, so Newton stays near where it started.
       const double len = glm::length(step);
-      if (len > 0.1) step *= 0.1 / len;
+      if (len > 0.1 * scale) step *= 0.1 * scale / len;
       p -= step;
     }
-    if (converged && glm::all(glm::lessThanEqual(glm::abs(p), glm::dvec3(0.95)))) points.push_back(p);
+    if (converged && glm::all(glm::lessThanEqual(glm::abs(p), 0.95 * e))) points.push_back(p);
   }
   return points;
 }
 
 std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const CompareOptions& options) {
   for (const auto& name : options.reconstructions) findReconstruction(name);  // ValueError for unknown ones
-  const std::vector<glm::dvec3> uniform = uniformPoints(options.points, options.seed);
+  const glm::dvec3 e = field.halfExtent();
+  const std::vector<glm::dvec3> uniform = uniformPoints(options.points, options.seed, e);
   const std::vector<glm::dvec3> surface = isosurfacePoints(field, options.iso, options.points, options.seed + 1);
   const bool render = options.width > 0 && options.height > 0;
   TruthRender truth;
@@ -244,7 +247,7 @@ std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const
   std::vector<CompareRow> rows;
   for (int64_t budget : options.budgets) {
     for (Lattice lattice : {Lattice::Cc, Lattice::Bcc, Lattice::Fcc}) {
-      const LatticeSampling sampling = samplingFor(lattice, budget);
+      const LatticeSampling sampling = samplingFor(lattice, budget, e);
       const double h = sampling.worldPerIndex;
       // One set of coefficients per prefilter the lattice's reconstructions use.
       std::map<Prefilter, std::unique_ptr<LatticeSamples>> coefficients;
@@ -296,10 +299,10 @@ std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const
         if (render) {
           // The stack schemes take their planes from the view, as a raycaster would.
           const auto viewed = makeReconstruction(info.name);
-          const CompareCamera cam;
+          const CompareCamera cam(e);
           viewed->setView(glm::vec3(glm::normalize(cam.lookAt - cam.eye)));
           const CellBounds bounds(*samples);
-          renderAndMeasure(*viewed, at, bounds, h, options.iso, truth, row);
+          renderAndMeasure(*viewed, at, bounds, h, options.iso, e, truth, row);
         }
         rows.push_back(row);
       }

@@ -2,12 +2,13 @@
 // equal sample budgets, reconstructed by every reconstruction of the layer, and measured against the
 // field itself at seeded random points.
 //
-// A budget N is the number of sites inside the domain [-1, 1]^3: a lattice of density rho sites per
-// unit of index volume gets the spacing h = (8 rho / N)^(1/3) world units per index unit (site ijk is
-// at h * ijk). Samples outside the domain are taken too (the stencils and prefilters read them), so no
+// A budget N is the number of sites inside the domain (the field's box [-e, e], [-1, 1]^3 for the
+// analytic fields; volume V = 8 e.x e.y e.z): a lattice of density rho sites per unit of index volume
+// gets the spacing h = (V rho / N)^(1/3) world units per index unit (site ijk is at h * ijk). Samples outside the domain are taken too (the stencils and prefilters read them), so no
 // reconstruction is measured against a boundary.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -23,10 +24,11 @@ struct LatticeSampling {
   Lattice lattice;
   int64_t budget;
   double worldPerIndex;  // h
-  int64_t samples;       // sites inside [-1, 1]^3
+  int64_t samples;       // sites inside the domain
   glm::ivec3 boxMin, boxDims;  // the sampled index box, padded for stencils and prefilters
 };
-LatticeSampling samplingFor(Lattice lattice, int64_t budget);
+// The domain is [-halfExtent, halfExtent] (the field's).
+LatticeSampling samplingFor(Lattice lattice, int64_t budget, const glm::dvec3& halfExtent = glm::dvec3(1.0));
 // World distance between nearest sites: h times 1 (CC), sqrt(3) (BCC), sqrt(2) (FCC).
 double nearestSiteDistance(const LatticeSampling& sampling);
 
@@ -39,9 +41,12 @@ struct CompareOptions {
   int width = 0, height = 0;  // renders of this size against the field's own (0: none)
 };
 
-// The camera every render of a comparison uses (world space): the domain seen from above at a slant.
+// The camera every render of a comparison uses (world space): the domain seen from above at a slant,
+// from a distance proportional to its size.
 struct CompareCamera {
-  glm::dvec3 eye{1.9, -2.7, 2.3}, lookAt{0.0}, up{0.0, 0.0, 1.0};
+  explicit CompareCamera(const glm::dvec3& halfExtent = glm::dvec3(1.0))
+      : eye(glm::dvec3(1.9, -2.7, 2.3) * std::max(halfExtent.x, std::max(halfExtent.y, halfExtent.z))) {}
+  glm::dvec3 eye, lookAt{0.0}, up{0.0, 0.0, 1.0};
   double fovDeg = 38.0;
 };
 
@@ -76,7 +81,7 @@ struct CompareRow {
 // The field's own isosurface from CompareCamera (the first row of the image grid).
 RgbImage renderTruth(const AnalyticField& field, double iso, int width, int height);
 
-// Seeded points on the isosurface f = iso inside [-0.95, 0.95]^3 (Newton steps from uniform points).
+// Seeded points on the isosurface f = iso inside 0.95 times the domain (Newton steps from uniform points).
 std::vector<glm::dvec3> isosurfacePoints(const AnalyticField& field, double iso, int count, uint64_t seed);
 
 std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const CompareOptions& options);

@@ -75,6 +75,14 @@ void cubicBSplineWeights(double t, double w[4]) {
   w[3] = t * t * t / 6.0;
 }
 
+void cubicBSplineDerivativeWeights(double t, double w[4]) {
+  const double s = 1.0 - t;
+  w[0] = -0.5 * s * s;
+  w[1] = 1.5 * t * t - 2.0 * t;
+  w[2] = -1.5 * t * t + t + 0.5;
+  w[3] = 0.5 * t * t;
+}
+
 CubicBSplineVolume::CubicBSplineVolume(const glm::ivec3& dims, const std::vector<float>& values)
     : dims_(dims), coefficients_(values) {
   const ptrdiff_t sx = 1, sy = dims.x, sz = ptrdiff_t(dims.x) * dims.y;
@@ -102,9 +110,35 @@ float CubicBSplineVolume::coefficient(int i, int j, int k) const {
   return coefficients_[(size_t(k) * dims_.y + j) * dims_.x + i];
 }
 
-float CubicBSplineVolume::evaluate(const glm::dvec3& xyzIn) const {
+float CubicBSplineVolume::evaluate(const glm::dvec3& xyzIn) const { return float(value(xyzIn)); }
+
+double CubicBSplineVolume::value(const glm::dvec3& xyzIn) const {
   const glm::dvec3 xyz = glm::clamp(xyzIn, glm::dvec3(0.0), glm::dvec3(dims_ - 1));
-  return float(cubicBSplineAt(xyz, [&](const glm::ivec3& ijk) { return coefficient(ijk.x, ijk.y, ijk.z); }));
+  return cubicBSplineAt(xyz, [&](const glm::ivec3& ijk) { return coefficient(ijk.x, ijk.y, ijk.z); });
+}
+
+glm::dvec3 CubicBSplineVolume::gradient(const glm::dvec3& xyzIn) const {
+  const glm::dvec3 xyz = glm::clamp(xyzIn, glm::dvec3(0.0), glm::dvec3(dims_ - 1));
+  const glm::dvec3 f = glm::floor(xyz);
+  const glm::ivec3 base = glm::ivec3(f) - 1;
+  double w[3][4], dw[3][4];
+  for (int a = 0; a < 3; ++a) {
+    cubicBSplineWeights(xyz[a] - f[a], w[a]);
+    cubicBSplineDerivativeWeights(xyz[a] - f[a], dw[a]);
+  }
+  glm::dvec3 g(0.0);
+  for (int c = 0; c < 4; ++c)
+    for (int b = 0; b < 4; ++b)
+      for (int a = 0; a < 4; ++a) {
+        const double v = coefficient(base.x + a, base.y + b, base.z + c);
+        g.x += dw[0][a] * w[1][b] * w[2][c] * v;
+        g.y += w[0][a] * dw[1][b] * w[2][c] * v;
+        g.z += w[0][a] * w[1][b] * dw[2][c] * v;
+      }
+  // Clamped axes are constant outside the volume.
+  for (int a = 0; a < 3; ++a)
+    if (xyzIn[a] < 0.0 || xyzIn[a] > double(dims_[a] - 1)) g[a] = 0.0;
+  return g;
 }
 
 }  // namespace fcc

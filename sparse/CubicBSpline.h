@@ -24,6 +24,9 @@ void bsplinePrefilterLines(float* c, int n, ptrdiff_t stride, int count, ptrdiff
 // The four cubic B-spline weights of the coefficients at floor(x) - 1 .. floor(x) + 2, t = x - floor(x).
 void cubicBSplineWeights(double t, double w[4]);
 
+// Their derivatives with respect to t.
+void cubicBSplineDerivativeWeights(double t, double w[4]);
+
 // The tricubic B-spline at position `xyz` from the coefficients `coefficientAt(glm::ivec3)` gives at the
 // 4^3 integer points floor(xyz) - 1 .. floor(xyz) + 2: one sum, in one order, for every caller.
 template <class CoefficientAt>
@@ -50,6 +53,9 @@ class CubicBSplineVolume {
   CubicBSplineVolume(const glm::ivec3& dims, const std::vector<float>& values);
   // Value at a continuous index-space position; positions outside are clamped to the volume.
   float evaluate(const glm::dvec3& xyz) const;
+  // The same in double, and the exact gradient (derivative weights; zero across a clamped axis).
+  double value(const glm::dvec3& xyz) const;
+  glm::dvec3 gradient(const glm::dvec3& xyz) const;
 
  private:
   float coefficient(int i, int j, int k) const;

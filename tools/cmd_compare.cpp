@@ -1,5 +1,5 @@
-// fccvdb compare: the case for the FCC lattice, measured. An analytic field sampled on the CC, BCC and
-// FCC lattices at equal sample budgets, every reconstruction of the layer measured against the field
+// fccvdb compare: the case for the FCC lattice, measured. An analytic field (or a Cartesian volume's
+// interpolating spline, --input) sampled on the CC, BCC and FCC lattices at equal sample budgets, every reconstruction of the layer measured against the field
 // (sparse/Comparison.h); a table, --json rows, and with -o DIR the JSON, a Markdown report and the
 // convergence plot.
 #include <unistd.h>
@@ -12,7 +12,9 @@
 #include "Command.h"
 #include "CompareReport.h"
 #include "io/AtomicOutput.h"
+#include "io/DenseVolume.h"
 #include "io/ImageOutput.h"
+#include "SourceFlags.h"
 #include "sparse/Comparison.h"
 #include "sparse/Error.h"
 
@@ -74,11 +76,38 @@ std::string gridNote(const std::vector<CompareRow>& rows, const std::vector<int6
   return note;
 }
 
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+// A dense Cartesian volume as the truth.
+std::unique_ptr<AnalyticField> readTruth(const std::string& path, const SourceFlags& flags) {
+  const io::Format format = io::detectFormat(path);
+  if (format == io::Format::Vdb)
+    throw ValueError(path + ": --input takes a dense volume (raw, NRRD, NIfTI, MetaImage, DICOM), not a .vdb");
+  io::DenseVolume volume;
+  switch (format) {
+    case io::Format::Nrrd: volume = io::readNrrd(path); break;
+    case io::Format::Nifti: volume = io::readNifti(path); break;
+    case io::Format::Dicom: volume = io::readDicom(path); break;
+    case io::Format::MetaImage: volume = io::readMetaImage(path); break;
+    default: {
+      const auto layout = rawLayoutFromFlags(flags, path);
+      if (!layout) throw ValueError(path + ": a raw volume needs --dims X,Y,Z and --type (u8|i8|u16|i16|u32|i32|f32|f64)");
+      volume = io::readRaw(path, *layout);
+    }
+  }
+  return makeVolumeField(path, volume.dims, volume.spacing, volume.values);
+}
+
 }  // namespace
 
 Command addCompareCommand(CLI::App& parent) {
   struct Args {
-    std::string field, budgets, outDir, reconstructions, res = "256x256";
+    std::string field, input, budgets, outDir, reconstructions, res = "256x256";
+    SourceFlags source;
     double iso = NAN;
     int points = 20000;
     uint64_t seed = 1;
@@ -89,7 +118,13 @@ Command addCompareCommand(CLI::App& parent) {
       "compare",
       "Sample an analytic field on the CC, BCC and FCC lattices at equal sample budgets and measure every "
       "reconstruction against it: value error, gradient and isosurface-normal direction error");
-  app->add_option("--field", args->field, "marschner-lobb | random-waves")->required()->check(CLI::IsMember(analyticFieldNames()));
+  auto* fieldOption = app->add_option("--field", args->field, "marschner-lobb | random-waves")->check(CLI::IsMember(analyticFieldNames()));
+  auto* inputOption = app->add_option("--input", args->input,
+                                      "A Cartesian volume as the truth (raw with --dims/--type, NRRD, NIfTI, MetaImage, DICOM): "
+                                      "its interpolating tricubic B-spline")
+                          ->check(CLI::ExistingPath);
+  fieldOption->excludes(inputOption);
+  addRawFlags(*app, args->source);
   app->add_option("--budget", args->budgets, "Samples inside [-1,1]^3 per lattice, N[,N...] (several: a convergence plot)")->required();
   app->add_option("--iso", args->iso, "Isovalue of the surface whose normals are measured (default: the field's, 0.5 for marschner-lobb, 0 for random-waves)");
   app->add_option("--points", args->points, "Seeded random points for the errors (uniform, and on the isosurface)")
@@ -103,7 +138,10 @@ Command addCompareCommand(CLI::App& parent) {
   app->add_option("-o,--output-dir", args->outDir, "Also write compare.json, compare.md and convergence.svg into DIR");
   app->add_flag("--force", args->force, "Overwrite those files in DIR");
   return {app, [args]() {
-            const auto field = makeAnalyticField(args->field, args->seed);
+            if (args->field.empty() == args->input.empty())
+              throw ValueError("give the truth as --field (" + joined(analyticFieldNames()) + ") or --input FILE");
+            const auto field = args->input.empty() ? makeAnalyticField(args->field, args->seed) : readTruth(args->input, args->source);
+            const std::string truthName = args->input.empty() ? args->field : args->input;
             CompareOptions options;
             options.budgets = parseBudgets(args->budgets);
             options.iso = std::isfinite(args->iso) ? args->iso : field->defaultIso();
@@ -127,7 +165,7 @@ Command addCompareCommand(CLI::App& parent) {
                           "planes normal to z there, from the view in the renders); renders %dx%d against the field's "
                           "own (img_norm: mean normal error in degrees, img_depth: mean hit distance error, img_hm: "
                           "pixels where only one hits); fps: not timed (no GPU path for CC/BCC yet)\nmachine: %s\n",
-                          args->field.c_str(), options.iso, options.points, rows.front().surfacePoints,
+                          truthName.c_str(), options.iso, options.points, rows.front().surfacePoints,
                           (unsigned long long)options.seed, width, height, machineLine().c_str());
             const std::string table = compareTable(rows);
             if (args->json) std::fputs(compareJson(rows).c_str(), stdout);
@@ -137,7 +175,7 @@ Command addCompareCommand(CLI::App& parent) {
               writeText(dir + "compare.json", compareJson(rows), args->force);
               writeText(dir + "compare.md", "# fccvdb compare\n\n```\n" + std::string(header) + "\n" + table + "```\n\n![convergence](convergence.svg)\n" + gridNote(rows, options.budgets, width > 0), args->force);
               writeText(dir + "convergence.svg",
-                        convergenceSvg(rows, args->field + ": value RMS error against samples"), args->force);
+                        convergenceSvg(rows, truthName + ": value RMS error against samples"), args->force);
               if (width > 0) {
                 const RgbImage truth = renderTruth(*field, options.iso, width, height);
                 for (int64_t budget : options.budgets) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <regex>
 #include <vector>
@@ -78,6 +79,37 @@ TEST(CliCompare, OutputDirectoryHoldsTheReport) {
   const auto again = runFccvdb("compare --field random-waves --budget 2000 --points 300 --res 0x0 -o " + dir.path.string());
   EXPECT_EQ(again.status, 1);
   EXPECT_EQ(lineCount(again.err), 1) << again.err;
+}
+
+TEST(CliCompare, ACartesianVolumeIsTheTruthWithInput) {
+  // A 20^3 f32 raw volume of a smooth bump: compare samples its interpolating spline.
+  TempDir dir;
+  const std::string raw = dir / "bump.raw";
+  {
+    std::ofstream out(raw, std::ios::binary);
+    for (int z = 0; z < 20; ++z)
+      for (int y = 0; y < 20; ++y)
+        for (int x = 0; x < 20; ++x) {
+          const float v = std::exp(-((x - 9.5f) * (x - 9.5f) + (y - 9.5f) * (y - 9.5f) + (z - 9.5f) * (z - 9.5f)) / 30.0f);
+          out.write(reinterpret_cast<const char*>(&v), sizeof v);
+        }
+  }
+  const auto r = runFccvdb("compare --input " + raw + " --dims 20,20,20 --type f32 --budget 4000,16000 --points 300 "
+                           "--res 16x16 --reconstruction tricubic,boxspline --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = parseRows(r.out);
+  ASSERT_EQ(rows.size(), 4u) << r.out;
+  for (const auto& row : rows) EXPECT_LT(std::stod(row.at("value_rms_error")), 0.05) << row.at("reconstruction");
+  // Without the raw layout, with both truths, or a .vdb: one line each.
+  const auto noLayout = runFccvdb("compare --input " + raw + " --budget 4000");
+  EXPECT_EQ(noLayout.status, 1);
+  EXPECT_THAT(noLayout.err, HasSubstr("--dims"));
+  const auto both = runFccvdb("compare --input " + raw + " --field marschner-lobb --budget 4000");
+  EXPECT_EQ(both.status, 2);
+  EXPECT_EQ(lineCount(both.err), 1) << both.err;
+  const auto neither = runFccvdb("compare --budget 4000");
+  EXPECT_EQ(neither.status, 1);
+  EXPECT_THAT(neither.err, HasSubstr("--field"));
 }
 
 TEST(CliCompare, BadInputGivesOneLineListingTheValidValues) {
