@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "Command.h"
+#include "JsonText.h"
 #include "CompareReport.h"
 #include "io/AtomicOutput.h"
 #include "io/DenseVolume.h"
@@ -159,21 +160,27 @@ Command addCompareCommand(CLI::App& parent) {
               if (!n.empty()) options.reconstructions.push_back(n);
             const std::vector<CompareRow> rows = compareReconstructions(*field, options);
             if (rows.empty()) throw ValueError("--reconstruction: nothing to compare");
-            char header[1024];
-            std::snprintf(header, sizeof header,
-                          "field %s, iso %g, %d uniform points and %d on the isosurface (seed %llu; the stack schemes' "
-                          "planes normal to z there, from the view in the renders); renders %dx%d against the field's "
-                          "own (img_norm: mean normal error in degrees, img_depth: mean hit distance error, img_hm: "
-                          "pixels where only one hits); fps: not timed (no GPU path for CC/BCC yet)\nmachine: %s\n",
-                          truthName.c_str(), options.iso, options.points, rows.front().surfacePoints,
-                          (unsigned long long)options.seed, width, height, machineLine().c_str());
+            // The command as run (its effective flags), the seed and the machine: what a reader needs to
+            // measure the same.
+            std::string command = "fccvdb compare " + (args->input.empty() ? "--field " + args->field : "--input " + args->input) +
+                                  " --budget " + args->budgets + " --iso " + jsonNumber(options.iso) + " --points " +
+                                  std::to_string(options.points) + " --seed " + std::to_string(options.seed) + " --res " + args->res;
+            if (!args->reconstructions.empty()) command += " --reconstruction " + args->reconstructions;
+            char settings[1024];
+            std::snprintf(settings, sizeof settings,
+                          "%d uniform points and %d on the isosurface; the stack schemes' planes normal to z there, "
+                          "from the view in the renders; renders %dx%d against the truth's own (img_norm: mean normal "
+                          "error in degrees, img_depth: mean hit distance error, img_hm: pixels where only one hits); "
+                          "fps: not timed (no GPU path for CC/BCC yet)",
+                          options.points, rows.front().surfacePoints, width, height);
+            const std::string header = command + "\n" + settings + "\nmachine: " + machineLine() + "\n";
             const std::string table = compareTable(rows);
             if (args->json) std::fputs(compareJson(rows).c_str(), stdout);
-            else std::printf("%s%s", header, table.c_str());
+            else std::printf("%s%s", header.c_str(), table.c_str());
             if (!args->outDir.empty()) {
               const std::string dir = args->outDir + "/";
               writeText(dir + "compare.json", compareJson(rows), args->force);
-              writeText(dir + "compare.md", "# fccvdb compare\n\n```\n" + std::string(header) + "\n" + table + "```\n\n![convergence](convergence.svg)\n" + gridNote(rows, options.budgets, width > 0), args->force);
+              writeText(dir + "compare.md", "# fccvdb compare\n\n```\n" + header + "\n" + table + "```\n\n![convergence](convergence.svg)\n" + gridNote(rows, options.budgets, width > 0), args->force);
               writeText(dir + "convergence.svg",
                         convergenceSvg(rows, truthName + ": value RMS error against samples"), args->force);
               if (width > 0) {
