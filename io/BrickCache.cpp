@@ -28,7 +28,14 @@ BrickCache::BrickCache(const BrickStore& store, std::size_t budgetBytes)
   bricksPerShard_ = budgetBytes / kBytesPerBrick / shards_.size();
 }
 
-std::shared_ptr<const BrickValues> BrickCache::leafValues(const glm::ivec3& brick) {
+BrickContent BrickCache::content(const glm::ivec3& brick) {
+  BrickContent c;
+  if (store_.hasLeaf(brick)) c.leaf = leafValues(brick);
+  else c.constant = store_.constantValue(brick);
+  return c;
+}
+
+std::shared_ptr<const CachedBrick> BrickCache::leafValues(const glm::ivec3& brick) {
   const uint64_t key = brickKey(brick);
   Shard& shard = shardOf(key);
   {
@@ -41,8 +48,16 @@ std::shared_ptr<const BrickValues> BrickCache::leafValues(const glm::ivec3& bric
     }
   }
   // Not make_shared: it would zero the 8 KB (Vec4f's default constructor is defaulted) to overwrite them.
-  std::shared_ptr<BrickValues> values(new BrickValues);
-  store_.readBrick(brick, *values);  // decoding happens outside the lock
+  std::shared_ptr<CachedBrick> values(new CachedBrick);
+  {
+    // Decoding happens outside the lock; then leaf order (z fastest) to rows (x fastest).
+    thread_local BrickValues leafOrder;
+    store_.readBrick(brick, leafOrder);
+    constexpr int D = kBrickPackedDim;
+    for (int x = 0; x < D; ++x)
+      for (int y = 0; y < D; ++y)
+        for (int z = 0; z < D; ++z) values->voxels[(z * D + y) * D + x] = leafOrder[(x * D + y) * D + z];
+  }
   decoded_.fetch_add(1, std::memory_order_relaxed);
   std::lock_guard<std::mutex> lock(shard.mutex);
   auto [it, inserted] = shard.entries.try_emplace(key);
@@ -65,15 +80,16 @@ std::size_t BrickCache::bytesUsed() const {
   return bricks * kBytesPerBrick;
 }
 
-std::shared_ptr<const BrickValues> BrickValuesMemo::leafValues(const glm::ivec3& brick) {
-  for (const auto& [b, values] : held_)
-    if (b == brick) return values;
-  held_.emplace_back(brick, source_.leafValues(brick));
+BrickContent BrickValuesMemo::content(const glm::ivec3& brick) {
+  for (const auto& [b, content] : held_)
+    if (b == brick) return content;
+  held_.emplace_back(brick, source_.content(brick));
   return held_.back().second;
 }
 
-void assembleHaloBlock(const BrickStore& store, BrickValuesSource& cache, const glm::ivec3& brick, float* out) {
+void assembleHaloBlock(const BrickStore& /*store*/, BrickValuesSource& source, const glm::ivec3& brick, float* out) {
   constexpr int D = kBrickPackedDim, H = kHaloBlockDim;
+  static_assert(sizeof(openvdb::Vec4f) == 4 * sizeof(float), "Vec4f packs four floats");
   // The 27 bricks the block touches: the centre and its neighbours (only their border layer is used).
   for (int nz = -1; nz <= 1; ++nz)
     for (int ny = -1; ny <= 1; ++ny)
@@ -85,19 +101,20 @@ void assembleHaloBlock(const BrickStore& store, BrickValuesSource& cache, const 
           lo[a] = n[a] < 0 ? 0 : (n[a] == 0 ? 1 : D + 1);
           hi[a] = n[a] < 0 ? 1 : (n[a] == 0 ? D + 1 : H);
         }
-        const glm::ivec3 neighbour = brick + n;
-        std::shared_ptr<const BrickValues> values;
-        openvdb::Vec4f constant(0.0f);
-        if (store.hasLeaf(neighbour)) values = cache.leafValues(neighbour);
-        else constant = store.constantValue(neighbour);
+        const BrickContent content = source.content(brick + n);
+        const int run = hi.x - lo.x;
+        // Block voxel (x, y, z) is packed voxel 8b - 1 + (x, y, z); in the neighbour, (x, y, z) - 1 - 8n.
+        const int lx = lo.x - 1 - n.x * D;
         for (int z = lo.z; z < hi.z; ++z)
-          for (int y = lo.y; y < hi.y; ++y)
-            for (int x = lo.x; x < hi.x; ++x) {
-              // Block voxel (x, y, z) is packed voxel 8b - 1 + (x, y, z); its place in the neighbour:
-              const int lx = (x - 1) - n.x * D, ly = (y - 1) - n.y * D, lz = (z - 1) - n.z * D;
-              const openvdb::Vec4f& v = values ? (*values)[(lx * D + ly) * D + lz] : constant;
-              std::memcpy(out + 4 * ((z * H + y) * H + x), v.asPointer(), 4 * sizeof(float));
+          for (int y = lo.y; y < hi.y; ++y) {
+            float* dst = out + 4 * ((z * H + y) * H + lo.x);
+            if (content.leaf) {
+              const int ly = (y - 1) - n.y * D, lz = (z - 1) - n.z * D;
+              std::memcpy(dst, content.leaf->voxels[(lz * D + ly) * D + lx].asPointer(), size_t(run) * 4 * sizeof(float));
+            } else {
+              for (int i = 0; i < run; ++i) std::memcpy(dst + 4 * i, content.constant.asPointer(), 4 * sizeof(float));
             }
+          }
       }
 }
 

@@ -17,23 +17,36 @@
 
 namespace fcc::io {
 
-// Where io::assembleHaloBlock finds the decoded values of a brick that has a leaf.
+// A decoded brick as the host cache keeps it: the 8^3 packed voxels x fastest, index (z * 8 + y) * 8 + x.
+// BrickStore::readBrick gives OpenVDB's leaf order (z fastest); the cache transposes once, on
+// insertion, so that io::assembleHaloBlock copies whole rows instead of single voxels.
+struct CachedBrick {
+  std::array<openvdb::Vec4f, kBrickPackedDim * kBrickPackedDim * kBrickPackedDim> voxels;
+};
+
+// What one brick contributes to a halo block: its cached leaf, or (no leaf) one value everywhere.
+struct BrickContent {
+  std::shared_ptr<const CachedBrick> leaf;
+  openvdb::Vec4f constant{0.0f};
+};
+
+// Where io::assembleHaloBlock finds the bricks around a block.
 class BrickValuesSource {
  public:
   virtual ~BrickValuesSource() = default;
-  virtual std::shared_ptr<const BrickValues> leafValues(const glm::ivec3& brick) = 0;
+  virtual BrickContent content(const glm::ivec3& brick) = 0;
 };
 
 class BrickCache : public BrickValuesSource {
  public:
   // Bytes one cached brick costs, with its bookkeeping.
-  static constexpr std::size_t kBytesPerBrick = sizeof(BrickValues) + 96;
+  static constexpr std::size_t kBytesPerBrick = sizeof(CachedBrick) + 96;
 
   BrickCache(const BrickStore& store, std::size_t budgetBytes);
 
-  // The decoded values of a brick that has a leaf, from the cache or decoded now. Thread-safe; the
+  // A brick's leaf from the cache or decoded now (and cached), or its constant value. Thread-safe; the
   // returned values stay valid while held, even if evicted meanwhile.
-  std::shared_ptr<const BrickValues> leafValues(const glm::ivec3& brick) override;
+  BrickContent content(const glm::ivec3& brick) override;
 
   std::size_t budgetBytes() const { return budgetBytes_; }
   std::size_t bytesUsed() const;
@@ -44,8 +57,9 @@ class BrickCache : public BrickValuesSource {
   // The cache is split by brick into shards, each its own LRU list under its own lock, so that the
   // loader's threads (27 lookups per halo block) do not queue on one mutex. Eviction is per shard:
   // each holds an equal share of the budget.
+  std::shared_ptr<const CachedBrick> leafValues(const glm::ivec3& brick);
   struct Entry {
-    std::shared_ptr<const BrickValues> values;
+    std::shared_ptr<const CachedBrick> values;
     std::list<uint64_t>::iterator lru;
   };
   struct Shard {
@@ -62,18 +76,18 @@ class BrickCache : public BrickValuesSource {
   std::atomic<uint64_t> decoded_{0}, hits_{0};
 };
 
-// A few bricks' values held for a batch of halo blocks, in front of a cache: neighbouring blocks share
-// most of their 27 bricks, and each lookup in the shared cache takes a lock that all loader threads
-// contend for. Not thread-safe: one a thread.
+// A few bricks' contents held for a batch of halo blocks, in front of a cache: neighbouring blocks
+// share most of their 27 bricks, and each lookup in the shared cache takes a lock that all loader
+// threads contend for (and two tree probes for a brick without a leaf). Not thread-safe: one a thread.
 class BrickValuesMemo : public BrickValuesSource {
  public:
   explicit BrickValuesMemo(BrickValuesSource& source) : source_(source) {}
-  std::shared_ptr<const BrickValues> leafValues(const glm::ivec3& brick) override;
+  BrickContent content(const glm::ivec3& brick) override;
   void clear() { held_.clear(); }
 
  private:
   BrickValuesSource& source_;
-  std::vector<std::pair<glm::ivec3, std::shared_ptr<const BrickValues>>> held_;
+  std::vector<std::pair<glm::ivec3, BrickContent>> held_;
 };
 
 // The packed voxels [8b - 1, 8b + 9)^3 of brick b (the brick and the one-voxel halo its cells'

@@ -1,0 +1,55 @@
+// The loader's halo blocks (io::assembleHaloBlock over the host cache, rows copied from bricks kept
+// x-fastest) against the grid read whole by OpenVDB: every voxel of every block, including those from
+// neighbours without a leaf (tiles, the background).
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "RenderTestSupport.h"
+#include "io/BrickCache.h"
+#include "sparse/SynthFields.h"
+#include "tests/tools/RunCommand.h"
+
+namespace fcc {
+namespace {
+
+TEST(HaloBlocks, EveryVoxelIsTheGridsValue) {
+  test::TempDir dir;
+  const std::string path = dir / "blobs.vdb";
+  SynthSpec spec;
+  spec.kind = "blobs";  // sparse: leaves next to empty space, so neighbours of every kind
+  spec.dims = glm::ivec3(96);
+  test::writeFccFile(path, *makeSynthField(spec).field);
+  const io::BrickStore store(path);
+  const FccGrid::Ptr grid = io::readFccGrid(path);  // the slow reference: every value, read normally
+  ASSERT_TRUE(grid);
+  const auto accessor = grid->getConstAccessor();
+  // A cache smaller than the bricks touched: evictions happen while blocks are assembled.
+  io::BrickCache cache(store, 40 * io::BrickCache::kBytesPerBrick);
+  io::BrickValuesMemo memo(cache);
+  std::vector<float> block(size_t(io::kHaloBlockVoxels) * 4);
+  int blocks = 0;
+  for (auto leaf = grid->tree().cbeginLeaf(); leaf; ++leaf) {
+    const glm::ivec3 brick(leaf->origin().x() / kBrickPackedDim, leaf->origin().y() / kBrickPackedDim,
+                           leaf->origin().z() / kBrickPackedDim);
+    if (blocks % 3 == 0) memo.clear();
+    io::assembleHaloBlock(store, memo, brick, block.data());
+    constexpr int H = io::kHaloBlockDim;
+    for (int z = 0; z < H; ++z)
+      for (int y = 0; y < H; ++y)
+        for (int x = 0; x < H; ++x) {
+          const openvdb::Coord voxel(brick.x * kBrickPackedDim - 1 + x, brick.y * kBrickPackedDim - 1 + y,
+                                     brick.z * kBrickPackedDim - 1 + z);
+          const openvdb::Vec4f expected = accessor.getValue(voxel);
+          for (int c = 0; c < 4; ++c)
+            ASSERT_EQ(block[4 * ((z * H + y) * H + x) + c], expected[c])
+                << "brick (" << brick.x << ", " << brick.y << ", " << brick.z << ") block voxel (" << x << ", " << y
+                << ", " << z << ") channel " << c;
+        }
+    ++blocks;
+  }
+  EXPECT_GT(blocks, 20);
+}
+
+}  // namespace
+}  // namespace fcc
