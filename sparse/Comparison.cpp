@@ -190,6 +190,12 @@ LatticeSampling samplingFor(Lattice lattice, int64_t budget, const glm::dvec3& h
   const glm::ivec3 reach(glm::floor(halfExtent / s.worldPerIndex + 1e-9));
   s.boxMin = -reach - kPad;
   s.boxDims = 2 * (reach + kPad) + 1;
+  // The box is held densely (LatticeSamples: every integer point, a float each, twice while prefiltered).
+  const double points = double(s.boxDims.x) * s.boxDims.y * s.boxDims.z;
+  if (points > double(kMaxComparisonBoxPoints))
+    throw ValueError("a budget of " + std::to_string(budget) + " samples needs " + std::to_string(int64_t(points)) +
+                     " points of memory on the " + std::string(latticeName(lattice)) + " lattice (at most " +
+                     std::to_string(kMaxComparisonBoxPoints) + "): use budgets up to about 50000000");
   int64_t inside = 0;
   for (int z = -reach.z; z <= reach.z; ++z)
     for (int y = -reach.y; y <= reach.y; ++y)

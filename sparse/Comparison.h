@@ -27,6 +27,8 @@ struct LatticeSampling {
   int64_t samples;       // sites inside the domain
   glm::ivec3 boxMin, boxDims;  // the sampled index box, padded for stencils and prefilters
 };
+// The largest sampled box (integer points) a comparison holds: 1 GiB of floats. ValueError beyond.
+inline constexpr int64_t kMaxComparisonBoxPoints = int64_t(1) << 28;
 // The domain is [-halfExtent, halfExtent] (the field's).
 LatticeSampling samplingFor(Lattice lattice, int64_t budget, const glm::dvec3& halfExtent = glm::dvec3(1.0));
 // World distance between nearest sites: h times 1 (CC), sqrt(3) (BCC), sqrt(2) (FCC).

@@ -52,6 +52,16 @@ TEST(Comparison, EveryLatticeGetsTheBudgetsDensity) {
   }
 }
 
+TEST(Comparison, BudgetsBeyondMemoryAreRefusedInOneLine) {
+  try {
+    samplingFor(Lattice::Bcc, 200000000);
+    FAIL() << "no error";
+  } catch (const ValueError& e) {
+    EXPECT_NE(std::string(e.what()).find("bcc lattice"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(samplingFor(Lattice::Bcc, 50000000));
+}
+
 TEST(Comparison, IsosurfacePointsLieOnTheIsosurface) {
   const auto field = makeAnalyticField("marschner-lobb");
   const auto points = isosurfacePoints(*field, 0.5, 300, 9);
