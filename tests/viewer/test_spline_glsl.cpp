@@ -40,32 +40,11 @@ class Glsl : public test::GlSuite {
     return *program;
   }
 
-  static std::vector<glm::vec4> evaluateOnDevice(const DenseBlock& block, const std::vector<glm::vec4>& points) {
-    const GlProgram& p = splineProgram();
-    const auto start = std::chrono::steady_clock::now();
-    const GlBuffer pointBuffer(points), coefficientBuffer(block.values);
-    const GlBuffer resultBuffer(points.size() * sizeof(glm::vec4));
-    pointBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-    coefficientBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
-    resultBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
-    p.use();
-    glUniform4i(p.uniformLocation("uOrigin"), block.origin.x, block.origin.y, block.origin.z, 0);
-    glUniform4i(p.uniformLocation("uDims"), block.dims.x, block.dims.y, block.dims.z, 0);
-    glUniform1f(p.uniformLocation("uBackground"), block.background);
-    glUniform1ui(p.uniformLocation("uCount"), GLuint(points.size()));
-    p.dispatch("spline evaluation", GLuint(points.size()));
-    std::vector<glm::vec4> results(points.size());
-    resultBuffer.read(results);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    std::printf("[   INFO   ] %zu points on %s: %.1f ms (upload, dispatch, read back)\n", points.size(),
-                context()->describe().c_str(), ms);
-    return results;
-  }
-
-  static std::vector<glm::vec4> evaluateReconstruction(const DenseBlock& block, const std::vector<glm::vec4>& points,
-                                                       int id, const glm::ivec3& params) {
-    if (!reconProgram) reconProgram = GlProgram::compute(embedded::shaders(kReconPath), kReconPath);
-    const GlProgram& p = *reconProgram;
+  // Runs a point-evaluation program (spline_eval.comp, recon_eval.comp: points, the block's values,
+  // results at bindings 0, 1, 2) over `points`; `setUniforms` adds the program's own uniforms.
+  template <class SetUniforms>
+  static std::vector<glm::vec4> runPoints(const GlProgram& p, const char* what, const DenseBlock& block,
+                                          const std::vector<glm::vec4>& points, SetUniforms&& setUniforms) {
     const GlBuffer pointBuffer(points), valueBuffer(block.values);
     const GlBuffer resultBuffer(points.size() * sizeof(glm::vec4));
     pointBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
@@ -76,12 +55,29 @@ class Glsl : public test::GlSuite {
     glUniform4i(p.uniformLocation("uDims"), block.dims.x, block.dims.y, block.dims.z, 0);
     glUniform1f(p.uniformLocation("uBackground"), block.background);
     glUniform1ui(p.uniformLocation("uCount"), GLuint(points.size()));
-    glUniform1i(p.uniformLocation("uId"), id);
-    glUniform3i(p.uniformLocation("uParams"), params.x, params.y, params.z);
-    p.dispatch("reconstruction evaluation", GLuint(points.size()));
+    setUniforms(p);
+    p.dispatch(what, GLuint(points.size()));
     std::vector<glm::vec4> results(points.size());
     resultBuffer.read(results);
     return results;
+  }
+
+  static std::vector<glm::vec4> evaluateOnDevice(const DenseBlock& block, const std::vector<glm::vec4>& points) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<glm::vec4> results = runPoints(splineProgram(), "spline evaluation", block, points, [](const GlProgram&) {});
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::printf("[   INFO   ] %zu points on %s: %.1f ms (upload, dispatch, read back)\n", points.size(),
+                context()->describe().c_str(), ms);
+    return results;
+  }
+
+  static std::vector<glm::vec4> evaluateReconstruction(const DenseBlock& block, const std::vector<glm::vec4>& points,
+                                                       int id, const glm::ivec3& params) {
+    if (!reconProgram) reconProgram = GlProgram::compute(embedded::shaders(kReconPath), kReconPath);
+    return runPoints(*reconProgram, "reconstruction evaluation", block, points, [&](const GlProgram& p) {
+      glUniform1i(p.uniformLocation("uId"), id);
+      glUniform3i(p.uniformLocation("uParams"), params.x, params.y, params.z);
+    });
   }
 
   static inline std::optional<GlProgram> program;
