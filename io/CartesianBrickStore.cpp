@@ -1,0 +1,174 @@
+#include "CartesianBrickStore.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <array>
+#include <map>
+
+#include "VdbFile.h"
+#include "VdbLeafReader.h"
+#include "sparse/Error.h"
+
+namespace fcc::io {
+namespace {
+
+constexpr int kLeafDim = 8;
+constexpr int kLeavesPerBrick = CartesianBrickStore::kBrickSites / kLeafDim;  // 2 along each axis
+
+glm::dmat4 affineWorldFromIndex(const openvdb::math::Transform& xform, const std::string& path) {
+  if (!xform.isLinear())
+    throw InputError(path + ": the grid's transform (" + xform.mapType() + ") is not affine; the renderer supports linear transforms only");
+  const openvdb::Mat4d m = xform.baseMap()->getAffineMap()->getMat4();
+  glm::dmat4 out;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out[r][c] = m(r, c);  // OpenVDB's row-vector matrix, transposed
+  return out;
+}
+
+// The leaf-sized boxes (by origin, in leaf units) a brick's block touches: 16 b - 2 .. 16 b + 17 spans
+// leaves 2 b - 1 .. 2 b + 2.
+template <class Visit>
+void forEachBlockLeaf(const glm::ivec3& brick, Visit&& visit) {
+  for (int lz = -1; lz <= kLeavesPerBrick; ++lz)
+    for (int ly = -1; ly <= kLeavesPerBrick; ++ly)
+      for (int lx = -1; lx <= kLeavesPerBrick; ++lx)
+        visit(glm::ivec3(kLeavesPerBrick * brick.x + lx, kLeavesPerBrick * brick.y + ly, kLeavesPerBrick * brick.z + lz));
+}
+
+}  // namespace
+
+CartesianBrickStore::CartesianBrickStore(const std::string& path, const std::string& gridName) : path_(path) {
+  const std::vector<std::string> types{"Tree_float_5_4_3"};
+  guardVdbRead(path, [&] { VdbLeafReader probe(path, gridName, types, /*indexLeaves=*/false); });
+  try {
+    reader_ = std::make_shared<VdbLeafReader>(path, gridName, types);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path + ": OpenVDB cannot read it: " + e.what());
+  }
+  grid_ = openvdb::gridPtrCast<openvdb::FloatGrid>(reader_->grid());
+  if (!grid_) throw InputError(path + ": grid '" + reader_->gridName() + "' is not a float grid");
+  background_ = grid_->background();
+  levelSet_ = grid_->getGridClass() == openvdb::GRID_LEVEL_SET;
+  worldFromIndex_ = affineWorldFromIndex(grid_->transform(), path);
+  // Bricks touched by data: every brick whose block reaches a leaf or a tile of another value.
+  openvdb::CoordBBox box;  // empty until expanded
+  // Brick b's block [16 b - 2, 16 b + 17] meets the voxels [lo, hi] when
+  // ceil((lo - 17) / 16) <= b <= floor((hi + 2) / 16), per axis.
+  auto grow = [&](const openvdb::CoordBBox& voxels) {
+    for (int a = 0; a < 2; ++a) {
+      const openvdb::Coord& v = a == 0 ? voxels.min() : voxels.max();
+      const int shift = a == 0 ? -(kBlockDim - kBlockLo - 1) : kBlockLo;
+      auto brickOf = [&](int x) {
+        const double q = double(x + shift) / kBrickSites;
+        return int(a == 0 ? std::ceil(q) : std::floor(q));
+      };
+      box.expand(openvdb::Coord(brickOf(v.x()), brickOf(v.y()), brickOf(v.z())));
+    }
+  };
+  for (auto it = grid_->tree().cbeginLeaf(); it; ++it) grow(it->getNodeBoundingBox());
+  for (auto it = grid_->tree().cbeginValueAll(); it; ++it)
+    if (!it.isVoxelValue() && *it != background_) grow(it.getBoundingBox());
+  activeBrickBox_ = box;
+}
+
+CartesianBrickStore::~CartesianBrickStore() = default;
+
+float CartesianBrickStore::constantAt(const openvdb::Coord& origin) const {
+  // Only where no leaf exists: getValue reads a tile or the background and loads nothing.
+  return grid_->tree().getValue(origin);
+}
+
+void CartesianBrickStore::readBlock(const glm::ivec3& brick, float* out) const {
+  const glm::ivec3 blockMin = brick * kBrickSites - kBlockLo;
+  std::array<float, 512> leafValues;
+  forEachBlockLeaf(brick, [&](const glm::ivec3& leaf) {
+    const openvdb::Coord origin(leaf.x * kLeafDim, leaf.y * kLeafDim, leaf.z * kLeafDim);
+    // The part of this leaf inside the block, in block coordinates: [lo, hi).
+    const glm::ivec3 leafMin = leaf * kLeafDim - blockMin;
+    const glm::ivec3 lo = glm::max(leafMin, glm::ivec3(0)), hi = glm::min(leafMin + kLeafDim, glm::ivec3(kBlockDim));
+    if (glm::any(glm::greaterThanEqual(lo, hi))) return;
+    const std::optional<size_t> index = reader_->leafIndexAt(origin);
+    if (!index) {
+      const float v = constantAt(origin);
+      for (int z = lo.z; z < hi.z; ++z)
+        for (int y = lo.y; y < hi.y; ++y) std::fill(out + (z * kBlockDim + y) * kBlockDim + lo.x, out + (z * kBlockDim + y) * kBlockDim + hi.x, v);
+      return;
+    }
+    reader_->readLeaf(*index, leafValues.data());  // OpenVDB's order: x << 6 | y << 3 | z
+    for (int z = lo.z; z < hi.z; ++z)
+      for (int y = lo.y; y < hi.y; ++y)
+        for (int x = lo.x; x < hi.x; ++x) {
+          const glm::ivec3 l = glm::ivec3(x, y, z) - leafMin;
+          out[(z * kBlockDim + y) * kBlockDim + x] = leafValues[(l.x << 6) | (l.y << 3) | l.z];
+        }
+  });
+}
+
+std::vector<CartesianBrickStore::BrickRange> CartesianBrickStore::computeBrickRanges() const {
+  // A block takes all of its 2 x 2 x 2 middle leaves but only two layers of the leaves around them
+  // (16 b - 2 .. 16 b - 1 is the top of leaf 2 b - 1, 16 b + 16 .. 16 b + 17 the bottom of leaf 2 b + 2).
+  // So each leaf's values are reduced once (in parallel) to seven ranges: all of it, and its two-layer
+  // slabs at either end of each axis; a leaf partly in a block contributes the intersection of the
+  // ranges of the slabs it shares with the block (the values there lie in each of them), which keeps
+  // the bricks next to a thin shell of data from being listed for data that is not in their block.
+  constexpr int kSlab = kBlockLo;
+  const size_t leaves = reader_->leafCount();
+  struct LeafRanges {
+    glm::vec2 all, low[3], high[3];
+  };
+  std::vector<LeafRanges> leafRanges(leaves);
+  tbb::parallel_for(size_t(0), leaves, [&](size_t i) {
+    std::array<float, 512> values;
+    reader_->readLeaf(i, values.data());  // OpenVDB's order: x << 6 | y << 3 | z
+    const float inf = std::numeric_limits<float>::infinity();
+    LeafRanges r;
+    r.all = glm::vec2(inf, -inf);
+    for (int a = 0; a < 3; ++a) r.low[a] = r.high[a] = r.all;
+    auto add = [](glm::vec2& range, float v) { range = glm::vec2(std::min(range.x, v), std::max(range.y, v)); };
+    for (int n = 0; n < 512; ++n) {
+      const int c[3] = {n >> 6, (n >> 3) & 7, n & 7};
+      add(r.all, values[n]);
+      for (int a = 0; a < 3; ++a) {
+        if (c[a] < kSlab) add(r.low[a], values[n]);
+        if (c[a] >= kLeafDim - kSlab) add(r.high[a], values[n]);
+      }
+    }
+    leafRanges[i] = r;
+  });
+  std::vector<BrickRange> ranges;
+  if (activeBrickBox_.empty()) return ranges;
+  for (int bz = activeBrickBox_.min().z(); bz <= activeBrickBox_.max().z(); ++bz)
+    for (int by = activeBrickBox_.min().y(); by <= activeBrickBox_.max().y(); ++by)
+      for (int bx = activeBrickBox_.min().x(); bx <= activeBrickBox_.max().x(); ++bx) {
+        const glm::ivec3 brick(bx, by, bz);
+        float lo = background_, hi = background_;
+        bool varies = false;
+        forEachBlockLeaf(brick, [&](const glm::ivec3& leaf) {
+          const openvdb::Coord origin(leaf.x * kLeafDim, leaf.y * kLeafDim, leaf.z * kLeafDim);
+          glm::vec2 r;
+          if (const std::optional<size_t> index = reader_->leafIndexAt(origin)) {
+            const LeafRanges& l = leafRanges[*index];
+            r = l.all;
+            for (int a = 0; a < 3; ++a) {
+              const int rel = leaf[a] - kLeavesPerBrick * brick[a];  // -1 .. 2
+              const glm::vec2 slab = rel < 0 ? l.high[a] : (rel >= kLeavesPerBrick ? l.low[a] : l.all);
+              r = glm::vec2(std::max(r.x, slab.x), std::min(r.y, slab.y));
+            }
+          } else {
+            r = glm::vec2(constantAt(origin));
+          }
+          if (r.x != background_ || r.y != background_) varies = true;
+          lo = std::min(lo, r.x);
+          hi = std::max(hi, r.y);
+        });
+        if (varies) ranges.push_back({brick, lo, hi});
+      }
+  return ranges;
+}
+
+}  // namespace fcc::io

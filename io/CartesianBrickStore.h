@@ -1,0 +1,70 @@
+// A Cartesian float grid (.vdb: fog volume or level set) opened out of core for direct rendering with a
+// CC reconstruction of the layer (sparse/CcTrilinear.h, sparse/CcTricubic.h): its topology in memory,
+// leaf values read on demand by our own reader (VdbLeafReader: pread, validated, nothing mapped).
+//
+// Bricks are 16^3 units of index space, as the FCC store's are (2 x 2 x 2 leaves of 8^3 voxels here),
+// so the renderer's page table, residency and node skipping work in the same units for every lattice.
+// A brick's block is the grid's values at the 20^3 points [16 b - 2, 16 b + 18)^3: every stencil of the
+// CC reconstructions for the cells of the brick (-1 .. +2) and one more layer for the bounds.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <openvdb/openvdb.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fcc::io {
+
+class VdbLeafReader;
+
+class CartesianBrickStore {
+ public:
+  static constexpr int kBrickSites = 16;  // index units along a brick's edge
+  static constexpr int kBlockLo = 2;      // the block starts this far before the brick
+  static constexpr int kBlockDim = 20;    // and is this many points along each axis
+  static constexpr int kBlockPoints = kBlockDim * kBlockDim * kBlockDim;
+
+  // Opens `gridName` (empty: the first float grid) of `path`: OpenVDB parses its topology first in the
+  // guarded child (io/VdbFile.h). InputError (one line) for a file without a float grid or with a
+  // transform that is not affine.
+  explicit CartesianBrickStore(const std::string& path, const std::string& gridName = {});
+  ~CartesianBrickStore();
+
+  const std::string& path() const { return path_; }
+  float background() const { return background_; }
+  bool levelSet() const { return levelSet_; }
+  // worldFromIndex of the grid's index space (an affine map), column-vector convention.
+  const glm::dmat4& worldFromIndex() const { return worldFromIndex_; }
+  // The bricks whose block is not all the background (they touch a leaf or a tile of another value),
+  // as an inclusive box of brick coordinates; empty for a grid of the background alone.
+  const openvdb::CoordBBox& activeBrickBox() const { return activeBrickBox_; }
+
+  // The block of brick b, x fastest: out[(z * 20 + y) * 20 + x] is the value at 16 b - 2 + (x, y, z).
+  // Thread-safe. InputError naming the leaf if one of its leaves is damaged.
+  void readBlock(const glm::ivec3& brick, float* out) const;
+
+  // Per-brick (min, max) of every value of its block, for the bricks of activeBrickBox() whose block is
+  // not all the background: conservative bounds of every CC reconstruction without prefilter (each is a
+  // convex combination of the block's values). Reads every leaf once, in parallel.
+  struct BrickRange {
+    glm::ivec3 brick;
+    float lo, hi;
+  };
+  std::vector<BrickRange> computeBrickRanges() const;
+
+ private:
+  // The value every voxel of the leaf-sized box at `origin` has when there is no leaf there.
+  float constantAt(const openvdb::Coord& origin) const;
+
+  std::string path_;
+  std::shared_ptr<const VdbLeafReader> reader_;
+  openvdb::FloatGrid::Ptr grid_;  // topology only: leaf buffers stay out of core
+  float background_ = 0.0f;
+  bool levelSet_ = false;
+  glm::dmat4 worldFromIndex_{1.0};
+  openvdb::CoordBBox activeBrickBox_;
+};
+
+}  // namespace fcc::io
