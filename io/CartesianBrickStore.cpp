@@ -71,8 +71,11 @@ CartesianBrickStore::CartesianBrickStore(const std::string& path, const std::str
     }
   };
   for (auto it = grid_->tree().cbeginLeaf(); it; ++it) grow(it->getNodeBoundingBox());
-  for (auto it = grid_->tree().cbeginValueAll(); it; ++it)
-    if (!it.isVoxelValue() && *it != background_) grow(it.getBoundingBox());
+  // Tiles only: the iterator stops above the leaves (their voxels are covered by the leaves' boxes).
+  auto tiles = grid_->tree().cbeginValueAll();
+  tiles.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
+  for (; tiles; ++tiles)
+    if (*tiles != background_) grow(tiles.getBoundingBox());
   activeBrickBox_ = box;
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "CubicBSpline.h"
@@ -107,6 +108,9 @@ std::unique_ptr<AnalyticField> makeVolumeField(std::string name, const glm::ivec
                                                const std::vector<float>& values) {
   if (glm::any(glm::lessThan(dims, glm::ivec3(4))))
     throw ValueError(name + ": a volume to compare against needs at least 4 voxels along every axis");
+  for (size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      throw ValueError(name + ": voxel " + std::to_string(i) + " is not a finite number; a volume to compare against needs finite values");
   return std::make_unique<VolumeField>(std::move(name), dims, spacing, values);
 }
 

@@ -29,9 +29,11 @@ double angleDeg(const glm::dvec3& a, const glm::dvec3& b) {
 struct AngleStats {
   double mean = 0.0, p95 = 0.0, max = 0.0;
 };
+// Angles < 0 are points left out (no true gradient there). No points: NaN (JSON null), not 0.
 AngleStats statsOf(std::vector<double> angles) {
+  angles.erase(std::remove_if(angles.begin(), angles.end(), [](double a) { return a < 0.0; }), angles.end());
   AngleStats s;
-  if (angles.empty()) return s;
+  if (angles.empty()) return {NAN, NAN, NAN};
   std::sort(angles.begin(), angles.end());
   for (double a : angles) s.mean += a;
   s.mean /= double(angles.size());
@@ -121,7 +123,7 @@ TruthRender renderTruthHits(const AnalyticField& field, double iso, int width, i
 
 // Renders one method and measures it against the truth's render.
 void renderAndMeasure(const Reconstruction& recon, const SiteValue& at, const CellBounds& bounds, double h, double iso,
-                      const glm::dvec3& halfExtent, const TruthRender& truth, CompareRow& row) {
+                      const glm::dvec3& halfExtent, const TruthRender& truth, CompareRow& row, bool keepImages) {
   const int width = truth.width, height = truth.height;
   const CompareCamera cam(halfExtent);
   row.shaded = blankImage(width, height);
@@ -163,39 +165,60 @@ void renderAndMeasure(const Reconstruction& recon, const SiteValue& at, const Ce
     row.renderNormalErrorP95Deg = stats.p95;
     row.renderDepthErrorMean = depthSum / double(both.size());
   }
+  if (!keepImages) row.shaded = row.normalError = RgbImage{};
+}
+
+RgbImage truthImageOf(const TruthRender& truth, const glm::dvec3& halfExtent) {
+  RgbImage image = blankImage(truth.width, truth.height);
+  const CompareCamera cam(halfExtent);
+  for (int y = 0; y < truth.height; ++y)
+    for (int x = 0; x < truth.width; ++x) {
+      const WorldHit& hit = truth.hits[size_t(y) * truth.width + x];
+      if (hit.hit) putPixel(image, x, y, shade(hit.gradient, cameraRay(cam, halfExtent, x, y, truth.width, truth.height).d));
+    }
+  return image;
 }
 
 }  // namespace
 
-RgbImage renderTruth(const AnalyticField& field, double iso, int width, int height) {
-  const TruthRender truth = renderTruthHits(field, iso, width, height);
-  RgbImage image = blankImage(width, height);
-  const glm::dvec3 e = field.halfExtent();
-  const CompareCamera cam(e);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const WorldHit& hit = truth.hits[size_t(y) * width + x];
-      if (hit.hit) putPixel(image, x, y, shade(hit.gradient, cameraRay(cam, e, x, y, width, height).d));
-    }
-  return image;
+namespace {
+
+double worldPerIndexFor(Lattice lattice, int64_t budget, const glm::dvec3& halfExtent) {
+  const double volume = 8.0 * halfExtent.x * halfExtent.y * halfExtent.z;
+  return std::cbrt(volume * latticeDensity(lattice) / double(budget));
 }
+
+glm::ivec3 boxDimsFor(Lattice lattice, int64_t budget, const glm::dvec3& halfExtent) {
+  const glm::ivec3 reach(glm::floor(halfExtent / worldPerIndexFor(lattice, budget, halfExtent) + 1e-9));
+  return 2 * (reach + kPad) + 1;
+}
+
+double boxPoints(const glm::ivec3& dims) { return double(dims.x) * dims.y * dims.z; }
+
+}  // namespace
 
 LatticeSampling samplingFor(Lattice lattice, int64_t budget, const glm::dvec3& halfExtent) {
   if (budget < 64) throw ValueError("a budget must be at least 64 samples (got " + std::to_string(budget) + ")");
   LatticeSampling s;
   s.lattice = lattice;
   s.budget = budget;
-  const double volume = 8.0 * halfExtent.x * halfExtent.y * halfExtent.z;
-  s.worldPerIndex = std::cbrt(volume * latticeDensity(lattice) / double(budget));
+  s.worldPerIndex = worldPerIndexFor(lattice, budget, halfExtent);
   const glm::ivec3 reach(glm::floor(halfExtent / s.worldPerIndex + 1e-9));
   s.boxMin = -reach - kPad;
   s.boxDims = 2 * (reach + kPad) + 1;
   // The box is held densely (LatticeSamples: every integer point, a float each, twice while prefiltered).
   const double points = double(s.boxDims.x) * s.boxDims.y * s.boxDims.z;
-  if (points > double(kMaxComparisonBoxPoints))
+  if (points > double(kMaxComparisonBoxPoints)) {
+    // The largest budget whose box fits (the padding's share grows as budgets shrink), to two digits.
+    double fits = double(budget) * double(kMaxComparisonBoxPoints) / points;
+    while (fits > 64 && boxPoints(boxDimsFor(lattice, int64_t(fits), halfExtent)) > double(kMaxComparisonBoxPoints))
+      fits *= 0.97;
+    const double unit = std::pow(10.0, std::floor(std::log10(fits)) - 1);
+    fits = std::floor(fits / unit) * unit;
     throw ValueError("a budget of " + std::to_string(budget) + " samples needs " + std::to_string(int64_t(points)) +
                      " points of memory on the " + std::string(latticeName(lattice)) + " lattice (at most " +
-                     std::to_string(kMaxComparisonBoxPoints) + "): use budgets up to about 50000000");
+                     std::to_string(kMaxComparisonBoxPoints) + "): use budgets up to " + std::to_string(int64_t(fits)));
+  }
   int64_t inside = 0;
   for (int z = -reach.z; z <= reach.z; ++z)
     for (int y = -reach.y; y <= reach.y; ++y)
@@ -218,45 +241,83 @@ std::vector<glm::dvec3> isosurfacePoints(const AnalyticField& field, double iso,
   std::uniform_real_distribution<double> u(-0.95, 0.95);
   const glm::dvec3 e = field.halfExtent();
   const double scale = std::max(e.x, std::max(e.y, e.z));
+  // Converged: |f - iso| within rounding of the values (relative, for volumes of large values), or a
+  // step below 1e-12 of the domain.
+  const double valueTolerance = 1e-12 * (1.0 + std::abs(iso));
   std::vector<glm::dvec3> points;
   for (int attempt = 0; attempt < 50 * count && int(points.size()) < count; ++attempt) {
+    // An isovalue the field never takes near its samples would cost 50 attempts a point: give up when
+    // a tenth of the attempts found no point at all.
+    if (points.empty() && attempt >= 5 * count) break;
     glm::dvec3 p = e * glm::dvec3(u(rng), u(rng), u(rng));
     bool converged = false;
     for (int it = 0; it < 30; ++it) {
       const double f = field.value(p) - iso;
-      if (std::abs(f) < 1e-12) {
+      if (std::abs(f) <= valueTolerance) {
         converged = true;
         break;
       }
       const glm::dvec3 g = field.gradient(p);
       const double g2 = glm::dot(g, g);
-      if (g2 < 1e-20) break;
+      if (!(g2 > 1e-300)) break;
       glm::dvec3 step = f / g2 * g;
       // At most a tenth of the domain a step, so Newton stays near where it started.
       const double len = glm::length(step);
       if (len > 0.1 * scale) step *= 0.1 * scale / len;
       p -= step;
+      if (len < 1e-12 * scale) {
+        converged = std::abs(field.value(p) - iso) <= 1e-6 * (1.0 + std::abs(iso));
+        break;
+      }
     }
     if (converged && glm::all(glm::lessThanEqual(glm::abs(p), 0.95 * e))) points.push_back(p);
   }
   return points;
 }
 
-std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const CompareOptions& options) {
-  for (const auto& name : options.reconstructions) findReconstruction(name);  // ValueError for unknown ones
+std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const CompareOptions& options,
+                                               RgbImage* truthImage) {
+  // Everything that can be refused is refused before any work: names, budgets (memory).
+  for (const auto& name : options.reconstructions) findReconstruction(name);
   const glm::dvec3 e = field.halfExtent();
+  for (int64_t budget : options.budgets)
+    for (Lattice lattice : {Lattice::Cc, Lattice::Bcc, Lattice::Fcc}) samplingFor(lattice, budget, e);
+  if (int64_t(options.width) * options.height > kMaxComparisonPixels)
+    throw ValueError("renders of " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+                     " pixels are too large for a comparison (at most " + std::to_string(kMaxComparisonPixels) + " pixels)");
   const std::vector<glm::dvec3> uniform = uniformPoints(options.points, options.seed, e);
+  // The isovalue must be one the field takes: its range at the uniform points, widened by a tenth.
+  double fMin = INFINITY, fMax = -INFINITY;
+  for (const auto& p : uniform) {
+    fMin = std::min(fMin, field.value(p));
+    fMax = std::max(fMax, field.value(p));
+  }
+  const double margin = 0.1 * (fMax - fMin);
+  if (!(options.iso >= fMin - margin && options.iso <= fMax + margin)) {
+    char msg[256];
+    std::snprintf(msg, sizeof msg, "--iso %g is outside the values of %s (%g .. %g at the points measured)", options.iso,
+                  std::string(field.name()).c_str(), fMin, fMax);
+    throw ValueError(msg);
+  }
   const std::vector<glm::dvec3> surface = isosurfacePoints(field, options.iso, options.points, options.seed + 1);
+  // The truth's gradient direction is measured only where it has one: points where |grad f| is below
+  // 1e-9 of its largest (constant air around a scan) are left out.
+  double gradientMax = 0.0;
+  for (const auto& p : uniform) gradientMax = std::max(gradientMax, glm::length(field.gradient(p)));
+  const double gradientFloor = 1e-9 * gradientMax;
   const bool render = options.width > 0 && options.height > 0;
   TruthRender truth;
   if (render) truth = renderTruthHits(field, options.iso, options.width, options.height);
+  if (render && truthImage) *truthImage = truthImageOf(truth, e);
   std::vector<CompareRow> rows;
   for (int64_t budget : options.budgets) {
     for (Lattice lattice : {Lattice::Cc, Lattice::Bcc, Lattice::Fcc}) {
       const LatticeSampling sampling = samplingFor(lattice, budget, e);
       const double h = sampling.worldPerIndex;
-      // One set of coefficients per prefilter the lattice's reconstructions use.
+      // One set of coefficients (and of cell bounds for the renders) per prefilter the lattice's
+      // reconstructions use.
       std::map<Prefilter, std::unique_ptr<LatticeSamples>> coefficients;
+      std::map<Prefilter, std::unique_ptr<CellBounds>> cellBounds;
       for (const ReconstructionInfo& info : reconstructionInfos()) {
         if (info.lattice != lattice) continue;
         if (!options.reconstructions.empty() &&
@@ -282,7 +343,8 @@ std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const
         tbb::parallel_for(size_t(0), uniform.size(), [&](size_t i) {
           const auto r = recon->evaluate(glm::vec3(uniform[i] / h), at);
           valueErrors[i] = double(r.value) - field.value(uniform[i]);
-          gradientAngles[i] = angleDeg(glm::dvec3(r.gradient), field.gradient(uniform[i]));
+          const glm::dvec3 truthGradient = field.gradient(uniform[i]);
+          gradientAngles[i] = glm::length(truthGradient) > gradientFloor ? angleDeg(glm::dvec3(r.gradient), truthGradient) : -1.0;
         });
         tbb::parallel_for(size_t(0), surface.size(), [&](size_t i) {
           const auto r = recon->evaluate(glm::vec3(surface[i] / h), at);
@@ -307,8 +369,9 @@ std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const
           const auto viewed = makeReconstruction(info.name);
           const CompareCamera cam(e);
           viewed->setView(glm::vec3(glm::normalize(cam.lookAt - cam.eye)));
-          const CellBounds bounds(*samples);
-          renderAndMeasure(*viewed, at, bounds, h, options.iso, e, truth, row);
+          auto& bounds = cellBounds[info.prefilter];
+          if (!bounds) bounds = std::make_unique<CellBounds>(*samples);
+          renderAndMeasure(*viewed, at, *bounds, h, options.iso, e, truth, row, options.keepImages);
         }
         rows.push_back(row);
       }

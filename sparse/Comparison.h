@@ -27,8 +27,12 @@ struct LatticeSampling {
   int64_t samples;       // sites inside the domain
   glm::ivec3 boxMin, boxDims;  // the sampled index box, padded for stencils and prefilters
 };
-// The largest sampled box (integer points) a comparison holds: 1 GiB of floats. ValueError beyond.
-inline constexpr int64_t kMaxComparisonBoxPoints = int64_t(1) << 28;
+// The largest sampled box (integer points) a comparison holds: 2^26, whose samples take 256 MiB and
+// the renders' cell bounds 1 GiB more (CellBounds: 16 bytes a point while built). About 13 M samples
+// on BCC (the box holds 4 points a site and the padding), 27 M on FCC, 55 M on CC. ValueError beyond.
+inline constexpr int64_t kMaxComparisonBoxPoints = int64_t(1) << 26;
+// The largest render (pixels) a comparison makes: 2048^2.
+inline constexpr int64_t kMaxComparisonPixels = int64_t(2048) * 2048;
 // The domain is [-halfExtent, halfExtent] (the field's).
 LatticeSampling samplingFor(Lattice lattice, int64_t budget, const glm::dvec3& halfExtent = glm::dvec3(1.0));
 // World distance between nearest sites: h times 1 (CC), sqrt(3) (BCC), sqrt(2) (FCC).
@@ -41,6 +45,7 @@ struct CompareOptions {
   uint64_t seed = 1;
   std::vector<std::string> reconstructions;  // empty: all of them
   int width = 0, height = 0;  // renders of this size against the field's own (0: none)
+  bool keepImages = true;     // keep each row's images (false: only their measurements)
 };
 
 // The camera every render of a comparison uses (world space): the domain seen from above at a slant,
@@ -67,7 +72,8 @@ struct CompareRow {
   int stencil = 0;
   // |s - f| at uniform random points of the domain.
   double valueRmsError = 0.0, valueMaxError = 0.0;
-  // Angle between grad s and grad f at the same points (degrees).
+  // Angle between grad s and grad f at the same points (degrees; points where grad f vanishes are left
+  // out). NaN (JSON null) where no point was measured.
   double gradientErrorMeanDeg = 0.0, gradientErrorP95Deg = 0.0, gradientErrorMaxDeg = 0.0;
   // The same angle at points on the true isosurface f = iso: the surface normal's error.
   double normalErrorMeanDeg = 0.0, normalErrorP95Deg = 0.0, normalErrorMaxDeg = 0.0;
@@ -80,12 +86,13 @@ struct CompareRow {
   std::optional<double> fps;  // none: no GPU timing
 };
 
-// The field's own isosurface from CompareCamera (the first row of the image grid).
-RgbImage renderTruth(const AnalyticField& field, double iso, int width, int height);
-
 // Seeded points on the isosurface f = iso inside 0.95 times the domain (Newton steps from uniform points).
 std::vector<glm::dvec3> isosurfacePoints(const AnalyticField& field, double iso, int count, uint64_t seed);
 
-std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const CompareOptions& options);
+// Every row; ValueError before any work for an unknown reconstruction, a budget beyond memory, renders
+// too large, or an isovalue the field does not take. With renders, `truthImage` (if given) receives
+// the field's own isosurface (the first row of the image grid).
+std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const CompareOptions& options,
+                                               RgbImage* truthImage = nullptr);
 
 }  // namespace fcc

@@ -51,8 +51,9 @@ struct ReconstructionInfo {
 
 // Every reconstruction, in the order `compare` reports them.
 const std::vector<ReconstructionInfo>& reconstructionInfos();
-// The one named; ValueError naming the valid ones otherwise (for `lattice` only, when given).
+// The one named; ValueError naming the valid ones otherwise.
 const ReconstructionInfo& findReconstruction(std::string_view name);
+// The names, comma-separated (of `lattice` only, when given).
 std::string reconstructionNames(const Lattice* lattice = nullptr);
 
 // The coefficient at a site (after the prefilter).

@@ -176,8 +176,10 @@ WorldHit firstHitAnalytic(const AnalyticField& field, const glm::dvec3& o, const
                           double iso, double step) {
   WorldHit result;
   double ta = t0, fa = field.value(o + t0 * d) - iso;
-  while (ta < t1) {
+  // At most 2^20 steps a ray: a step too short to advance t (a degenerate spacing) ends the walk.
+  for (int n = 0; ta < t1 && n < (1 << 20); ++n) {
     const double tb = std::min(ta + step, t1);
+    if (!(tb > ta)) break;
     const double fb = field.value(o + tb * d) - iso;
     if (fa == 0.0 || (fa < 0.0) != (fb < 0.0)) {
       double lo = ta, hi = tb;

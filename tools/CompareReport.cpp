@@ -27,6 +27,18 @@ std::vector<std::pair<std::string, std::string>> methodsOf(const std::vector<Com
   return methods;
 }
 
+// Text for an SVG element: the title may hold a file's path.
+std::string xmlEscaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '&') out += "&amp;";
+    else if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else out += c;
+  }
+  return out;
+}
+
 std::string optionalNumber(const std::optional<double>& v) { return v ? jsonNumber(*v) : std::string("null"); }
 
 }  // namespace
@@ -139,7 +151,7 @@ std::string convergenceSvg(const std::vector<CompareRow>& rows, const std::strin
                 "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
                 int(legendX + 260), int(top + height + 60));
   svg += buf;
-  svg += "<text x=\"" + format("%.0f", left) + "\" y=\"24\" font-size=\"14\">" + title + "</text>\n";
+  svg += "<text x=\"" + format("%.0f", left) + "\" y=\"24\" font-size=\"14\">" + xmlEscaped(title) + "</text>\n";
   for (double d = xMin; d <= xMax + 1e-9; d += 1) {
     std::snprintf(buf, sizeof buf,
                   "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%.1f\" y=\"%.1f\" "

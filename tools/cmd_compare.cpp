@@ -4,6 +4,7 @@
 // convergence plot.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -34,6 +35,9 @@ std::vector<int64_t> parseBudgets(const std::string& text) {
     budgets.push_back(v);
   }
   if (budgets.empty()) throw ValueError("--budget: no sample count given (e.g. --budget 100000,1000000)");
+  // In increasing order, each once (a budget named twice would write its image twice).
+  std::sort(budgets.begin(), budgets.end());
+  budgets.erase(std::unique(budgets.begin(), budgets.end()), budgets.end());
   return budgets;
 }
 
@@ -126,7 +130,7 @@ Command addCompareCommand(CLI::App& parent) {
                           ->check(CLI::ExistingPath);
   fieldOption->excludes(inputOption);
   addRawFlags(*app, args->source);
-  app->add_option("--budget", args->budgets, "Samples inside [-1,1]^3 per lattice, N[,N...] (several: a convergence plot)")->required();
+  app->add_option("--budget", args->budgets, "Samples inside the domain per lattice ([-1,1]^3 for --field), N[,N...] (several: a convergence plot)")->required();
   app->add_option("--iso", args->iso, "Isovalue of the surface whose normals are measured (default: the field's, 0.5 for marschner-lobb, 0 for random-waves)");
   app->add_option("--points", args->points, "Seeded random points for the errors (uniform, and on the isosurface)")
       ->capture_default_str()->check(CLI::Range(100, 10000000));
@@ -136,7 +140,8 @@ Command addCompareCommand(CLI::App& parent) {
   app->add_option("--res", args->res, "Size WxH of the renders measured against the field's own render (0x0: none)")
       ->capture_default_str();
   app->add_flag("--json", args->json, "Print the rows as a JSON list instead of the table");
-  app->add_option("-o,--output-dir", args->outDir, "Also write compare.json, compare.md and convergence.svg into DIR");
+  app->add_option("-o,--output-dir", args->outDir,
+                  "Also write compare.json, compare.md, convergence.svg and (with renders) compare_BUDGET.png into DIR");
   app->add_flag("--force", args->force, "Overwrite those files in DIR");
   return {app, [args]() {
             if (args->field.empty() == args->input.empty())
@@ -151,14 +156,25 @@ Command addCompareCommand(CLI::App& parent) {
             int width = 0, height = 0;
             char x = 0, extra = 0;
             if (std::sscanf(args->res.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 || x != 'x' || width < 0 ||
-                height < 0 || width > 8192 || height > 8192 || (width == 0) != (height == 0))
-              throw ValueError("--res: '" + args->res + "' is not WxH (valid: e.g. 256x256, up to 8192x8192; 0x0 for no renders)");
+                height < 0 || width > 2048 || height > 2048 || (width == 0) != (height == 0))
+              throw ValueError("--res: '" + args->res + "' is not WxH (valid: e.g. 256x256, up to 2048x2048; 0x0 for no renders)");
             options.width = width;
             options.height = height;
             std::stringstream names(args->reconstructions);
             for (std::string n; std::getline(names, n, ',');)
               if (!n.empty()) options.reconstructions.push_back(n);
-            const std::vector<CompareRow> rows = compareReconstructions(*field, options);
+            // The outputs are checked before the work: a folder that is not there, or files there without
+            // --force, fail now, not after minutes.
+            std::vector<std::string> outputs;
+            if (!args->outDir.empty()) {
+              for (const char* f : {"compare.json", "compare.md", "convergence.svg"}) outputs.push_back(args->outDir + "/" + f);
+              if (width > 0)
+                for (int64_t b : options.budgets) outputs.push_back(args->outDir + "/compare_" + std::to_string(b) + ".png");
+              for (const auto& path : outputs) io::checkOutputPath(path, args->force);
+            }
+            options.keepImages = !args->outDir.empty();  // the images are only for the grids
+            RgbImage truth;
+            const std::vector<CompareRow> rows = compareReconstructions(*field, options, &truth);
             if (rows.empty()) throw ValueError("--reconstruction: nothing to compare");
             // The command as run (its effective flags), the seed and the machine: what a reader needs to
             // measure the same.
@@ -184,7 +200,6 @@ Command addCompareCommand(CLI::App& parent) {
               writeText(dir + "convergence.svg",
                         convergenceSvg(rows, truthName + ": value RMS error against samples"), args->force);
               if (width > 0) {
-                const RgbImage truth = renderTruth(*field, options.iso, width, height);
                 for (int64_t budget : options.budgets) {
                   const RgbImage grid = imageGrid(truth, rows, budget);
                   const std::string path = dir + "compare_" + std::to_string(budget) + ".png";
