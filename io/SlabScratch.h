@@ -1,0 +1,68 @@
+// A dense volume re-tiled into x-slabs in an unnamed scratch file, so the streamed build can read it
+// slab by slab (its passes walk x: pass 1 one slab after another, pass 2 the tree's order) while the
+// file it comes from is stored x fastest, z slowest: a slab of an x-fastest file is a few bytes of
+// every row, so reading slabs from it would read each of its pages once per slab.
+//
+// The source is read once, front to back (the only order gzip allows), a few slices at a time; each
+// group of slices goes to the slabs as contiguous runs. Slab s holds voxels x in [16s - 1, 16s + 16]
+// (a block's 16 sites and the one-site halo its prefilter reads, so a subsampled block reads one
+// slab), stored z slowest, then y, then x, as float. Any box is then read with one pread per slab
+// and z. The file is unlinked at once: nothing is left behind, even after a crash. Disk: 4.5 bytes a
+// voxel (float, 18 of 16 columns) in the user's temp dir (TMPDIR).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "DenseSource.h"
+#include "sparse/SampleField.h"
+
+namespace fcc::io {
+
+class SlabScratch {
+ public:
+  static constexpr int kSlabWidth = 16;  // voxels along x: the sites of an output block
+  static constexpr int kHalo = 1;        // columns a slab repeats of each neighbour
+
+  // Whole z-slices [z0, z0 + count) in memory, x fastest, changed in place before they are stored.
+  using SliceTransform = std::function<void(float* slices, int count)>;
+
+  // Reads every voxel of `source` (then its finish()), applying `inSlices` if set.
+  explicit SlabScratch(DenseSource& source, const SliceTransform& inSlices = {});
+  ~SlabScratch();
+  SlabScratch(const SlabScratch&) = delete;
+  SlabScratch& operator=(const SlabScratch&) = delete;
+
+  const glm::ivec3& dims() const { return dims_; }
+  uint64_t bytes() const { return bytes_; }
+
+  // `alongZ(lines, n, stride, count, lineStride)` on every z-line of the volume (n = dims.z values,
+  // `stride` apart; `count` lines at once, `lineStride` apart), in place: the B-spline prefilter's
+  // last axis, which no group of slices holds whole.
+  void transformAlongZ(const std::function<void(float*, int, ptrdiff_t, int, ptrdiff_t)>& alongZ);
+
+  // The voxels of `voxels` (inside the volume) into `out`, x fastest. Thread-safe.
+  void read(const SiteBox& voxels, float* out) const;
+
+ private:
+  struct Slab {
+    int x0 = 0, width = 0;  // the columns it holds
+    uint64_t offset = 0;    // bytes into the file
+  };
+  uint64_t runOffset(const Slab& slab, int y, int z) const {
+    return slab.offset + ((uint64_t(z) * uint64_t(dims_.y) + uint64_t(y)) * uint64_t(slab.width)) * sizeof(float);
+  }
+  void readBytes(void* dst, size_t n, uint64_t offset) const;
+  void writeBytes(const void* src, size_t n, uint64_t offset) const;
+
+  glm::ivec3 dims_{0};
+  std::vector<Slab> slabs_;
+  uint64_t bytes_ = 0;
+  std::string dir_;  // for messages
+  int fd_ = -1;
+};
+
+}  // namespace fcc::io
