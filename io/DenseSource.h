@@ -41,7 +41,8 @@ std::unique_ptr<DenseSource> openRaw(const std::string& path, const RawLayout& l
 std::unique_ptr<DenseSource> openNrrd(const std::string& path);
 std::unique_ptr<DenseSource> openNifti(const std::string& path);
 // Through ITK (io/ItkReader.cpp): a DICOM series one slice file at a time, a MetaImage by ITK's
-// streaming (an IORegion of slices; compressed MetaImage data is decompressed whole by ITK).
+// streaming (an IORegion of slices). Compressed MetaImage data cannot be read in part (ITK inflates
+// all of it for any region): it is read whole, once, and held.
 std::unique_ptr<DenseSource> openDicom(const std::string& path);
 std::unique_ptr<DenseSource> openMetaImage(const std::string& path);
 

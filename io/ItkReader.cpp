@@ -118,8 +118,10 @@ void checkMetaImageDataSize(itk::MetaImageIO& io, const std::string& path) {
 template <class Reader>
 class ItkSource final : public DenseSource {
  public:
-  ItkSource(typename Reader::Pointer reader, std::string path, std::string what)
-      : reader_(reader), path_(std::move(path)), what_(std::move(what)) {
+  // `whole`: the reader cannot read part of the file (compressed MetaImage data is inflated whole for
+  // any region), so the first read takes every slice, once, rather than inflating it again per range.
+  ItkSource(typename Reader::Pointer reader, std::string path, std::string what, bool whole = false)
+      : reader_(reader), path_(std::move(path)), what_(std::move(what)), whole_(whole) {
     guarded([&] { reader_->UpdateOutputInformation(); });
     geometry_ = geometryOf(*reader_->GetOutput(), path_);
   }
@@ -128,7 +130,10 @@ class ItkSource final : public DenseSource {
     if (count == 0) return;
     const uint64_t sliceVoxels = uint64_t(geometry_.dims.x) * uint64_t(geometry_.dims.y);
     const int z0 = int(first / sliceVoxels), z1 = int((first + count - 1) / sliceVoxels);
-    if (z0 < slicesFrom_ || z1 >= slicesFrom_ + slicesRead_) readSlices(z0, z1 - z0 + 1);
+    if (z0 < slicesFrom_ || z1 >= slicesFrom_ + slicesRead_) {
+      if (whole_) readSlices(0, geometry_.dims.z);
+      else readSlices(z0, z1 - z0 + 1);
+    }
     std::copy_n(slices_.data() + (first - uint64_t(slicesFrom_) * sliceVoxels), count, out);
   }
 
@@ -168,6 +173,7 @@ class ItkSource final : public DenseSource {
 
   typename Reader::Pointer reader_;
   std::string path_, what_;
+  bool whole_;
   std::vector<float> slices_;
   int slicesFrom_ = 0, slicesRead_ = 0;
 };
@@ -234,7 +240,8 @@ std::unique_ptr<DenseSource> openMetaImage(const std::string& path) {
     reader->SetImageIO(io);
     reader->SetFileName(path);
     reader->UseStreamingOn();
-    return std::make_unique<ItkSource<itk::ImageFileReader<Image>>>(reader, path, "cannot read this MetaImage");
+    return std::make_unique<ItkSource<itk::ImageFileReader<Image>>>(reader, path, "cannot read this MetaImage",
+                                                                     !io->CanStreamRead());
   } catch (const itk::ExceptionObject& e) {
     throw InputError(path + ": cannot read this MetaImage: " + e.GetDescription());
   }
