@@ -150,8 +150,9 @@ std::shared_ptr<const SlabScratch> slabsOfCoefficients(DenseSource& source) {
   auto alongXAndY = [dims](float* slices, int count) {
     tbb::parallel_for(0, count, [&](int k) {
       float* slice = slices + size_t(k) * size_t(dims.x) * size_t(dims.y);
-      bsplinePrefilterLines(slice, dims.x, 1, dims.y, dims.x);  // the x-lines, side by side
-      bsplinePrefilterLines(slice, dims.y, dims.x, dims.x, 1);  // the y-lines
+      // The x-lines one by one (each is contiguous), the y-lines side by side (they vectorise).
+      for (int y = 0; y < dims.y; ++y) bsplinePrefilterLine(slice + size_t(y) * size_t(dims.x), dims.x, 1);
+      bsplinePrefilterLines(slice, dims.y, dims.x, dims.x, 1);
     });
   };
   auto scratch = std::make_shared<SlabScratch>(source, alongXAndY);
