@@ -232,7 +232,8 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     const double h = options.scale > 0.0 ? options.scale : spacingForSampleCount(extent, options.samples);
     if (!(h > 0.0) || !std::isfinite(h)) throw ValueError("--samples/--scale give no valid lattice spacing");
     if (reader) field = std::make_unique<VdbResampleField>(reader, h, background);
-    else if (source) field = std::make_unique<DenseSlabResampleField>(slabsOfCoefficients(*source), background, h);
+    else if (source)
+      field = std::make_unique<DenseSlabResampleField>(slabsOfCoefficients(*source, interrupter), background, h);
     else field = std::make_unique<DenseResampleField>(dense, background, h);
     xform->preScale(h);
   } else if (reader) {
@@ -240,7 +241,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   } else if (sourceGrid) {
     field = std::make_unique<VdbSubsampleField>(*sourceGrid, background);
   } else if (source) {
-    field = std::make_unique<DenseSlabSubsampleField>(slabsOfSamples(*source), background);
+    field = std::make_unique<DenseSlabSubsampleField>(slabsOfSamples(*source, interrupter), background);
   } else {
     field = std::make_unique<DenseSubsampleField>(dense, background);
   }

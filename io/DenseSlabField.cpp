@@ -143,9 +143,11 @@ void DenseSlabResampleField::fill(const SiteBox& box, float* out) const {
       }
 }
 
-std::shared_ptr<const SlabScratch> slabsOfSamples(DenseSource& source) { return std::make_shared<SlabScratch>(source); }
+std::shared_ptr<const SlabScratch> slabsOfSamples(DenseSource& source, openvdb::util::NullInterrupter* progress) {
+  return std::make_shared<SlabScratch>(source, SlabScratch::SliceTransform{}, progress);
+}
 
-std::shared_ptr<const SlabScratch> slabsOfCoefficients(DenseSource& source) {
+std::shared_ptr<const SlabScratch> slabsOfCoefficients(DenseSource& source, openvdb::util::NullInterrupter* progress) {
   const glm::ivec3 dims = source.geometry().dims;
   auto alongXAndY = [dims](float* slices, int count) {
     tbb::parallel_for(0, count, [&](int k) {
@@ -155,7 +157,7 @@ std::shared_ptr<const SlabScratch> slabsOfCoefficients(DenseSource& source) {
       bsplinePrefilterLines(slice, dims.y, dims.x, dims.x, 1);
     });
   };
-  auto scratch = std::make_shared<SlabScratch>(source, alongXAndY);
+  auto scratch = std::make_shared<SlabScratch>(source, alongXAndY, progress);
   scratch->transformAlongZ(bsplinePrefilterLines);
   return scratch;
 }

@@ -86,7 +86,8 @@ class DenseSlabResampleField final : public DenseSlabField {
 // The volume of `source` re-tiled for a field: its samples for subsampling, its B-spline coefficients
 // for resampling (the prefilter along x and y on each group of slices as they are read, along z on
 // the scratch's slabs: every line filtered as CubicBSplineVolume filters it, so the same bits).
-std::shared_ptr<const SlabScratch> slabsOfSamples(DenseSource& source);
-std::shared_ptr<const SlabScratch> slabsOfCoefficients(DenseSource& source);
+std::shared_ptr<const SlabScratch> slabsOfSamples(DenseSource& source, openvdb::util::NullInterrupter* progress = nullptr);
+std::shared_ptr<const SlabScratch> slabsOfCoefficients(DenseSource& source,
+                                                       openvdb::util::NullInterrupter* progress = nullptr);
 
 }  // namespace fcc::io

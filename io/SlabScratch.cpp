@@ -29,7 +29,7 @@ std::string scratchDir() {
 
 }  // namespace
 
-SlabScratch::SlabScratch(DenseSource& source, const SliceTransform& inSlices)
+SlabScratch::SlabScratch(DenseSource& source, const SliceTransform& inSlices, openvdb::util::NullInterrupter* progress)
     : dims_(source.geometry().dims), dir_(scratchDir()) {
   for (int x = 0; x < dims_.x; x += kSlabWidth) {
     Slab slab;
@@ -55,6 +55,7 @@ SlabScratch::SlabScratch(DenseSource& source, const SliceTransform& inSlices)
     const uint64_t sliceVoxels = uint64_t(dims_.x) * uint64_t(dims_.y);
     const int group = int(std::clamp<uint64_t>(kSliceGroupBytes / (sliceVoxels * sizeof(float)), 1, uint64_t(dims_.z)));
     std::vector<float> slices(size_t(sliceVoxels) * size_t(group));
+    if (progress) progress->start("reading the input into slabs");
     for (int z0 = 0; z0 < dims_.z; z0 += group) {
       const int count = std::min(group, dims_.z - z0);
       source.read(uint64_t(z0) * sliceVoxels, uint64_t(count) * sliceVoxels, slices.data());
@@ -69,8 +70,11 @@ SlabScratch::SlabScratch(DenseSource& source, const SliceTransform& inSlices)
             dst = std::copy_n(slices.data() + (size_t(z) * dims_.y + y) * dims_.x + slab.x0, slab.width, dst);
         writeBytes(run.data(), run.size() * sizeof(float), runOffset(slab, 0, z0));
       });
+      if (progress && progress->wasInterrupted(int(100.0 * double(z0 + count) / double(dims_.z))))
+        throw Error("interrupted");
     }
     source.finish();
+    if (progress) progress->end();
   } catch (...) {
     ::close(fd_);
     throw;

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <openvdb/util/NullInterrupter.h>
+
 #include "DenseSource.h"
 #include "sparse/SampleField.h"
 
@@ -30,8 +32,10 @@ class SlabScratch {
   // Whole z-slices [z0, z0 + count) in memory, x fastest, changed in place before they are stored.
   using SliceTransform = std::function<void(float* slices, int count)>;
 
-  // Reads every voxel of `source` (then its finish()), applying `inSlices` if set.
-  explicit SlabScratch(DenseSource& source, const SliceTransform& inSlices = {});
+  // Reads every voxel of `source` (then its finish()), applying `inSlices` if set. `progress`, if
+  // not null, reports the slices read and can interrupt (fcc::Error).
+  explicit SlabScratch(DenseSource& source, const SliceTransform& inSlices = {},
+                       openvdb::util::NullInterrupter* progress = nullptr);
   ~SlabScratch();
   SlabScratch(const SlabScratch&) = delete;
   SlabScratch& operator=(const SlabScratch&) = delete;

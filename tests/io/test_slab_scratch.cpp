@@ -105,6 +105,27 @@ TEST(SlabScratch, AnUnusableTempDirIsOneLine) {
   }
 }
 
+// Progress runs from the slices read; an interruption stops the reading with fcc::Error.
+TEST(SlabScratch, ReportsProgressAndStopsWhenInterrupted) {
+  struct Stopper : openvdb::util::NullInterrupter {
+    std::vector<int> percents;
+    int stopAt = 101;
+    bool wasInterrupted(int percent) override {
+      percents.push_back(percent);
+      return percent >= stopAt;
+    }
+  };
+  RecordingSource source(glm::ivec3(700, 1000, 13));
+  Stopper all;
+  SlabScratch scratch(source, {}, &all);
+  EXPECT_EQ(all.percents, (std::vector<int>{38, 76, 100}));  // groups of 5 slices
+  RecordingSource again(glm::ivec3(700, 1000, 13));
+  Stopper stop;
+  stop.stopAt = 50;
+  EXPECT_THROW(SlabScratch(again, {}, &stop), Error);
+  EXPECT_EQ(again.finished, 0) << "stopped before the end";
+}
+
 // The coefficients, filtered along x and y per group of slices and along z per slab, evaluate to
 // CubicBSplineVolume's values bit for bit, at sites across slab borders and the mirrored faces.
 TEST(SlabScratch, ResampleFieldIsTheInMemorySpline) {
