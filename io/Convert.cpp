@@ -115,23 +115,7 @@ openvdb::math::Transform::Ptr transformOf(const DenseVolume& v, double latticeSp
   return openvdb::math::Transform::createLinearTransform(m);
 }
 
-DenseVolume readDense(const std::string& input, Format format, const ConvertOptions& options) {
-  switch (format) {
-    case Format::Raw:
-      if (!options.raw)
-        throw ValueError(input + ": raw input needs --dims X,Y,Z and --type (valid inputs by extension: .vdb, "
-                                 ".nrrd, .nhdr, .nii, .nii.gz, .mha, .mhd, .dcm or a DICOM folder; anything else is raw)");
-      return readRaw(input, *options.raw);
-    case Format::Nrrd: return readNrrd(input);
-    case Format::Nifti: return readNifti(input);
-    case Format::Dicom: return readDicom(input);
-    case Format::MetaImage: return readMetaImage(input);
-    case Format::Vdb: break;
-  }
-  throw Error("internal: not a dense format");
-}
-
-// The same inputs as readDense, read on demand.
+// A dense input, read on demand.
 std::unique_ptr<DenseSource> openDense(const std::string& input, Format format, const ConvertOptions& options) {
   switch (format) {
     case Format::Raw:
@@ -146,6 +130,14 @@ std::unique_ptr<DenseSource> openDense(const std::string& input, Format format, 
     case Format::Vdb: break;
   }
   throw Error("internal: not a dense format");
+}
+
+// A dense input whole (the in-memory reference): DICOM and MetaImage by ITK's whole read, a second
+// way to read them that their sources are tested against; the others are their sources read whole.
+DenseVolume readDense(const std::string& input, Format format, const ConvertOptions& options) {
+  if (format == Format::Dicom) return readDicom(input);
+  if (format == Format::MetaImage) return readMetaImage(input);
+  return readAllVoxels(*openDense(input, format, options));
 }
 
 // The lattice spacing h (in source voxels) whose FCC embedding over the source's extent holds about
