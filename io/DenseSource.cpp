@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "sparse/Error.h"
+
 namespace fcc::io {
 namespace {
 
@@ -9,6 +11,8 @@ namespace {
 constexpr uint64_t kStepVoxels = uint64_t(1) << 20;
 
 }  // namespace
+
+void DenseSource::readStored(uint64_t, uint64_t, void*) { throw Error("internal: this source has no stored samples"); }
 
 DenseVolume readAllVoxels(DenseSource& source) {
   DenseVolume volume = source.geometry();

@@ -6,7 +6,9 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "DenseVolume.h"
 
@@ -26,6 +28,19 @@ class DenseSource {
   // InputError (one line, naming the file) where the data ends early or is corrupt. Reading forward
   // is cheapest: compressed data can only be read forward, and going back restarts it.
   virtual void read(uint64_t first, uint64_t count, float* out) = 0;
+
+  // How the voxels are stored when read() only converts them to float (raw, NRRD, NIfTI-1): their
+  // type and the scale read() applies (value * first + second, in float). A slab scratch then keeps
+  // them as stored (1 to 8 bytes a voxel, not float's 4) and converts them when it reads them back.
+  // Empty for sources that deliver floats (ITK's).
+  struct Stored {
+    ScalarType type = ScalarType::F32;
+    std::optional<std::pair<float, float>> scale;
+  };
+  virtual std::optional<Stored> stored() const { return std::nullopt; }
+  // The `count` voxels from voxel `first` as stored, in this machine's byte order, into `out`
+  // (stored()'s type, unscaled). Only where stored() is set.
+  virtual void readStored(uint64_t first, uint64_t count, void* out);
 
   // Once every voxel was read: checks what follows them (a gzip stream's trailer, bytes a raw file
   // must not have), so a damaged file is refused the same whether it was read whole or in slabs.

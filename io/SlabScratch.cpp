@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "SampleDecoding.h"
 #include "sparse/Error.h"
 
 namespace fcc::io {
@@ -31,12 +32,19 @@ std::string scratchDir() {
 
 SlabScratch::SlabScratch(DenseSource& source, const SliceTransform& inSlices, openvdb::util::NullInterrupter* progress)
     : dims_(source.geometry().dims), dir_(scratchDir()) {
+  // Values a transform changes are floats; others stay as stored, a quarter of float's size for u8.
+  const std::optional<DenseSource::Stored> stored = inSlices ? std::nullopt : source.stored();
+  if (stored) {
+    type_ = stored->type;
+    scale_ = stored->scale;
+  }
+  elementBytes_ = scalarTypeSize(type_);
   for (int x = 0; x < dims_.x; x += kSlabWidth) {
     Slab slab;
     slab.x0 = std::max(0, x - kHalo);
     slab.width = std::min(dims_.x - 1, x + kSlabWidth - 1 + kHalo) - slab.x0 + 1;
     slab.offset = bytes_;
-    bytes_ += uint64_t(slab.width) * uint64_t(dims_.y) * uint64_t(dims_.z) * sizeof(float);
+    bytes_ += uint64_t(slab.width) * uint64_t(dims_.y) * uint64_t(dims_.z) * elementBytes_;
     slabs_.push_back(slab);
   }
   std::string name = dir_ + "/fccvdb-slabs-XXXXXX";
@@ -48,27 +56,34 @@ SlabScratch::SlabScratch(DenseSource& source, const SliceTransform& inSlices, op
   if (claimed == ENOSPC || claimed == EFBIG) {
     ::close(fd_);
     throw Error(dir_ + ": no room for the slab scratch file of " + std::to_string(bytes_) +
-                " bytes (4.5 per input voxel); set TMPDIR to a folder with room");
+                " bytes (18/16 of the input's voxels); set TMPDIR to a folder with room");
   }
 
   try {
     const uint64_t sliceVoxels = uint64_t(dims_.x) * uint64_t(dims_.y);
-    const int group = int(std::clamp<uint64_t>(kSliceGroupBytes / (sliceVoxels * sizeof(float)), 1, uint64_t(dims_.z)));
-    std::vector<float> slices(size_t(sliceVoxels) * size_t(group));
+    const int group = int(std::clamp<uint64_t>(kSliceGroupBytes / (sliceVoxels * elementBytes_), 1, uint64_t(dims_.z)));
+    // Bytes from operator new: aligned for floats.
+    std::vector<uint8_t> slices(size_t(sliceVoxels) * size_t(group) * elementBytes_);
     if (progress) progress->start("reading the input into slabs");
     for (int z0 = 0; z0 < dims_.z; z0 += group) {
       const int count = std::min(group, dims_.z - z0);
-      source.read(uint64_t(z0) * sliceVoxels, uint64_t(count) * sliceVoxels, slices.data());
-      if (inSlices) inSlices(slices.data(), count);
+      const uint64_t first = uint64_t(z0) * sliceVoxels, n = uint64_t(count) * sliceVoxels;
+      if (stored) {
+        source.readStored(first, n, slices.data());
+      } else {
+        source.read(first, n, reinterpret_cast<float*>(slices.data()));
+        if (inSlices) inSlices(reinterpret_cast<float*>(slices.data()), count);
+      }
       // Slab s's rows of these slices are one run of its file region.
       tbb::parallel_for(size_t(0), slabs_.size(), [&](size_t s) {
         const Slab& slab = slabs_[s];
-        std::vector<float> run(size_t(count) * size_t(dims_.y) * size_t(slab.width));
-        float* dst = run.data();
+        const size_t rowBytes = size_t(slab.width) * elementBytes_;
+        std::vector<uint8_t> run(size_t(count) * size_t(dims_.y) * rowBytes);
+        uint8_t* dst = run.data();
         for (int z = 0; z < count; ++z)
           for (int y = 0; y < dims_.y; ++y)
-            dst = std::copy_n(slices.data() + (size_t(z) * dims_.y + y) * dims_.x + slab.x0, slab.width, dst);
-        writeBytes(run.data(), run.size() * sizeof(float), runOffset(slab, 0, z0));
+            dst = std::copy_n(slices.data() + ((size_t(z) * dims_.y + y) * dims_.x + slab.x0) * elementBytes_, rowBytes, dst);
+        writeBytes(run.data(), run.size(), runOffset(slab, 0, z0));
       });
       if (progress && progress->wasInterrupted(int(100.0 * double(z0 + count) / double(dims_.z))))
         throw Error("interrupted");
@@ -109,6 +124,7 @@ void SlabScratch::writeBytes(const void* src, size_t n, uint64_t offset) const {
 }
 
 void SlabScratch::transformAlongZ(const std::function<void(float*, int, ptrdiff_t, int, ptrdiff_t)>& alongZ) {
+  if (type_ != ScalarType::F32 || scale_) throw Error("internal: a slab scratch of stored samples transformed");
   tbb::parallel_for(size_t(0), slabs_.size(), [&](size_t s) {
     const Slab& slab = slabs_[s];
     const uint64_t lineBytes = uint64_t(dims_.z) * uint64_t(slab.width) * sizeof(float);
@@ -127,18 +143,22 @@ void SlabScratch::transformAlongZ(const std::function<void(float*, int, ptrdiff_
 
 void SlabScratch::read(const SiteBox& voxels, float* out) const {
   const glm::ivec3 size = voxels.dim();
-  thread_local std::vector<float> run;
+  thread_local std::vector<uint8_t> run;
   for (int x = voxels.min.x; x <= voxels.max.x;) {
     // The slab holding x and the most columns after it.
     const Slab& slab = slabs_[std::min(size_t((x + kHalo) / kSlabWidth), slabs_.size() - 1)];
     const int xEnd = std::min(voxels.max.x, slab.x0 + slab.width - 1);
-    run.resize(size_t(size.y) * size_t(slab.width));
+    const size_t columns = size_t(xEnd - x + 1);
+    run.resize(size_t(size.y) * size_t(slab.width) * elementBytes_);
     for (int z = voxels.min.z; z <= voxels.max.z; ++z) {
-      readBytes(run.data(), run.size() * sizeof(float), runOffset(slab, voxels.min.y, z));
+      readBytes(run.data(), run.size(), runOffset(slab, voxels.min.y, z));
       for (int y = 0; y < size.y; ++y) {
-        const float* src = run.data() + size_t(y) * slab.width + (x - slab.x0);
+        const uint8_t* src = run.data() + (size_t(y) * slab.width + size_t(x - slab.x0)) * elementBytes_;
         float* dst = out + (size_t(z - voxels.min.z) * size.y + y) * size.x + (x - voxels.min.x);
-        std::copy(src, src + (xEnd - x + 1), dst);
+        // As DenseSource::read converts them: the same float, the same scale, the same bits.
+        decodeSamples(src, columns, type_, hostIsBigEndian(), dst);
+        if (scale_)
+          for (size_t i = 0; i < columns; ++i) dst[i] = dst[i] * scale_->first + scale_->second;
       }
     }
     x = xEnd + 1;

@@ -39,6 +39,38 @@ class StoredVoxelSource final : public DenseSource {
   }
 
   void read(uint64_t first, uint64_t count, float* out) override {
+    readChunks(first, count, [&](const uint8_t* bytes, uint64_t done, uint64_t n) {
+      decodeSamples(bytes, size_t(n), stored_.type, stored_.bigEndian, out + done);
+      if (stored_.scale)
+        for (uint64_t i = done; i < done + n; ++i) out[i] = out[i] * stored_.scale->first + stored_.scale->second;
+    });
+  }
+
+  std::optional<Stored> stored() const override { return Stored{stored_.type, stored_.scale}; }
+
+  void readStored(uint64_t first, uint64_t count, void* out) override {
+    auto* dst = static_cast<uint8_t*>(out);
+    const bool swap = stored_.bigEndian != hostIsBigEndian() && sampleBytes_ > 1;
+    readChunks(first, count, [&](const uint8_t* bytes, uint64_t done, uint64_t n) {
+      uint8_t* at = dst + done * sampleBytes_;
+      std::copy_n(bytes, n * sampleBytes_, at);
+      if (swap)
+        for (uint64_t i = 0; i < n; ++i) std::reverse(at + i * sampleBytes_, at + (i + 1) * sampleBytes_);
+    });
+  }
+
+  void finish() override {
+    if (!stored_.gzip) return;  // a plain file's size was checked when it was opened
+    seekStream(voxelCount());
+    // Reaches the gzip trailer (CRC and length), which a reader stopping at the last voxel would not.
+    const uint64_t extra = stream_->drain();
+    if (stored_.exactEnd && extra > 0) throw stored_.sizeError(stream_->position());
+  }
+
+ private:
+  // Reads the voxels [first, first + count) a chunk at a time: use(bytes, voxels done before, voxels).
+  template <class Use>
+  void readChunks(uint64_t first, uint64_t count, Use&& use) {
     std::vector<uint8_t> chunk(std::min<uint64_t>(kChunkBytes, std::max<uint64_t>(count, 1) * sampleBytes_));
     const uint64_t perChunk = chunk.size() / sampleBytes_;
     if (stored_.gzip) seekStream(first);
@@ -51,22 +83,11 @@ class StoredVoxelSource final : public DenseSource {
       } else {
         readPlain(stored_.skipBytes + (first + done) * sampleBytes_, chunk.data(), bytes);
       }
-      decodeSamples(chunk.data(), size_t(n), stored_.type, stored_.bigEndian, out + done);
-      if (stored_.scale)
-        for (uint64_t i = done; i < done + n; ++i) out[i] = out[i] * stored_.scale->first + stored_.scale->second;
+      use(chunk.data(), done, n);
       done += n;
     }
   }
 
-  void finish() override {
-    if (!stored_.gzip) return;  // a plain file's size was checked when it was opened
-    seekStream(voxelCount());
-    // Reaches the gzip trailer (CRC and length), which a reader stopping at the last voxel would not.
-    const uint64_t extra = stream_->drain();
-    if (stored_.exactEnd && extra > 0) throw stored_.sizeError(stream_->position());
-  }
-
- private:
   // pread of a plain file whose size was checked: falling short means it changed since.
   void readPlain(uint64_t offsetFromData, uint8_t* dst, size_t bytes) const {
     size_t got = 0;

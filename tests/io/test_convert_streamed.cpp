@@ -218,7 +218,8 @@ std::string niftiHeader(const glm::ivec3& dims, float slope, float intercept) {
 }
 
 // The volume in every dense format we read ourselves, each input converted streamed and in memory:
-// the same file. Dims: three slabs and a part along x, two level-1 nodes along y (pass 2's batches
+// the same file (the slab scratch keeps the stored i16 samples and their NIfTI scale, converted as
+// the reader converts them). Dims: three slabs and a part along x, two level-1 nodes along y (pass 2's batches
 // then span nodes), an odd z.
 TEST(ConvertStreamed, EveryDenseFormatEqualsTheInMemoryPath) {
   TempDir dir;
@@ -231,6 +232,11 @@ TEST(ConvertStreamed, EveryDenseFormatEqualsTheInMemoryPath) {
   writeBytes(dir / "v.nrrd", nrrd + "encoding: raw\n\n" + data);
   writeBytes(dir / "v.nhdr", nrrd + "encoding: gzip\nbyte skip: 6\ndata file: v.data.gz\n\n");
   writeBytes(dir / "v.data.gz", "header" + data, true);
+  std::string swapped = data;  // big endian: the slab scratch keeps samples in this machine's order
+  for (size_t i = 0; i + 1 < swapped.size(); i += 2) std::swap(swapped[i], swapped[i + 1]);
+  std::string bigEndian = nrrd;
+  bigEndian.replace(bigEndian.find("endian: little"), 14, "endian: big");
+  writeBytes(dir / "be.nrrd", bigEndian + "encoding: raw\n\n" + swapped);
   writeBytes(dir / "v.nii", niftiHeader(dims, 0.5f, -3.0f) + data);
   writeBytes(dir / "v.nii.gz", niftiHeader(dims, 0.0f, 0.0f) + data, true);
 
@@ -242,7 +248,7 @@ TEST(ConvertStreamed, EveryDenseFormatEqualsTheInMemoryPath) {
   // Every variant on raw; the other formats differ only in how their voxels are read.
   expectStreamedEqualsInMemory(dir, dir / "v.raw", subsample);
   expectStreamedEqualsInMemory(dir, dir / "v.raw", resample);
-  for (const char* name : {"v.raw.gz", "v.nrrd", "v.nhdr", "v.nii", "v.nii.gz"}) {
+  for (const char* name : {"v.raw.gz", "v.nrrd", "be.nrrd", "v.nhdr", "v.nii", "v.nii.gz"}) {
     expectStreamedEqualsInMemory(dir, dir / name, subsample, {Variant{}});
     expectStreamedEqualsInMemory(dir, dir / name, resample, {Variant{}});
   }

@@ -91,6 +91,37 @@ TEST(SlabScratch, ReadsTheSourceOnceInOrderAndGivesBackAnyBox) {
   }
 }
 
+// Stored u16 samples with a scale, as a NIfTI file's: converted only when read back.
+class StoredSource final : public DenseSource {
+ public:
+  explicit StoredSource(const glm::ivec3& dims) {
+    geometry_.dims = dims;
+    for (uint64_t i = 0; i < voxelCount(); ++i) samples.push_back(uint16_t(i * 7919 % 65521));
+  }
+  std::optional<Stored> stored() const override { return Stored{ScalarType::U16, std::make_pair(0.37f, -11.0f)}; }
+  void readStored(uint64_t first, uint64_t count, void* out) override {
+    ++storedReads;
+    std::copy_n(samples.begin() + ptrdiff_t(first), count, static_cast<uint16_t*>(out));
+  }
+  void read(uint64_t first, uint64_t count, float* out) override {
+    for (uint64_t i = 0; i < count; ++i) out[i] = float(samples[first + i]) * 0.37f + -11.0f;
+  }
+  std::vector<uint16_t> samples;
+  int storedReads = 0;
+};
+
+TEST(SlabScratch, KeepsStoredSamplesAsStoredAndConvertsThemAsTheSourceDoes) {
+  StoredSource source(glm::ivec3(50, 21, 9));
+  const SlabScratch scratch(source);
+  EXPECT_GT(source.storedReads, 0);
+  EXPECT_EQ(scratch.bytes(), uint64_t(50 + 2 * 3) * 21 * 9 * sizeof(uint16_t)) << "2 bytes a voxel, not float's 4";
+  const SiteBox all{glm::ivec3(0), scratch.dims() - 1};
+  std::vector<float> got(source.voxelCount()), expected(source.voxelCount());
+  scratch.read(all, got.data());
+  source.read(0, source.voxelCount(), expected.data());
+  EXPECT_EQ(got, expected);
+}
+
 TEST(SlabScratch, AnUnusableTempDirIsOneLine) {
   TempDir dir;
   const TempDirVariable tmp(dir / "missing");
