@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -24,7 +25,11 @@ constexpr uint64_t kZLinesBytes = uint64_t(8) << 20;
 std::string scratchDir() {
   std::error_code ec;
   const std::filesystem::path dir = std::filesystem::temp_directory_path(ec);
-  if (ec) throw Error("the temp dir (TMPDIR) is not usable for the slab scratch file: " + ec.message());
+  if (ec) {
+    const char* named = std::getenv("TMPDIR");
+    throw Error(std::string("TMPDIR=") + (named ? named : "") + ": no folder for the slab scratch file (" + ec.message() +
+                "); set TMPDIR to a writable folder with room for about the input's size");
+  }
   return dir.string();
 }
 
