@@ -6,6 +6,8 @@
 #include <filesystem>
 
 #include "AtomicOutput.h"
+#include "DenseSlabField.h"
+#include "DenseSource.h"
 #include "VdbFile.h"
 #include "VdbLeafReader.h"
 #include "VdbResampleField.h"
@@ -96,6 +98,7 @@ class VdbSubsampleField : public SampleField {
   SiteBox bounds_;
 };
 
+// The world transform of a dense volume's index space (its geometry; the values are not read).
 openvdb::math::Transform::Ptr transformOf(const DenseVolume& v, double latticeSpacingInVoxels) {
   if (v.direction == glm::dmat3(1.0)) {  // axis-aligned: a scale and a translation
     auto xform = openvdb::math::Transform::createLinearTransform();
@@ -112,20 +115,29 @@ openvdb::math::Transform::Ptr transformOf(const DenseVolume& v, double latticeSp
   return openvdb::math::Transform::createLinearTransform(m);
 }
 
-DenseVolume readDense(const std::string& input, Format format, const ConvertOptions& options) {
+// A dense input, read on demand.
+std::unique_ptr<DenseSource> openDense(const std::string& input, Format format, const ConvertOptions& options) {
   switch (format) {
     case Format::Raw:
       if (!options.raw)
         throw ValueError(input + ": raw input needs --dims X,Y,Z and --type (valid inputs by extension: .vdb, "
                                  ".nrrd, .nhdr, .nii, .nii.gz, .mha, .mhd, .dcm or a DICOM folder; anything else is raw)");
-      return readRaw(input, *options.raw);
-    case Format::Nrrd: return readNrrd(input);
-    case Format::Nifti: return readNifti(input);
-    case Format::Dicom: return readDicom(input);
-    case Format::MetaImage: return readMetaImage(input);
+      return openRaw(input, *options.raw);
+    case Format::Nrrd: return openNrrd(input);
+    case Format::Nifti: return openNifti(input);
+    case Format::Dicom: return openDicom(input);
+    case Format::MetaImage: return openMetaImage(input);
     case Format::Vdb: break;
   }
   throw Error("internal: not a dense format");
+}
+
+// A dense input whole (the in-memory reference): DICOM and MetaImage by ITK's whole read, a second
+// way to read them that their sources are tested against; the others are their sources read whole.
+DenseVolume readDense(const std::string& input, Format format, const ConvertOptions& options) {
+  if (format == Format::Dicom) return readDicom(input);
+  if (format == Format::MetaImage) return readMetaImage(input);
+  return readAllVoxels(*openDense(input, format, options));
 }
 
 // The lattice spacing h (in source voxels) whose FCC embedding over the source's extent holds about
@@ -166,7 +178,8 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
 
   openvdb::FloatGrid::Ptr sourceGrid;          // the whole source grid (the in-memory subsample reference)
   std::shared_ptr<const VdbLeafReader> reader;  // or its topology, leaves read on demand
-  DenseVolume dense;
+  DenseVolume dense;                            // a dense input, whole (the in-memory reference)
+  std::unique_ptr<DenseSource> source;          // or read on demand
   openvdb::math::Transform::Ptr xform;
   float background = options.background.value_or(0.0f);
   glm::ivec3 extent(0);  // the source's voxels per axis (its active box for a .vdb): resampling's extent
@@ -190,28 +203,41 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     background = options.background.value_or(sourceGrid->background());
     summary.inputVoxels = sourceGrid->activeVoxelCount();
     xform = sourceGrid->transform().copy();
-  } else {
+  } else if (options.inMemory) {
     dense = readDense(input, format, options);
     summary.gridName = "density";
     summary.inputVoxels = dense.values.size();
     xform = transformOf(dense, 1.0);
     extent = dense.dims;
+  } else {
+    // Read when the field is made, below: into a scratch file of x-slabs (SlabScratch.h).
+    source = openDense(input, format, options);
+    summary.gridName = "density";
+    summary.inputVoxels = source->voxelCount();
+    xform = transformOf(source->geometry(), 1.0);
+    extent = source->geometry().dims;
   }
 
   std::unique_ptr<SampleField> field;
+  const auto readStart = std::chrono::steady_clock::now();
   if (resample) {
     const double h = options.scale > 0.0 ? options.scale : spacingForSampleCount(extent, options.samples);
     if (!(h > 0.0) || !std::isfinite(h)) throw ValueError("--samples/--scale give no valid lattice spacing");
     if (reader) field = std::make_unique<VdbResampleField>(reader, h, background);
+    else if (source)
+      field = std::make_unique<DenseSlabResampleField>(slabsOfCoefficients(*source, interrupter), background, h);
     else field = std::make_unique<DenseResampleField>(dense, background, h);
     xform->preScale(h);
   } else if (reader) {
     field = std::make_unique<VdbSourceField>(reader, background);
   } else if (sourceGrid) {
     field = std::make_unique<VdbSubsampleField>(*sourceGrid, background);
+  } else if (source) {
+    field = std::make_unique<DenseSlabSubsampleField>(slabsOfSamples(*source, interrupter), background);
   } else {
     field = std::make_unique<DenseSubsampleField>(dense, background);
   }
+  const double slabbing = std::chrono::duration<double>(std::chrono::steady_clock::now() - readStart).count();
   BuildOptions build;
   build.prefilter = options.prefilter;
   build.tolerance = options.tolerance;
@@ -264,12 +290,16 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   writeVdbAtomically(output, grids, options.overwrite, input);
   const double pass2 = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
   const StreamedBuild::Times& t = built.times;
-  char text[320];
+  char text[400];
   std::snprintf(text, sizeof text,
                 "pass 1 %.2f s (blocks %.2f, prepare %.2f, build %.2f, window %.2f, bounds %.2f, prune %.2f); "
                 "pass 2 (rebuild and write) %.2f s",
                 pass1, t.blocks, t.prepare, t.build, t.window, t.bounds, t.prune, pass2);
   summary.timings = text;
+  if (source) {  // the dense input read once, into the slab scratch, before pass 1
+    std::snprintf(text, sizeof text, "read into slabs %.2f s; ", slabbing);
+    summary.timings = text + summary.timings;
+  }
   return summary;
 }
 

@@ -1,5 +1,6 @@
 // A Cartesian volume held in memory as float samples, and the readers that fill it from raw, NRRD and
-// NIfTI-1 files. Every reader converts its stored scalar type to float, so later stages handle one type.
+// NIfTI-1 files (DenseSource.h's sources read whole: a conversion reads them in slabs instead). Every
+// reader converts its stored scalar type to float, so later stages handle one type.
 // Every bad input is an fcc::InputError (sparse/Error.h) whose one-line message names the file.
 #pragma once
 

@@ -14,7 +14,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "DenseVolume.h"
+#include "DenseSource.h"
 #include "sparse/Error.h"
 
 namespace fcc::io {
@@ -23,15 +23,15 @@ namespace {
 namespace fs = std::filesystem;
 using Image = itk::Image<float, 3>;
 
-// The image's samples and geometry; InputError if it is larger than any reader accepts.
-DenseVolume toDense(const Image& image, const std::string& path) {
+// The image's geometry (values empty); InputError if it is larger than any reader accepts.
+DenseVolume geometryOf(const Image& image, const std::string& path) {
   const Image::SizeType size = image.GetLargestPossibleRegion().GetSize();
   DenseVolume v;
   for (int a = 0; a < 3; ++a) {
     if (size[a] > uint64_t(1) << 30) throw InputError(path + ": " + std::to_string(size[a]) + " voxels along an axis is too many");
     v.dims[a] = int(size[a]);
   }
-  const uint64_t count = checkedVoxelCount(v.dims, path);
+  checkedVoxelCount(v.dims, path);
   const Image::SpacingType spacing = image.GetSpacing();
   const Image::PointType origin = image.GetOrigin();
   const Image::DirectionType direction = image.GetDirection();
@@ -43,8 +43,14 @@ DenseVolume toDense(const Image& image, const std::string& path) {
       throw InputError(path + ": spacing " + std::to_string(v.spacing[a]) + " along axis " + std::to_string(a) +
                        " is not a positive number");
   }
+  return v;
+}
+
+// The image's samples and geometry.
+DenseVolume toDense(const Image& image, const std::string& path) {
+  DenseVolume v = geometryOf(image, path);
   const float* data = image.GetBufferPointer();
-  v.values.assign(data, data + count);  // ITK's buffer is x fastest, as ours
+  v.values.assign(data, data + checkedVoxelCount(v.dims, path));  // ITK's buffer is x fastest, as ours
   return v;
 }
 
@@ -106,6 +112,72 @@ void checkMetaImageDataSize(itk::MetaImageIO& io, const std::string& path) {
   }
 }
 
+
+// A reader's output read a range of slices at a time (an IORegion): ITK's MetaImageIO reads only
+// those bytes of uncompressed data, ImageSeriesReader only those slice files. `what` words errors.
+template <class Reader>
+class ItkSource final : public DenseSource {
+ public:
+  // `whole`: the reader cannot read part of the file (compressed MetaImage data is inflated whole for
+  // any region), so the first read takes every slice, once, rather than inflating it again per range.
+  ItkSource(typename Reader::Pointer reader, std::string path, std::string what, bool whole = false)
+      : reader_(reader), path_(std::move(path)), what_(std::move(what)), whole_(whole) {
+    guarded([&] { reader_->UpdateOutputInformation(); });
+    geometry_ = geometryOf(*reader_->GetOutput(), path_);
+  }
+
+  void read(uint64_t first, uint64_t count, float* out) override {
+    if (count == 0) return;
+    const uint64_t sliceVoxels = uint64_t(geometry_.dims.x) * uint64_t(geometry_.dims.y);
+    const int z0 = int(first / sliceVoxels), z1 = int((first + count - 1) / sliceVoxels);
+    if (z0 < slicesFrom_ || z1 >= slicesFrom_ + slicesRead_) {
+      if (whole_) readSlices(0, geometry_.dims.z);
+      else readSlices(z0, z1 - z0 + 1);
+    }
+    std::copy_n(slices_.data() + (first - uint64_t(slicesFrom_) * sliceVoxels), count, out);
+  }
+
+ private:
+  template <class F>
+  void guarded(F&& f) {
+    try {
+      f();
+    } catch (const itk::ExceptionObject& e) {
+      throw InputError(path_ + ": " + what_ + ": " + e.GetDescription());
+    }
+  }
+
+  // Slices [z0, z0 + n) into slices_ (the last ones read are kept: a run may end mid-slice).
+  void readSlices(int z0, int n) {
+    Image::RegionType region;
+    region.SetIndex({0, 0, z0});
+    region.SetSize({size_t(geometry_.dims.x), size_t(geometry_.dims.y), size_t(n)});
+    Image* image = reader_->GetOutput();
+    guarded([&] {
+      image->SetRequestedRegion(region);
+      reader_->Update();
+    });
+    // The buffer holds at least the region (all of the image where ITK cannot stream: compressed data).
+    const Image::RegionType buffered = image->GetBufferedRegion();
+    if (!buffered.IsInside(region)) throw InputError(path_ + ": " + what_ + ": ITK read less than the slices asked for");
+    slices_.resize(size_t(region.GetNumberOfPixels()));
+    float* dst = slices_.data();
+    for (int z = z0; z < z0 + n; ++z)
+      for (int y = 0; y < geometry_.dims.y; ++y) {
+        const float* row = image->GetBufferPointer() + image->ComputeOffset({0, y, z});
+        dst = std::copy_n(row, geometry_.dims.x, dst);
+      }
+    slicesFrom_ = z0;
+    slicesRead_ = n;
+  }
+
+  typename Reader::Pointer reader_;
+  std::string path_, what_;
+  bool whole_;
+  std::vector<float> slices_;
+  int slicesFrom_ = 0, slicesRead_ = 0;
+};
+
 }  // namespace
 
 DenseVolume readDicom(const std::string& path) {
@@ -136,6 +208,40 @@ DenseVolume readMetaImage(const std::string& path) {
     reader->SetFileName(path);
     reader->Update();
     return toDense(*reader->GetOutput(), path);
+  } catch (const itk::ExceptionObject& e) {
+    throw InputError(path + ": cannot read this MetaImage: " + e.GetDescription());
+  }
+}
+
+std::unique_ptr<DenseSource> openDicom(const std::string& path) {
+  try {
+    auto reader = itk::ImageSeriesReader<Image>::New();
+    reader->SetImageIO(itk::GDCMImageIO::New());  // applies Rescale Slope/Intercept into float
+    reader->SetFileNames(seriesFiles(path));
+    // Else every slice's header is parsed again for each range of slices read.
+    reader->MetaDataDictionaryArrayUpdateOff();
+    return std::make_unique<ItkSource<itk::ImageSeriesReader<Image>>>(reader, path, "not a DICOM series ITK/GDCM can read");
+  } catch (const itk::ExceptionObject& e) {
+    throw InputError(path + ": not a DICOM series ITK/GDCM can read: " + e.GetDescription());
+  }
+}
+
+std::unique_ptr<DenseSource> openMetaImage(const std::string& path) {
+  try {
+    auto io = itk::MetaImageIO::New();
+    if (!io->CanReadFile(path.c_str())) throw InputError(path + ": not a MetaImage (.mha/.mhd) file ITK can read");
+    io->SetFileName(path);
+    io->ReadImageInformation();
+    if (io->GetNumberOfDimensions() != 3 || io->GetNumberOfComponents() != 1)
+      throw InputError(path + ": a MetaImage of " + std::to_string(io->GetNumberOfDimensions()) + " dimensions and " +
+                       std::to_string(io->GetNumberOfComponents()) + " components per voxel; valid: 3-D scalar images");
+    checkMetaImageDataSize(*io, path);
+    auto reader = itk::ImageFileReader<Image>::New();
+    reader->SetImageIO(io);
+    reader->SetFileName(path);
+    reader->UseStreamingOn();
+    return std::make_unique<ItkSource<itk::ImageFileReader<Image>>>(reader, path, "cannot read this MetaImage",
+                                                                     !io->CanStreamRead());
   } catch (const itk::ExceptionObject& e) {
     throw InputError(path + ": cannot read this MetaImage: " + e.GetDescription());
   }

@@ -5,9 +5,10 @@
 #include <cstring>
 
 #include "ByteSource.h"
-#include "DenseVolume.h"
+#include "DenseSource.h"
 #include "MessageText.h"
 #include "SampleDecoding.h"
+#include "StoredVoxels.h"
 #include "sparse/Error.h"
 
 namespace fcc::io {
@@ -79,7 +80,7 @@ glm::dvec3 originFrom(const Header& header) {
 
 }  // namespace
 
-DenseVolume readNifti(const std::string& path) {
+std::unique_ptr<DenseSource> openNifti(const std::string& path) {
   ByteSource source(path, 0, Compression::Detect);
   uint8_t bytes[kHeaderBytes] = {};
   const size_t got = source.read(bytes, kHeaderBytes);
@@ -124,8 +125,9 @@ DenseVolume readNifti(const std::string& path) {
     throw InputError(path + ": vox_offset " + numberText(voxOffsetStored) + " is invalid; it must be at least 348");
   const uint64_t voxOffset = uint64_t(voxOffsetStored);
 
-  auto sizeError = [&](uint64_t holds) {
-    return InputError(path + ": file holds " + std::to_string(holds) + " bytes" + (source.gzip() ? " once decompressed" : "") +
+  const bool gzip = source.gzip();
+  auto sizeError = [=](uint64_t holds) {
+    return InputError(path + ": file holds " + std::to_string(holds) + " bytes" + (gzip ? " once decompressed" : "") +
                       " but dims " + commaList(dims) + " of datatype " + scalarTypeName(type) + " need " +
                       std::to_string(payload) + " from vox_offset " + std::to_string(voxOffset));
   };
@@ -136,22 +138,23 @@ DenseVolume readNifti(const std::string& path) {
   volume.spacing = {spacingFrom(header.f32(field::pixdim + 4)), spacingFrom(header.f32(field::pixdim + 8)),
                     spacingFrom(header.f32(field::pixdim + 12))};
   volume.origin = originFrom(header);
-  if (source.knownSize()) volume.values.reserve(voxels);  // the size check passed: the data is there
 
-  const uint64_t extensions = voxOffset - kHeaderBytes;
-  const bool skipped = source.skip(extensions) == extensions;
-  const uint64_t samples = skipped ? readSamples(source, type, bigEndian, voxels, volume.values) : 0;
-  if (!skipped || samples < voxels) throw sizeError(source.position());
-  if (source.gzip()) source.drain();  // reaches the gzip trailer, so a corrupt stream does not pass unnoticed
-
+  StoredVoxels stored;
+  stored.path = path;
+  stored.gzip = gzip;
+  stored.skipBytes = voxOffset;  // the header and its extensions
+  stored.type = type;
+  stored.bigEndian = bigEndian;
   // A slope of 0 (or NaN) means "unscaled" in NIfTI-1.
   const float slope = header.f32(field::sclSlope);
   if (std::isfinite(slope) && slope != 0.0f) {
-    const float stored = header.f32(field::sclInter);
-    const float intercept = std::isfinite(stored) ? stored : 0.0f;
-    for (float& value : volume.values) value = value * slope + intercept;
+    const float intercept = header.f32(field::sclInter);
+    stored.scale = std::make_pair(slope, std::isfinite(intercept) ? intercept : 0.0f);
   }
-  return volume;
+  stored.sizeError = sizeError;
+  return openStoredVoxels(volume, std::move(stored));
 }
+
+DenseVolume readNifti(const std::string& path) { return readAllVoxels(*openNifti(path)); }
 
 }  // namespace fcc::io

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "ByteSource.h"
-#include "DenseVolume.h"
+#include "DenseSource.h"
 #include "MessageText.h"
-#include "SampleDecoding.h"
+#include "StoredVoxels.h"
 #include "sparse/Error.h"
 
 namespace fcc::io {
@@ -293,9 +293,17 @@ void skipLines(ByteSource& source, long long lines, const std::string& headerPat
   }
 }
 
+// Data that ends before the voxels do: `holds` bytes after the byte skip.
+InputError dataSizeError(const std::string& dataLabel, bool gzip, long long byteSkip, const glm::ivec3& dims,
+                         ScalarType type, uint64_t payload, uint64_t holds) {
+  return InputError(dataLabel + ": data holds " + std::to_string(holds) + " bytes" + (gzip ? " once decompressed" : "") +
+                    (byteSkip != 0 ? " after byte skip " + std::to_string(byteSkip) : std::string()) + " but sizes " +
+                    commaList(dims) + " of type " + scalarTypeName(type) + " need " + std::to_string(payload));
+}
+
 }  // namespace
 
-DenseVolume readNrrd(const std::string& path) {
+std::unique_ptr<DenseSource> openNrrd(const std::string& path) {
   const HeaderParser parser(path);
   const NrrdHeader header = parser.read();
 
@@ -355,11 +363,7 @@ DenseVolume readNrrd(const std::string& path) {
   }
   ByteSource source(dataPath, dataStart, gzip ? Compression::Gzip : Compression::Plain);
 
-  auto sizeError = [&](uint64_t holds) {
-    return InputError(dataLabel + ": data holds " + std::to_string(holds) + " bytes" + (gzip ? " once decompressed" : "") +
-                      (byteSkip != 0 ? " after byte skip " + std::to_string(byteSkip) : std::string()) + " but sizes " +
-                      commaList(dims) + " of type " + scalarTypeName(type) + " need " + std::to_string(payload));
-  };
+  auto sizeError = [&](uint64_t holds) { return dataSizeError(dataLabel, gzip, byteSkip, dims, type, payload, holds); };
   if (byteSkip == -1) {  // "-1": the data is the last bytes of the file, after whatever precedes it
     if (gzip) parser.fail(*byteSkipField, "byte skip -1 is only valid with encoding raw");
     if (!source.knownSize()) parser.fail(*byteSkipField, "byte skip -1 needs a regular data file of known size");
@@ -368,13 +372,21 @@ DenseVolume readNrrd(const std::string& path) {
   }
   if (source.knownSize() && *source.knownSize() < uint64_t(byteSkip) + payload)
     throw sizeError(*source.knownSize() - std::min<uint64_t>(*source.knownSize(), uint64_t(byteSkip)));
-  if (source.knownSize()) volume.values.reserve(voxels);  // the size check passed: the data is there
 
-  const bool skipped = source.skip(uint64_t(byteSkip)) == uint64_t(byteSkip);
-  const uint64_t samples = skipped ? readSamples(source, type, bigEndian, voxels, volume.values) : 0;
-  if (!skipped || samples < voxels) throw sizeError(source.position() - std::min<uint64_t>(source.position(), uint64_t(byteSkip)));
-  if (source.gzip()) source.drain();  // reaches the gzip trailer, so a corrupt stream does not pass unnoticed
-  return volume;
+  StoredVoxels stored;
+  stored.path = dataPath;
+  stored.fileOffset = dataStart;
+  stored.gzip = gzip;
+  stored.skipBytes = uint64_t(byteSkip);
+  stored.type = type;
+  stored.bigEndian = bigEndian;
+  // The source outlives this function: it words its errors from copies.
+  stored.sizeError = [=](uint64_t holds) {
+    return dataSizeError(dataLabel, gzip, byteSkip, dims, type, payload, holds - std::min<uint64_t>(holds, uint64_t(byteSkip)));
+  };
+  return openStoredVoxels(volume, std::move(stored));
 }
+
+DenseVolume readNrrd(const std::string& path) { return readAllVoxels(*openNrrd(path)); }
 
 }  // namespace fcc::io

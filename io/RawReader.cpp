@@ -4,9 +4,9 @@
 #include <limits>
 
 #include "ByteSource.h"
-#include "DenseVolume.h"
+#include "DenseSource.h"
 #include "MessageText.h"
-#include "SampleDecoding.h"
+#include "StoredVoxels.h"
 #include "sparse/Error.h"
 
 namespace fcc::io {
@@ -18,7 +18,7 @@ bool hasGzipSuffix(const std::string& path) {
 
 }  // namespace
 
-DenseVolume readRaw(const std::string& path, const RawLayout& layout) {
+std::unique_ptr<DenseSource> openRaw(const std::string& path, const RawLayout& layout) {
   const uint64_t voxels = checkedVoxelCount(layout.dims, path);
   for (int axis = 0; axis < 3; ++axis)
     if (!(std::isfinite(layout.spacing[axis]) && layout.spacing[axis] > 0.0))
@@ -30,7 +30,7 @@ DenseVolume readRaw(const std::string& path, const RawLayout& layout) {
   const uint64_t needed = layout.headerBytes + payload;
 
   // Says what to try: bytes beyond the voxels are most often a header (brainsmall.den: 62 bytes).
-  auto sizeError = [&](uint64_t holds, bool decompressed) {
+  auto sizeError = [=](uint64_t holds, bool decompressed) {
     std::string hint;
     if (holds > needed)
       hint = ": " + std::to_string(holds - needed) + " extra bytes; if they are a header, try --header-bytes " +
@@ -49,20 +49,23 @@ DenseVolume readRaw(const std::string& path, const RawLayout& layout) {
     const ByteSource probe(path, 0, Compression::Plain);
     compression = probe.knownSize() == needed ? Compression::Plain : Compression::Detect;
   }
-  ByteSource source(path, 0, compression);
+  const ByteSource source(path, 0, compression);  // checks the gzip magic of a .gz name
   if (source.knownSize() && *source.knownSize() != needed) throw sizeError(*source.knownSize(), false);
 
-  DenseVolume volume;
-  volume.dims = layout.dims;
-  volume.spacing = layout.spacing;
-  if (source.knownSize()) volume.values.reserve(voxels);  // the size matched: the data is there
-
-  const bool headerComplete = source.skip(layout.headerBytes) == layout.headerBytes;
-  const uint64_t samples =
-      headerComplete ? readSamples(source, layout.type, layout.bigEndian, voxels, volume.values) : 0;
-  const uint64_t extra = source.drain();
-  if (!headerComplete || samples < voxels || extra > 0) throw sizeError(source.position(), source.gzip());
-  return volume;
+  DenseVolume geometry;
+  geometry.dims = layout.dims;
+  geometry.spacing = layout.spacing;
+  StoredVoxels stored;
+  stored.path = path;
+  stored.gzip = source.gzip();
+  stored.skipBytes = layout.headerBytes;
+  stored.type = layout.type;
+  stored.bigEndian = layout.bigEndian;
+  stored.exactEnd = true;
+  stored.sizeError = [sizeError, gzip = source.gzip()](uint64_t holds) { return sizeError(holds, gzip); };
+  return openStoredVoxels(geometry, std::move(stored));
 }
+
+DenseVolume readRaw(const std::string& path, const RawLayout& layout) { return readAllVoxels(*openRaw(path, layout)); }
 
 }  // namespace fcc::io

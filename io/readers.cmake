@@ -1,9 +1,12 @@
-# The Cartesian volume readers (raw, NRRD, NIfTI-1) and their shared byte/sample helpers, relative to io/.
+# The Cartesian volume readers (raw, NRRD, NIfTI-1: sources read on demand, DenseSource.h) and their
+# shared byte/sample helpers, relative to io/.
 # Needs glm and ZLIB::ZLIB.
 set(FCC_IO_READER_SOURCES
   ByteSource.cpp
+  DenseSource.cpp
   DenseVolume.cpp
   NiftiReader.cpp
   NrrdReader.cpp
   RawReader.cpp
-  SampleDecoding.cpp)
+  SampleDecoding.cpp
+  StoredVoxels.cpp)

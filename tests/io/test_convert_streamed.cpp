@@ -7,11 +7,16 @@
 #include <openvdb/tools/LevelSetSphere.h>
 #include <openvdb/tools/LevelSetUtil.h>
 
+#include <zlib.h>
+
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
 #include "SameVdbFiles.h"
 #include "io/Convert.h"
+#include "io/MessageText.h"
+#include "sparse/Error.h"
 #include "sparse/FccSampler.h"
 #include "io/VdbFile.h"
 #include "io/VdbLeafReader.h"
@@ -58,8 +63,11 @@ std::string writeSphere(const TempDir& dir, const std::string& name, float radiu
   return path;
 }
 
-void expectStreamedEqualsInMemory(const TempDir& dir, const std::string& input, const ConvertOptions& base) {
-  for (const Variant v : {Variant{}, Variant{true, true, {}}, Variant{false, false, {}}, Variant{true, false, 0.25f}}) {
+const std::vector<Variant> kAllVariants{Variant{}, Variant{true, true, {}}, Variant{false, false, {}}, Variant{true, false, 0.25f}};
+
+void expectStreamedEqualsInMemory(const TempDir& dir, const std::string& input, const ConvertOptions& base,
+                                  const std::vector<Variant>& variants = kAllVariants) {
+  for (const Variant& v : variants) {
     SCOPED_TRACE(input + " " + describe(v));
     ConvertOptions o = base;
     o.prefilter = v.prefilter;
@@ -156,6 +164,155 @@ TEST(ConvertStreamed, DenseInputEqualsTheInMemoryPath) {
   ConvertOptions o;
   o.raw = RawLayout{{256, 256, 128}, ScalarType::U8, false, glm::dvec3(1.0), 0};
   expectStreamedEqualsInMemory(dir, data + "/engine_256x256x128_uint8.raw.gz", o);
+}
+
+// A dense i16 volume: smooth, with a little noise and negative values.
+std::vector<int16_t> denseValues(const glm::ivec3& dims) {
+  std::vector<int16_t> values;
+  values.reserve(size_t(dims.x) * dims.y * dims.z);
+  uint32_t noise = 12345;
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i) {
+        noise = noise * 1664525u + 1013904223u;
+        values.push_back(int16_t(900.0 * std::sin(0.31 * i) * std::cos(0.17 * j) + 23.0 * k - 400.0 + double(noise >> 27)));
+      }
+  return values;
+}
+
+std::string bytesOf(const std::vector<int16_t>& values) {
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(int16_t));
+}
+
+void writeBytes(const std::string& path, const std::string& bytes, bool gzip = false) {
+  if (!gzip) {
+    std::ofstream(path, std::ios::binary) << bytes;
+    return;
+  }
+  gzFile gz = gzopen(path.c_str(), "wb");
+  ASSERT_NE(gz, nullptr);
+  ASSERT_EQ(gzwrite(gz, bytes.data(), unsigned(bytes.size())), int(bytes.size()));
+  gzclose(gz);
+}
+
+// A single-file NIfTI-1 header (little endian, int16, vox_offset 352) with a scale.
+std::string niftiHeader(const glm::ivec3& dims, float slope, float intercept) {
+  std::string h(352, '\0');
+  auto put = [&](size_t at, auto value) { std::memcpy(&h[at], &value, sizeof value); };
+  put(0, int32_t(348));
+  put(40, int16_t(3));
+  put(42, int16_t(dims.x));
+  put(44, int16_t(dims.y));
+  put(46, int16_t(dims.z));
+  put(70, int16_t(4));   // int16
+  put(72, int16_t(16));  // bits
+  put(76, 1.0f);
+  put(80, 0.5f);
+  put(84, 1.25f);
+  put(88, 2.0f);
+  put(108, 352.0f);
+  put(112, slope);
+  put(116, intercept);
+  std::memcpy(&h[344], "n+1\0", 4);
+  return h;
+}
+
+// The volume in every dense format we read ourselves, each input converted streamed and in memory:
+// the same file (the slab scratch keeps the stored i16 samples and their NIfTI scale, converted as
+// the reader converts them). Dims: three slabs and a part along x, two level-1 nodes along y (pass 2's batches
+// then span nodes), an odd z.
+TEST(ConvertStreamed, EveryDenseFormatEqualsTheInMemoryPath) {
+  TempDir dir;
+  const glm::ivec3 dims(37, 290, 21);
+  const std::string data = bytesOf(denseValues(dims));
+  const std::string nrrd = "NRRD0004\ntype: short\ndimension: 3\nsizes: 37 290 21\nendian: little\n"
+                           "spacings: 0.5 1 2\nspace origin: (1,-2,3)\n";
+  writeBytes(dir / "v.raw", data);
+  writeBytes(dir / "v.raw.gz", data, true);
+  writeBytes(dir / "v.nrrd", nrrd + "encoding: raw\n\n" + data);
+  writeBytes(dir / "v.nhdr", nrrd + "encoding: gzip\nbyte skip: 6\ndata file: v.data.gz\n\n");
+  writeBytes(dir / "v.data.gz", "header" + data, true);
+  std::string swapped = data;  // big endian: the slab scratch keeps samples in this machine's order
+  for (size_t i = 0; i + 1 < swapped.size(); i += 2) std::swap(swapped[i], swapped[i + 1]);
+  std::string bigEndian = nrrd;
+  bigEndian.replace(bigEndian.find("endian: little"), 14, "endian: big");
+  writeBytes(dir / "be.nrrd", bigEndian + "encoding: raw\n\n" + swapped);
+  writeBytes(dir / "v.nii", niftiHeader(dims, 0.5f, -3.0f) + data);
+  writeBytes(dir / "v.nii.gz", niftiHeader(dims, 0.0f, 0.0f) + data, true);
+
+  ConvertOptions subsample;
+  subsample.raw = RawLayout{dims, ScalarType::I16, false, glm::dvec3(1.0), 0};
+  ConvertOptions resample = subsample;
+  resample.mode = "resample";
+  resample.scale = 1.3;
+  // Every variant on raw; the other formats differ only in how their voxels are read.
+  expectStreamedEqualsInMemory(dir, dir / "v.raw", subsample);
+  expectStreamedEqualsInMemory(dir, dir / "v.raw", resample);
+  for (const char* name : {"v.raw.gz", "v.nrrd", "be.nrrd", "v.nhdr", "v.nii", "v.nii.gz"}) {
+    expectStreamedEqualsInMemory(dir, dir / name, subsample, {Variant{}});
+    expectStreamedEqualsInMemory(dir, dir / name, resample, {Variant{}});
+  }
+  // Finer than the voxels (more samples than voxels) and by a sample count.
+  resample.scale = 0.7;
+  expectStreamedEqualsInMemory(dir, dir / "v.nii.gz", resample, {Variant{false, false, {}}});
+  resample.scale = 0.0;
+  resample.samples = 40000;
+  expectStreamedEqualsInMemory(dir, dir / "v.nrrd", resample, {Variant{}});
+}
+
+// Volumes thinner than a slab, a B-spline's support or two voxels: the mirrored boundary reads
+// voxels the region of the block must hold, and a one-voxel axis has a constant spline.
+TEST(ConvertStreamed, ThinDenseVolumesEqualTheInMemoryPath) {
+  TempDir dir;
+  for (const glm::ivec3 dims : {glm::ivec3(5, 2, 19), glm::ivec3(1, 17, 3), glm::ivec3(18, 1, 1)}) {
+    SCOPED_TRACE(commaList(dims));
+    writeBytes(dir / "thin.raw", bytesOf(denseValues(dims)));
+    ConvertOptions o;
+    o.raw = RawLayout{dims, ScalarType::I16, false, glm::dvec3(1.0), 0};
+    expectStreamedEqualsInMemory(dir, dir / "thin.raw", o, {Variant{}});
+    o.mode = "resample";
+    for (const double scale : {0.45, 1.0, 1.7}) {
+      o.scale = scale;
+      expectStreamedEqualsInMemory(dir, dir / "thin.raw", o, {Variant{}});
+    }
+  }
+}
+
+// A damaged input fails the streamed conversion with the reader's own line, and leaves no output.
+TEST(ConvertStreamed, DamagedDenseInputsFailWithTheReadersLine) {
+  TempDir dir;
+  const glm::ivec3 dims(20, 20, 20);
+  const std::string data = bytesOf(denseValues(dims));
+  writeBytes(dir / "short.raw.gz", data.substr(0, data.size() - 100), true);
+  writeBytes(dir / "long.raw.gz", data + "xx", true);
+  std::string gz;
+  {
+    writeBytes(dir / "whole.raw.gz", data, true);
+    std::ifstream in(dir / "whole.raw.gz", std::ios::binary);
+    gz.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  writeBytes(dir / "cut.raw.gz", gz.substr(0, gz.size() / 2));
+  ConvertOptions o;
+  o.raw = RawLayout{dims, ScalarType::I16, false, glm::dvec3(1.0), 0};
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"short.raw.gz", "short.raw.gz: file holds 15900 bytes once decompressed but --dims 20,20,20 --type i16 needs 16000"},
+      {"long.raw.gz", "long.raw.gz: file holds 16002 bytes once decompressed"},
+      {"cut.raw.gz", "cut.raw.gz: truncated gzip data"},
+  };
+  for (const auto& [name, message] : cases) {
+    SCOPED_TRACE(name);
+    for (const bool inMemory : {false, true}) {
+      o.inMemory = inMemory;
+      try {
+        convertToFcc(dir / name, dir / "out.vdb", o);
+        ADD_FAILURE() << "no error";
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line";
+      }
+      EXPECT_FALSE(std::filesystem::exists(dir / "out.vdb"));
+    }
+  }
 }
 
 TEST(ConvertStreamed, RealLevelSetFileEqualsTheInMemoryPath) {

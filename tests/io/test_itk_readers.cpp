@@ -17,9 +17,13 @@
 #include <numeric>
 #include <random>
 
+#include <zlib.h>
+
 #include "io/ConversionCache.h"
 #include "io/Convert.h"
+#include "io/DenseSource.h"
 #include "io/DenseVolume.h"
+#include "SameVdbFiles.h"
 #include "io/VdbFile.h"
 #include "sparse/Error.h"
 #include "tests/tools/RunCommand.h"
@@ -198,6 +202,82 @@ TEST(ItkReaders, MetaImageWithDetachedAndLocalData) {
   std::filesystem::resize_file(dir / "v.mha", std::filesystem::file_size(dir / "v.mha") - 50);
   EXPECT_THROW(readMetaImage(dir / "v.mha"), InputError);
   EXPECT_THROW(readDicom(dir / "v.raw"), InputError);
+}
+
+// `source` read in runs that start and end inside slices, backwards too, gives the whole read's values.
+void expectRunsGiveTheVolume(DenseSource& source, const DenseVolume& whole) {
+  ASSERT_EQ(source.geometry().dims, whole.dims);
+  ASSERT_EQ(source.voxelCount(), whole.values.size());
+  for (const uint64_t run : {uint64_t(1), uint64_t(37), uint64_t(kNx * kNy), uint64_t(250)}) {
+    std::vector<float> got(whole.values.size());
+    for (uint64_t first = 0; first < got.size(); first += run)
+      source.read(first, std::min<uint64_t>(run, got.size() - first), got.data() + first);
+    EXPECT_EQ(got, whole.values) << "runs of " << run;
+  }
+  std::vector<float> last(5);
+  source.read(whole.values.size() - 5, 5, last.data());
+  source.read(3, 5, last.data());
+  EXPECT_EQ(last, std::vector<float>(whole.values.begin() + 3, whole.values.begin() + 8)) << "back to the start";
+}
+
+// DICOM (one slice file at a time) and MetaImage (ITK's streaming, or whole where it is compressed):
+// read by ranges of slices, and converted streamed, they give what the whole read gives.
+TEST(ItkReaders, SourcesReadBySlicesEqualTheWholeReadAndConvertTheSame) {
+  TempDir dir;
+  std::vector<int> order(kNz);
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(3));
+  writeSeries(dir / "ct", order);
+  std::vector<int16_t> values;
+  for (int k = 0; k < kNz; ++k)
+    for (int j = 0; j < kNy; ++j)
+      for (int i = 0; i < kNx; ++i) values.push_back(rawValue(i, j, k));
+  const std::string header = "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+                             "TransformMatrix = 0 1 0 -1 0 0 0 0 1\nOffset = -12.5 4 30.25\n"
+                             "ElementSpacing = 0.7 0.8 1.5\nDimSize = 11 9 7\nElementType = MET_SHORT\n";
+  const char* bytes = reinterpret_cast<const char*>(values.data());
+  std::ofstream(dir / "v.mha", std::ios::binary) << header << "ElementDataFile = LOCAL\n" << std::string(bytes, values.size() * 2);
+  std::vector<Bytef> packed(compressBound(uLong(values.size() * 2)));
+  uLongf packedSize = uLongf(packed.size());
+  ASSERT_EQ(compress2(packed.data(), &packedSize, reinterpret_cast<const Bytef*>(bytes), uLong(values.size() * 2), 6), Z_OK);
+  std::ofstream(dir / "z.mha", std::ios::binary)
+      << header << "CompressedData = True\nCompressedDataSize = " << packedSize << "\nElementDataFile = LOCAL\n"
+      << std::string(reinterpret_cast<const char*>(packed.data()), packedSize);
+
+  {
+    SCOPED_TRACE("dicom");
+    const auto source = openDicom(dir / "ct");
+    const DenseVolume whole = readDicom(dir / "ct");
+    expectTheSeries(whole);
+    EXPECT_EQ(source->geometry().direction, whole.direction);
+    EXPECT_EQ(source->geometry().spacing, whole.spacing);
+    EXPECT_EQ(source->geometry().origin, whole.origin);
+    expectRunsGiveTheVolume(*source, whole);
+  }
+  for (const char* name : {"v.mha", "z.mha"}) {
+    SCOPED_TRACE(name);
+    const auto source = openMetaImage(dir / name);
+    const DenseVolume whole = readMetaImage(dir / name);
+    EXPECT_EQ(source->geometry().direction, whole.direction);
+    EXPECT_EQ(whole.at(4, 5, 6), float(rawValue(4, 5, 6)));
+    expectRunsGiveTheVolume(*source, whole);
+  }
+
+  for (const char* name : {"ct", "v.mha", "z.mha"})
+    for (const bool resample : {false, true}) {
+      SCOPED_TRACE(std::string(name) + (resample ? " resample" : " subsample"));
+      ConvertOptions o;
+      o.overwrite = true;
+      if (resample) {
+        o.mode = "resample";
+        o.scale = 0.6;
+      }
+      const ConvertSummary streamed = convertToFcc(dir / name, dir / "streamed.vdb", o);
+      EXPECT_NE(streamed.timings.find("read into slabs"), std::string::npos) << streamed.timings;
+      o.inMemory = true;
+      convertToFcc(dir / name, dir / "memory.vdb", o);
+      test::expectSameFccFiles(dir / "memory.vdb", dir / "streamed.vdb");
+    }
 }
 
 }  // namespace

@@ -11,9 +11,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <vector>
 
 #include "MeasuredRun.h"
 #include "RunCommand.h"
+#include "io/VdbFile.h"
 #include "viewer/Camera.h"
 
 namespace fcc::test {
@@ -74,6 +78,46 @@ TEST(CliMemory, ConvertOfALevelSetFollowsTheBandAndRendersTheSphere) {
     }
   EXPECT_GT(hits, width * height / 4);
   EXPECT_LT(worst, 0.01) << "worst distance from the analytic sphere, in voxels, over " << hits << " hits";
+}
+
+// A dense raw input three times the memory bound converts within it: the voxels are read once into
+// the slab scratch (TMPDIR) and the conversion holds about a slab of them, never the volume.
+TEST(CliMemory, ConvertOfADenseRawFileLargerThanItsMemoryBound) {
+  TempDir dir;
+  // 384 MiB of f32, long along x so that a slab (its y-z cross-section) is small; a ball of data in
+  // the middle (1 at the centre, 0 at radius 80), zeros elsewhere: every voxel is read all the same.
+  const glm::ivec3 dims(2048, 256, 192);
+  constexpr double kBoundMiB = 128.0;
+  const std::string input = dir / "dense.raw", output = dir / "dense.vdb";
+  {
+    std::ofstream out(input, std::ios::binary);
+    std::vector<float> row(size_t(dims.x));
+    for (int z = 0; z < dims.z; ++z)
+      for (int y = 0; y < dims.y; ++y) {
+        for (int x = 0; x < dims.x; ++x) {
+          const double r = glm::length(glm::dvec3(x, y, z) - glm::dvec3(dims) / 2.0);
+          row[size_t(x)] = r < 80.0 ? float(1.0 - r / 80.0) : 0.0f;
+        }
+        out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size() * sizeof(float)));
+      }
+  }
+  const double inputMiB = double(std::filesystem::file_size(input)) / double(1 << 20);
+  ASSERT_GE(inputMiB, 3.0 * kBoundMiB);
+
+  const MeasuredRun run = runMeasured({"convert", input, output, "--dims", "2048,256,192", "--type", "f32",
+                                       "--cl-device", "reference", "--timings", "--quiet"}, dir);
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.err.find("read into slabs"), std::string::npos) << "--timings names the slab reading: " << run.err;
+  const double peakMiB = double(run.peakRssKiB) / 1024.0;
+  std::printf("convert dense raw %dx%dx%d f32 (%.0f MiB): peak RSS %.0f MiB\n", dims.x, dims.y, dims.z, inputMiB, peakMiB);
+  // In memory the volume alone, as floats, was the input's size.
+  EXPECT_LT(peakMiB, kBoundMiB) << run.err;
+
+  // The ball is there: the samples run from 0 to the centre's 1.
+  const FccGrid::Ptr grid = io::readFccGrid(output);
+  EXPECT_FLOAT_EQ(grid->metaValue<float>(meta::kSampleMax), 1.0f);
+  EXPECT_FLOAT_EQ(grid->metaValue<float>(meta::kSampleMin), 0.0f);
+  EXPECT_GT(grid->tree().leafCount(), 500u);
 }
 
 }  // namespace
