@@ -172,16 +172,21 @@ void ViewerSession::drawHelp() {
   ImGui::End();
 }
 
-void ViewerSession::drawStreamingLine(int windowHeight) {
-  if (stats_.complete && stats_.streaming == 0) return;
+std::string ViewerSession::statusLine() const {
+  if (settled()) return {};
   char text[96];
   if (stats_.streaming > 0)
     std::snprintf(text, sizeof text, "streaming %zu bricks (%zu at the isovalue not loaded)", stats_.streaming,
                   stats_.missing);
   else
     std::snprintf(text, sizeof text, "refining (%u bricks requested)", stats_.requested);
+  return text;
+}
+
+void ViewerSession::drawStreamingLine(int windowHeight) {
+  if (shownStatusLine_.empty()) return;
   const ImVec2 at(panelWidth() + 10.0f, float(windowHeight) - ImGui::GetFontSize() - 10.0f);
-  ImGui::GetForegroundDrawList()->AddText(at, IM_COL32(255, 255, 255, 220), text);
+  ImGui::GetForegroundDrawList()->AddText(at, IM_COL32(255, 255, 255, 220), shownStatusLine_.c_str());
 }
 
 }  // namespace fcc::render

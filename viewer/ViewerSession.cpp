@@ -126,6 +126,7 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   raycaster_.startStep(camera_, fbWidth, fbHeight, kUploadSecondsPerFrame, covered);
   drawPanel(windowHeight);
   if (settings_.showHelp) drawHelp();
+  shownStatusLine_ = statusLine();
   drawStreamingLine(windowHeight);
   ImGui::Render();
   ImDrawData* ui = ImGui::GetDrawData();
@@ -145,6 +146,8 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   redraw_.drawn(look, raycaster_.surfaceRect(), overlays, uiHash);
   applySettings();
   updateStats(step, double(coveredArea(regions)) / double(std::max<long long>(1, look.imageArea().area())), !uiShown);
+  // This frame's image is complete (its pass was the last one) and its line told a settled frame.
+  shownSettled_ = shownStatusLine_.empty() && settled();
 }
 
 }  // namespace fcc::render

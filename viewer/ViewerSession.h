@@ -64,8 +64,15 @@ class ViewerSession {
   // everything; see RedrawTracker.h) and then ImGui's windows over it.
   void frame(int fbWidth, int fbHeight, int windowHeight, int bufferAge = 0);
 
-  // True once the frame is complete and no brick is streaming (screenshots wait for it).
+  // True once the frame is complete and no brick is streaming.
   bool settled() const { return stats_.complete && stats_.streaming == 0; }
+  // True when the frame just drawn is the settled image and shows no "streaming" line: what an
+  // automated screenshot captures. One frame later than settled(): the line a frame draws tells the
+  // figures of the frame before (the panel is built while the pass runs), so the first settled frame
+  // still shows "streaming N bricks".
+  bool shownSettled() const { return shownSettled_; }
+  // The status line the last frame drew over the image ("streaming ...", "refining ..."); empty when none.
+  const std::string& shownStatusLine() const { return shownStatusLine_; }
   // Set by the screenshot key (S, F12); cleared by takeScreenshotRequest().
   bool takeScreenshotRequest();
   // Writes a complete frame of the current view as EXR (channels as `fccvdb render`), panel columns
@@ -90,6 +97,7 @@ class ViewerSession {
   void updateStats(const StepStats& step, double imageDrawn, bool uiDrawn);
   void drawPanel(int windowHeight);  // viewer/ViewerPanel.cpp
   void drawHelp();
+  std::string statusLine() const;  // of the last frame's figures; empty once settled
   void drawStreamingLine(int windowHeight);
 
   const io::BrickStore& store_;  // for the damage it met (io/BrickStore.h)
@@ -102,6 +110,8 @@ class ViewerSession {
   DatasetSummary summary_;
   float panelWidth_ = 0.0f;
   bool screenshotRequested_ = false;
+  std::string shownStatusLine_;
+  bool shownSettled_ = false;
   std::chrono::steady_clock::time_point rateWindowStart_;
   int framesInWindow_ = 0;
   double imageDrawnInWindow_ = 0.0;

@@ -128,7 +128,7 @@ void ViewerWindow::run(ViewerSession& session, const std::function<void(const st
   int frames = 0;
   while (!glfwWindowShouldClose(window_)) {
     // Idle and complete: wait for input instead of redrawing the same image.
-    if (!automated && session.settled()) glfwWaitEventsTimeout(0.25);
+    if (!automated && session.shownSettled()) glfwWaitEventsTimeout(0.25);
     else glfwPollEvents();
     int fbWidth = 0, fbHeight = 0, winHeight = 0;
     glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
@@ -149,7 +149,7 @@ void ViewerWindow::run(ViewerSession& session, const std::function<void(const st
       const std::string stem = timestampedStem();
       writeScreenshots(session, stem + ".png", stem + ".exr", report);
     }
-    if (automated && frames >= options_.frames && session.settled()) {
+    if (automated && frames >= options_.frames && session.shownSettled()) {
       const bool exr = endsWith(options_.screenshot, ".exr");
       writeScreenshots(session, exr ? "" : options_.screenshot, exr ? options_.screenshot : "", report);
       return;
