@@ -53,7 +53,9 @@ Command addViewCommand(CLI::App& parent) {
             render::ViewerWindow window(windowOptions);
             const render::Camera camera = cameraFromFlags(args->flags, *store, window.aspect());
             render::ViewerSession session(*store, options, camera, render::summarizeDataset(*store));
-            window.run(session, [](const std::string& line) { std::printf("%s\n", line.c_str()); });
+            const auto print = [](const std::string& line) { std::printf("%s\n", line.c_str()); };
+            session.setReport(print);
+            window.run(session, print);
             return 0;
           }};
 }

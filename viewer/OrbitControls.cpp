@@ -44,6 +44,15 @@ Camera pan(const Camera& camera, double dxPixels, double dyPixels, int viewportH
   return out;
 }
 
+Camera roll(const Camera& camera, double degrees) {
+  const glm::dvec3 forward = glm::normalize(camera.lookat - camera.eye);
+  const glm::dvec3 up = glm::normalize(camera.up - glm::dot(camera.up, forward) * forward);
+  Camera out = camera;
+  // Rotating up about the forward axis by -degrees turns the camera counter-clockwise as seen from behind it.
+  out.up = glm::normalize(glm::dvec3(glm::rotate(glm::dmat4(1.0), glm::radians(-degrees), forward) * glm::dvec4(up, 0.0)));
+  return out;
+}
+
 Camera zoom(const Camera& camera, double steps) {
   const glm::dvec3 offset = camera.eye - camera.lookat;
   const double distance = glm::length(offset);

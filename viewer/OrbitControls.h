@@ -21,6 +21,11 @@ Camera orbit(const Camera& camera, double dxPixels, double dyPixels);
 // look-at distance follows the cursor (dx right, dy down in pixels).
 Camera pan(const Camera& camera, double dxPixels, double dyPixels, int viewportHeight);
 
+// Turns the camera about its view direction by `degrees` (positive: counter-clockwise as the viewer
+// sees the camera turn, so the image turns clockwise); eye and look-at point stay. The up vector comes
+// back orthogonal to the view. Orbiting then turns about the rolled up vector.
+Camera roll(const Camera& camera, double degrees);
+
 // Scales the eye's distance to the look-at point by kZoomPerStep^steps (never through it).
 Camera zoom(const Camera& camera, double steps);
 

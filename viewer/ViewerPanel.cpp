@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "ViewerOverlays.h"
 #include "ViewerSession.h"
 
 namespace fcc::render {
@@ -98,6 +99,7 @@ void ViewerSession::drawPanel(int windowHeight) {
     ImGui::Checkbox("finite-difference normals", &settings_.finiteDifferenceNormals);
     row("brick layout", brickLayoutName(*raycaster_.options().layout));
   }
+  drawCameraSection();
   if (ImGui::CollapsingHeader("Dataset", ImGuiTreeNodeFlags_DefaultOpen)) {
     row("file", summary_.file);
     row("grid", summary_.grid);
@@ -145,8 +147,37 @@ void ViewerSession::drawPanel(int windowHeight) {
     row("redrawn", drawn);
   }
   ImGui::TextDisabled("H or F1: help");
+  // The axis indicator in the panel's bottom corner (in the panel, not over the image: the image
+  // beside an unchanged panel is then all a settled frame draws, see ViewerSession::frame).
+  const float side = kAxisIndicatorSide * scale;
+  ImGui::SetCursorPosY(std::max(ImGui::GetCursorPosY(), float(windowHeight) - side - ImGui::GetStyle().WindowPadding.y));
+  const ImVec2 corner = ImGui::GetCursorScreenPos();
+  ImGui::Dummy(ImVec2(side, side));
+  drawAxes(*ImGui::GetWindowDrawList(), ImVec2(corner.x + 0.5f * side, corner.y + 0.5f * side), 0.4f * side, camera_);
   ImGui::PopItemWidth();
   ImGui::End();
+}
+
+void ViewerSession::drawCameraSection() {
+  if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  const auto triple = [](const glm::dvec3& v) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.4g, %.4g, %.4g", v.x, v.y, v.z);
+    return std::string(text);
+  };
+  row("eye", triple(camera_.eye));
+  row("look at", triple(camera_.lookat));
+  row("up", triple(camera_.up));
+  char fov[32];
+  std::snprintf(fov, sizeof fov, "%.4g deg", camera_.fovYDegrees);
+  row("field of view", fov);
+  if (ImGui::Button("save and copy (C)")) {
+    try {
+      saveCamera();
+    } catch (const std::exception& e) {
+      notify(e.what());  // an unwritable directory must not end the session
+    }
+  }
 }
 
 void ViewerSession::drawHelp() {
@@ -156,9 +187,11 @@ void ViewerSession::drawHelp() {
                ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
   static const char* const kKeys[][2] = {
       {"left drag", "orbit about the look-at point"},
+      {"ctrl + left drag", "roll"},
       {"middle drag, shift + left drag", "pan"},
       {"wheel", "zoom"},
       {"R", "reset the camera (frame the data)"},
+      {"C", "save the camera as JSON (for --camera) and copy it"},
       {"S, F12", "screenshot: PNG of the window and EXR of the image, in the current directory"},
       {"P", "show or hide the panel"},
       {"H, F1", "show or hide this help"},
@@ -170,23 +203,6 @@ void ViewerSession::drawHelp() {
     ImGui::TextUnformatted(k[1]);
   }
   ImGui::End();
-}
-
-std::string ViewerSession::statusLine() const {
-  if (settled()) return {};
-  char text[96];
-  if (stats_.streaming > 0)
-    std::snprintf(text, sizeof text, "streaming %zu bricks (%zu at the isovalue not loaded)", stats_.streaming,
-                  stats_.missing);
-  else
-    std::snprintf(text, sizeof text, "refining (%u bricks requested)", stats_.requested);
-  return text;
-}
-
-void ViewerSession::drawStreamingLine(int windowHeight) {
-  if (shownStatusLine_.empty()) return;
-  const ImVec2 at(panelWidth() + 10.0f, float(windowHeight) - ImGui::GetFontSize() - 10.0f);
-  ImGui::GetForegroundDrawList()->AddText(at, IM_COL32(255, 255, 255, 220), shownStatusLine_.c_str());
 }
 
 }  // namespace fcc::render

@@ -11,8 +11,10 @@
 #include <functional>
 #include <string_view>
 
+#include "CameraFile.h"
 #include "ImGuiDrawData.h"
 #include "OrbitControls.h"
+#include "OutputNames.h"
 #include "io/ImageOutput.h"
 
 namespace fcc::render {
@@ -35,6 +37,23 @@ ViewerSession::ViewerSession(const io::BrickStore& store, const RenderOptions& o
   settings_.finiteDifferenceNormals = options.finiteDifferenceNormals;
 }
 
+void ViewerSession::notify(const std::string& text) {
+  notice_ = text;
+  noticeUntil_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                        std::chrono::duration<double>(kNoticeSeconds));
+}
+
+std::string ViewerSession::saveCamera() {
+  const std::string path = uniqueTimestampedStem(outputDirectory_, "fccvdb-camera", {".json"}) + ".json";
+  writeCameraFile(path, camera_);
+  // The clipboard gets the same JSON (GLFW's clipboard in the window; ImGui's own without one).
+  ImGui::SetClipboardText(cameraJson(camera_).c_str());
+  const std::string line = "camera saved to " + path + " and copied (use it with --camera)";
+  if (report_) report_(line);
+  notify(line);
+  return path;
+}
+
 bool ViewerSession::takeScreenshotRequest() { return std::exchange(screenshotRequested_, false); }
 
 void ViewerSession::writeExr(const std::string& path) {
@@ -52,7 +71,9 @@ void ViewerSession::handleInput(int windowHeight) {
     const double dx = io.MouseDelta.x, dy = io.MouseDelta.y;
     const bool moved = (dx != 0.0 || dy != 0.0) && io.MousePos.x > -1e30f;
     const bool panning = io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
+    const bool rolling = io.MouseDown[0] && io.KeyCtrl && !io.KeyShift;
     if (moved && panning) camera_ = pan(camera_, dx, dy, windowHeight);
+    else if (moved && rolling) camera_ = roll(camera_, dx * kOrbitDegreesPerPixel);
     else if (moved && io.MouseDown[0]) camera_ = orbit(camera_, dx, dy);
     if (io.MouseWheel != 0.0f) camera_ = zoom(camera_, io.MouseWheel);
   }
@@ -63,6 +84,13 @@ void ViewerSession::handleInput(int windowHeight) {
     if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) settings_.showPanel = !settings_.showPanel;
     if (ImGui::IsKeyPressed(GLFW_KEY_S, false) || ImGui::IsKeyPressed(GLFW_KEY_F12, false))
       screenshotRequested_ = true;
+    if (ImGui::IsKeyPressed(GLFW_KEY_C, false)) {
+      try {
+        saveCamera();
+      } catch (const std::exception& e) {
+        notify(e.what());  // an unwritable directory must not end the session
+      }
+    }
   }
 }
 
@@ -126,6 +154,9 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   raycaster_.startStep(camera_, fbWidth, fbHeight, kUploadSecondsPerFrame, covered);
   drawPanel(windowHeight);
   if (settings_.showHelp) drawHelp();
+  drawAxisIndicator(windowHeight);
+  if (!notice_.empty() && std::chrono::steady_clock::now() > noticeUntil_) notice_.clear();
+  drawNotice();
   shownStatusLine_ = statusLine();
   drawStreamingLine(windowHeight);
   ImGui::Render();

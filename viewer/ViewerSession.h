@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -79,6 +80,20 @@ class ViewerSession {
   // included; waits for bricks still streaming.
   void writeExr(const std::string& path);
 
+  // Where the keys write their files (screenshots, cameras): empty, the current directory.
+  void setOutputDirectory(const std::string& directory) { outputDirectory_ = directory; }
+  // Gets one line for each file a key wrote (the window prints it); also shown on screen (notice()).
+  void setReport(std::function<void(const std::string&)> report) { report_ = std::move(report); }
+  // A line shown over the top of the image for kNoticeSeconds ("camera saved to ...").
+  void notify(const std::string& text);
+  // The notice shown now; empty when none.
+  const std::string& notice() const { return notice_; }
+  static constexpr double kNoticeSeconds = 4.0;
+
+  // The C key: writes the camera (viewer/CameraFile.h) to a new timestamped .json in the output
+  // directory, copies its JSON to the clipboard, and says so. Returns the file's path.
+  std::string saveCamera();
+
   const Camera& camera() const { return camera_; }
   void setCamera(const Camera& camera) { camera_ = camera; }
   const ViewerSettings& settings() const { return settings_; }
@@ -97,6 +112,9 @@ class ViewerSession {
   void updateStats(const StepStats& step, double imageDrawn, bool uiDrawn);
   void drawPanel(int windowHeight);  // viewer/ViewerPanel.cpp
   void drawHelp();
+  void drawCameraSection();
+  void drawAxisIndicator(int windowHeight);
+  void drawNotice();
   std::string statusLine() const;  // of the last frame's figures; empty once settled
   void drawStreamingLine(int windowHeight);
 
@@ -110,6 +128,10 @@ class ViewerSession {
   DatasetSummary summary_;
   float panelWidth_ = 0.0f;
   bool screenshotRequested_ = false;
+  std::string outputDirectory_;
+  std::function<void(const std::string&)> report_;
+  std::string notice_;
+  std::chrono::steady_clock::time_point noticeUntil_;
   std::string shownStatusLine_;
   bool shownSettled_ = false;
   std::chrono::steady_clock::time_point rateWindowStart_;

@@ -6,13 +6,12 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <ctime>
 #include <vector>
 
+#include "OutputNames.h"
 #include "io/ImageOutput.h"
 #include "sparse/Error.h"
 
@@ -22,24 +21,6 @@ namespace {
 std::string glfwLastError;  // GLFW reports errors through a callback; the last one explains a failure
 
 void onGlfwError(int, const char* description) { glfwLastError = description ? description : "unknown error"; }
-
-bool exists(const std::string& path) {
-  struct stat st;
-  return ::stat(path.c_str(), &st) == 0;
-}
-
-// "fccvdb-20261121-153012" in the current directory, with "-2", "-3", ... when taken.
-std::string timestampedStem() {
-  const std::time_t now = std::time(nullptr);
-  std::tm local{};
-  localtime_r(&now, &local);
-  char stem[64];
-  std::strftime(stem, sizeof stem, "fccvdb-%Y%m%d-%H%M%S", &local);
-  std::string candidate = stem;
-  for (int n = 2; exists(candidate + ".png") || exists(candidate + ".exr"); ++n)
-    candidate = std::string(stem) + "-" + std::to_string(n);
-  return candidate;
-}
 
 bool endsWith(const std::string& s, const std::string& suffix) {
   if (s.size() < suffix.size()) return false;
@@ -146,7 +127,7 @@ void ViewerWindow::run(ViewerSession& session, const std::function<void(const st
     session.frame(fbWidth, fbHeight, winHeight, bufferAge_->age());
     ++frames;
     if (session.takeScreenshotRequest()) {
-      const std::string stem = timestampedStem();
+      const std::string stem = uniqueTimestampedStem("", "fccvdb", {".png", ".exr"});
       writeScreenshots(session, stem + ".png", stem + ".exr", report);
     }
     if (automated && frames >= options_.frames && session.shownSettled()) {

@@ -1,9 +1,6 @@
 // `fccvdb view` under Xvfb (Debian's xvfb-run): the automation screenshot shows the panel and the
 // surface, and its 3D area matches `fccvdb render` of the same camera; a missing display and a
 // Cartesian input each give one clear line.
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "ExrRead.h"
 #include "PngRead.h"
 #include "RunCommand.h"
 
@@ -22,6 +20,7 @@ namespace {
 
 using test::CommandResult;
 using test::lineCount;
+using test::readExrChannel;
 using test::readPng;
 using test::Rgb8;
 using test::runFccvdb;
@@ -84,21 +83,6 @@ TEST(CliView, ScreenshotShowsThePanelAndMatchesRenderOutsideIt) {
   EXPECT_GT(surface, compared / 50) << "the surface must show";
   EXPECT_LE(double(outliers), kOutlierFraction * double(compared));
   EXPECT_GT(panelDiffers, long(panel) * a.height / 4) << "the panel must show";
-}
-
-// One float channel of an EXR, row 0 at the top.
-std::vector<float> readExrChannel(const std::string& path, const char* channel, int& width, int& height) {
-  Imf::InputFile file(path.c_str());
-  const auto dw = file.header().dataWindow();
-  width = dw.max.x - dw.min.x + 1;
-  height = dw.max.y - dw.min.y + 1;
-  std::vector<float> values(std::size_t(width) * height);
-  Imf::FrameBuffer fb;
-  fb.insert(channel, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data() - dw.min.x - dw.min.y * width),
-                                sizeof(float), sizeof(float) * width));
-  file.setFrameBuffer(fb);
-  file.readPixels(dw.min.y, dw.max.y);
-  return values;
 }
 
 // The EXR screenshot holds the whole view, the columns under the panel (where the viewer casts no

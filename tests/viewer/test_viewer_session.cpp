@@ -3,10 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "SessionHarness.h"
+#include "tests/tools/ExrRead.h"
+#include "viewer/CameraFile.h"
+#include "viewer/OrbitControls.h"
 
 namespace fcc {
 namespace {
@@ -49,6 +53,77 @@ TEST_F(ViewerSession, ScreenshotFrameIsSettledAndShowsNoStreamingLine) {
   h.frame();
   h.frame();
   EXPECT_EQ(differingChannels(shot, h.pixels(), panel), 0) << "the screenshot's frame is not the final image";
+}
+
+// Ctrl + left drag rolls: the eye and look-at point stay, the up vector turns about the view.
+TEST_F(ViewerSession, CtrlDragRolls) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  const render::Camera before = h.session->camera();
+  const float x = SessionHarness::kWidth - 60.0f, y = 120.0f;
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(x, y); });
+  h.frame([&](ImGuiIO& io) {
+    io.MouseDown[0] = true;
+    io.KeyCtrl = true;
+  });
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(x + 40.0f, y); });
+  h.frame([&](ImGuiIO& io) {
+    io.MouseDown[0] = false;
+    io.KeyCtrl = false;
+  });
+  const render::Camera after = h.session->camera();
+  EXPECT_EQ(after.eye, before.eye) << "a roll is not an orbit";
+  EXPECT_EQ(after.lookat, before.lookat);
+  const glm::dvec3 expectedUp = render::roll(before, 40.0 * render::kOrbitDegreesPerPixel).up;
+  EXPECT_NEAR(glm::length(after.up - expectedUp), 0.0, 1e-12);
+}
+
+// C writes the camera beside the other outputs, copies it and says so on screen; `fccvdb render
+// --camera` of that file renders what the session shows (the complete frame the EXR screenshot
+// holds), pixel for pixel and depth for depth.
+TEST_F(ViewerSession, SavedCameraRendersTheSameImageWithRender) {
+  TempDir dir;
+  const std::string blobs = test::writeSmallBlobs(dir);
+  SessionHarness h(blobs);
+  h.session->setOutputDirectory(dir.path.string());
+  // A camera no default gives: orbited, rolled and panned, with digits a short format would lose.
+  render::Camera camera = render::roll(render::orbit(h.session->camera(), 37.0, 11.0), 23.0);
+  camera = render::pan(camera, 7.3, -3.1, SessionHarness::kHeight);
+  h.session->setCamera(camera);
+  std::vector<std::string> reported;
+  h.session->setReport([&](const std::string& line) { reported.push_back(line); });
+  h.press(GLFW_KEY_C);
+  std::string saved;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path))
+    if (entry.path().extension() == ".json") saved = entry.path().string();
+  ASSERT_FALSE(saved.empty()) << "C wrote no camera file into the output directory";
+  EXPECT_EQ(saved.find(dir.path.string() + "/fccvdb-camera-"), 0u) << saved;
+  ASSERT_EQ(reported.size(), 1u);
+  EXPECT_NE(reported[0].find(saved), std::string::npos) << reported[0];
+  EXPECT_NE(h.session->notice().find(saved), std::string::npos) << "no on-screen confirmation: " << h.session->notice();
+  EXPECT_EQ(std::string(ImGui::GetClipboardText()), render::cameraJson(camera));
+
+  const std::string shown = dir / "session.exr", rendered = dir / "render.exr";
+  h.session->writeExr(shown);
+  const test::CommandResult r = test::runFccvdb("render " + blobs + " --camera " + saved + " --iso 0.3 --res " +
+                                                std::to_string(SessionHarness::kWidth) + "x" +
+                                                std::to_string(SessionHarness::kHeight) + " -o " + rendered + " --quiet");
+  if (test::failedForLackOfGl(r)) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* channel : {"R", "G", "B", "A", "Z"}) {
+    int w = 0, hgt = 0, rw = 0, rh = 0;
+    const std::vector<float> a = test::readExrChannel(shown, channel, w, hgt);
+    const std::vector<float> b = test::readExrChannel(rendered, channel, rw, rh);
+    ASSERT_EQ(w, rw);
+    ASSERT_EQ(hgt, rh);
+    int differing = 0, hits = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      differing += !(a[i] == b[i] || (std::isinf(a[i]) && std::isinf(b[i])));
+      hits += std::isfinite(b[i]) && b[i] != 0.0f;
+    }
+    EXPECT_EQ(differing, 0) << "channel " << channel;
+    EXPECT_GT(hits, int(a.size()) / 50) << "channel " << channel << ": the surface must show";
+  }
 }
 
 }  // namespace
