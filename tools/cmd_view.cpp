@@ -55,7 +55,7 @@ Command addViewCommand(CLI::App& parent) {
             render::ViewerSession session(*store, options, camera, render::summarizeDataset(*store));
             const auto print = [](const std::string& line) { std::printf("%s\n", line.c_str()); };
             session.setReport(print);
-            window.run(session, print);
+            window.run(session);
             return 0;
           }};
 }

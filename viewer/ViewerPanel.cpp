@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "Srgb.h"
 #include "ViewerOverlays.h"
 #include "ViewerSession.h"
 
@@ -44,6 +45,24 @@ void usageBar(const char* label, double used, double budget) {
   ImGui::ProgressBar(budget > 0.0 ? float(std::min(used / budget, 1.0)) : 0.0f, ImVec2(-1.0f, 0.0f), overlay);
 }
 
+ImRectF lastItemRect() {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  return {lo.x, lo.y, hi.x, hi.y};
+}
+
+// A colour's fields and swatch (sRGB, 0..1), then its label; `swatch` gets where the swatch is.
+bool colourEdit(const char* label, glm::vec3& srgb, ImRectF* swatch = nullptr) {
+  ImGui::PushID(label);
+  const bool changed = ImGui::ColorEdit3("##colour", &srgb.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_NoLabel);
+  // Without its label the widget ends with the swatch, a square of the frame's height.
+  const ImRectF all = lastItemRect();
+  if (swatch) *swatch = {all.x1 - ImGui::GetFrameHeight(), all.y0, all.x1, all.y0 + ImGui::GetFrameHeight()};
+  ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
+  ImGui::TextUnformatted(label);
+  ImGui::PopID();
+  return changed;
+}
+
 }  // namespace
 
 void ViewerSession::drawPanel(int windowHeight) {
@@ -62,9 +81,14 @@ void ViewerSession::drawPanel(int windowHeight) {
   ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);  // room for the labels
 
   if (ImGui::CollapsingHeader("Isosurface", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // The label left of the slider, not in it: the slider's handle would cover it.
+    ImGui::TextUnformatted("isovalue");
+    layout_.isoLabel = lastItemRect();
+    ImGui::SameLine();
     ImGui::SetNextItemWidth(-1.0f);
     // Instant: the bounds do not depend on the isovalue, only which bricks are needed does.
-    ImGui::SliderFloat("##iso", &settings_.iso, summary_.valueMin, summary_.valueMax, "iso %.4g");
+    ImGui::SliderFloat("##iso", &settings_.iso, summary_.valueMin, summary_.valueMax, "%.5g");
+    layout_.isoSlider = lastItemRect();
     const auto& h = summary_.histogram;
     if (!h.empty()) {
       // Logarithmic counts: a large background bin would flatten everything else.
@@ -91,8 +115,12 @@ void ViewerSession::drawPanel(int windowHeight) {
       const float a = glm::radians(azimuth), e = glm::radians(elevation);
       settings_.lightInCamera = glm::vec3(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
     }
-    ImGui::ColorEdit3("surface", &settings_.surfaceColor.x, ImGuiColorEditFlags_Float);
-    ImGui::ColorEdit3("background", &settings_.background.x, ImGuiColorEditFlags_Float);
+    // The renderer's colours are linear; the swatches and fields show them as drawn on screen (sRGB),
+    // and an edit is converted back (only then: the defaults stay bit-exact).
+    glm::vec3 surface = srgbFromLinear(settings_.surfaceColor), background = srgbFromLinear(settings_.background);
+    if (colourEdit("surface", surface)) settings_.surfaceColor = linearFromSrgb(surface);
+    if (colourEdit("background", background, &layout_.backgroundSwatch))
+      settings_.background = linearFromSrgb(background);
   }
   if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("empty-space skipping", &settings_.skipEmpty);
@@ -185,7 +213,7 @@ void ViewerSession::drawHelp() {
   ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
   ImGui::Begin("Help", &settings_.showHelp,
                ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
-  static const char* const kKeys[][2] = {
+  static const char* const kRows[][2] = {
       {"left drag", "orbit about the look-at point"},
       {"ctrl + left drag", "roll"},
       {"middle drag, shift + left drag", "pan"},
@@ -195,12 +223,21 @@ void ViewerSession::drawHelp() {
       {"S, F12", "screenshot: PNG of the window and EXR of the image, in the current directory"},
       {"P", "show or hide the panel"},
       {"H, F1", "show or hide this help"},
+      {"ctrl + click a slider", "type an exact value (Enter applies it, Esc cancels)"},
       {"Esc", "quit"},
   };
-  for (const auto& k : kKeys) {
-    ImGui::TextUnformatted(k[0]);
-    ImGui::SameLine(ImGui::GetFontSize() * 15.0f);
-    ImGui::TextUnformatted(k[1]);
+  // The descriptions start right of the widest key, at any font size.
+  float keysWidth = 0.0f;
+  for (const auto& r : kRows) keysWidth = std::max(keysWidth, ImGui::CalcTextSize(r[0]).x);
+  const float column = ImGui::GetStyle().WindowPadding.x + keysWidth + ImGui::GetFontSize();
+  layout_.helpKeysRight = 0.0f;
+  layout_.helpTextLeft = FLT_MAX;
+  for (const auto& r : kRows) {
+    ImGui::TextUnformatted(r[0]);
+    layout_.helpKeysRight = std::max(layout_.helpKeysRight, ImGui::GetItemRectMax().x);
+    ImGui::SameLine(column);
+    ImGui::TextUnformatted(r[1]);
+    layout_.helpTextLeft = std::min(layout_.helpTextLeft, ImGui::GetItemRectMin().x);
   }
   ImGui::End();
 }

@@ -5,6 +5,8 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <epoxy/gl.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +17,7 @@
 #include "ImGuiDrawData.h"
 #include "OrbitControls.h"
 #include "OutputNames.h"
+#include "GlProgram.h"
 #include "io/ImageOutput.h"
 
 namespace fcc::render {
@@ -54,7 +57,36 @@ std::string ViewerSession::saveCamera() {
   return path;
 }
 
-bool ViewerSession::takeScreenshotRequest() { return std::exchange(screenshotRequested_, false); }
+void ViewerSession::writeScreenshots(const std::string& pngPath, const std::string& exrPath) {
+  std::string written;
+  if (!pngPath.empty()) {
+    // The bound framebuffer as this frame drew it (image and panel), rows flipped to put row 0 at the top.
+    const int w = fbWidth_, h = fbHeight_;
+    std::vector<unsigned char> bottomUp(std::size_t(w) * h * 3), rgb(bottomUp.size());
+    // Read what this frame drew into: the window's back buffer, or an offscreen target.
+    GLint drawFramebuffer = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(drawFramebuffer));
+    if (drawFramebuffer == 0) glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, bottomUp.data());
+    checkGl("reading the frame for a screenshot");
+    for (int y = 0; y < h; ++y)
+      std::copy_n(bottomUp.data() + std::size_t(h - 1 - y) * w * 3, std::size_t(w) * 3, rgb.data() + std::size_t(y) * w * 3);
+    io::writeScreenPng(pngPath, w, h, rgb);
+    const long panelPixels = windowHeight_ > 0 ? std::lround(panelWidth() * float(h) / float(windowHeight_)) : 0;
+    if (report_)
+      report_("wrote " + pngPath + " (" + std::to_string(w) + "x" + std::to_string(h) + " window, panel " +
+              std::to_string(panelPixels) + " px wide)");
+    written = pngPath;
+  }
+  if (!exrPath.empty()) {
+    writeExr(exrPath);
+    if (report_) report_("wrote " + exrPath + " (R,G,B,A,Z,N.X,N.Y,N.Z)");
+    written += (written.empty() ? "" : " and ") + exrPath;
+  }
+  if (!written.empty()) notify("screenshot written: " + written);
+}
 
 void ViewerSession::writeExr(const std::string& path) {
   // A complete frame of the whole view: the progressive one leaves the columns under the panel empty.
@@ -77,7 +109,9 @@ void ViewerSession::handleInput(int windowHeight) {
     else if (moved && io.MouseDown[0]) camera_ = orbit(camera_, dx, dy);
     if (io.MouseWheel != 0.0f) camera_ = zoom(camera_, io.MouseWheel);
   }
-  if (!io.WantCaptureKeyboard) {
+  // Keys reach the viewer while the panel has focus (a slider held, a colour picked), but not while
+  // a text field takes them (ctrl + click on a slider types its value: an "s" there is a letter).
+  if (!io.WantTextInput) {
     if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) camera_ = initialCamera_;
     if (ImGui::IsKeyPressed(GLFW_KEY_H, false) || ImGui::IsKeyPressed(GLFW_KEY_F1, false))
       settings_.showHelp = !settings_.showHelp;
@@ -141,6 +175,9 @@ void ViewerSession::updateStats(const StepStats& step, double imageDrawn, bool u
 }
 
 void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int bufferAge) {
+  fbWidth_ = fbWidth;
+  fbHeight_ = fbHeight;
+  windowHeight_ = windowHeight;
   handleInput(windowHeight);
   panelWidth_ = kPanelWidth * ImGui::GetIO().FontGlobalScale;
   // The panel is opaque: the columns wholly under it get no rays and no image. Framebuffer pixels
@@ -179,6 +216,15 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   updateStats(step, double(coveredArea(regions)) / double(std::max<long long>(1, look.imageArea().area())), !uiShown);
   // This frame's image is complete (its pass was the last one) and its line told a settled frame.
   shownSettled_ = shownStatusLine_.empty() && settled();
+  if (std::exchange(screenshotRequested_, false)) {
+    // Here, once the frame is drawn: the PNG shows it as the window will (the notice from the next frame on).
+    const std::string stem = uniqueTimestampedStem(outputDirectory_, "fccvdb", {".png", ".exr"});
+    try {
+      writeScreenshots(stem + ".png", stem + ".exr");
+    } catch (const std::exception& e) {
+      notify(e.what());  // an unwritable directory must not end the session
+    }
+  }
 }
 
 }  // namespace fcc::render

@@ -32,6 +32,20 @@ struct ViewerSettings {
   bool showHelp = false;
 };
 
+// Where the last frame put some of the panel's and help window's items, in window units (tests
+// check the layout with it: a click on the histogram, the swatch's colour, labels that must not overlap).
+struct ImRectF {
+  float x0 = 0.0f, y0 = 0.0f, x1 = 0.0f, y1 = 0.0f;
+  bool empty() const { return !(x1 > x0 && y1 > y0); }
+  float centreX() const { return 0.5f * (x0 + x1); }
+  float centreY() const { return 0.5f * (y0 + y1); }
+};
+struct PanelLayout {
+  ImRectF isoLabel, isoSlider, histogram, backgroundSwatch;
+  // The help window's rows: the rightmost end of a key's text and the leftmost start of a description.
+  float helpKeysRight = 0.0f, helpTextLeft = 0.0f;
+};
+
 // Live figures for the statistics section, updated every frame.
 struct ViewerStats {
   double frameMs = 0.0;          // wall time per frame, averaged over the last half second
@@ -74,10 +88,12 @@ class ViewerSession {
   bool shownSettled() const { return shownSettled_; }
   // The status line the last frame drew over the image ("streaming ...", "refining ..."); empty when none.
   const std::string& shownStatusLine() const { return shownStatusLine_; }
-  // Set by the screenshot key (S, F12); cleared by takeScreenshotRequest().
-  bool takeScreenshotRequest();
-  // Writes a complete frame of the current view as EXR (channels as `fccvdb render`), panel columns
-  // included; waits for bricks still streaming.
+  // Writes the frame just drawn into the bound framebuffer (.png: image and panel, as shown) and/or
+  // a complete frame of the current view (.exr: channels as `fccvdb render`, panel columns
+  // included; waits for bricks still streaming); an empty path is skipped. Reports each file and
+  // shows a notice naming them. The screenshot key (S, F12) calls it at the end of its frame with a
+  // new timestamped name in the output directory.
+  void writeScreenshots(const std::string& pngPath, const std::string& exrPath);
   void writeExr(const std::string& path);
 
   // Where the keys write their files (screenshots, cameras): empty, the current directory.
@@ -100,6 +116,7 @@ class ViewerSession {
   ViewerSettings& settings() { return settings_; }
   const ViewerStats& stats() const { return stats_; }
   const DatasetSummary& summary() const { return summary_; }
+  const PanelLayout& panelLayout() const { return layout_; }
   // The panel's width in window coordinates (0 while hidden), where the image is covered.
   float panelWidth() const { return settings_.showPanel ? panelWidth_ : 0.0f; }
   // The upload time budget per frame (seconds), so a frame's uploads do not stall the UI.
@@ -126,7 +143,9 @@ class ViewerSession {
   ViewerSettings settings_;
   ViewerStats stats_;
   DatasetSummary summary_;
+  PanelLayout layout_;
   float panelWidth_ = 0.0f;
+  int fbWidth_ = 0, fbHeight_ = 0, windowHeight_ = 0;  // of the last frame
   bool screenshotRequested_ = false;
   std::string outputDirectory_;
   std::function<void(const std::string&)> report_;

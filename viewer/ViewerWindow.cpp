@@ -11,7 +11,6 @@
 #include <cstdio>
 #include <vector>
 
-#include "OutputNames.h"
 #include "io/ImageOutput.h"
 #include "sparse/Error.h"
 
@@ -80,31 +79,7 @@ double ViewerWindow::aspect() const {
   return w > 0 && h > 0 ? double(w) / double(h) : double(options_.width) / double(options_.height);
 }
 
-void ViewerWindow::writeScreenshots(ViewerSession& session, const std::string& pngPath, const std::string& exrPath,
-                                    const std::function<void(const std::string&)>& report) {
-  int w = 0, h = 0, windowWidth = 0, windowHeight = 0;
-  glfwGetFramebufferSize(window_, &w, &h);
-  glfwGetWindowSize(window_, &windowWidth, &windowHeight);
-  if (!pngPath.empty()) {
-    // The back buffer as drawn this frame (image and panel), rows flipped to put row 0 at the top.
-    std::vector<unsigned char> bottomUp(std::size_t(w) * h * 3), rgb(bottomUp.size());
-    glReadBuffer(GL_BACK);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, bottomUp.data());
-    checkGl("reading the window for a screenshot");
-    for (int y = 0; y < h; ++y)
-      std::copy_n(bottomUp.data() + std::size_t(h - 1 - y) * w * 3, std::size_t(w) * 3, rgb.data() + std::size_t(y) * w * 3);
-    io::writeScreenPng(pngPath, w, h, rgb);
-    report("wrote " + pngPath + " (" + std::to_string(w) + "x" + std::to_string(h) + " window, panel " +
-           std::to_string(int(std::lround(session.panelWidth() * w / std::max(1, windowWidth)))) + " px wide)");
-  }
-  if (!exrPath.empty()) {
-    session.writeExr(exrPath);
-    report("wrote " + exrPath + " (R,G,B,A,Z,N.X,N.Y,N.Z)");
-  }
-}
-
-void ViewerWindow::run(ViewerSession& session, const std::function<void(const std::string&)>& report) {
+void ViewerWindow::run(ViewerSession& session) {
   const bool automated = !options_.screenshot.empty();
   int frames = 0;
   while (!glfwWindowShouldClose(window_)) {
@@ -121,18 +96,15 @@ void ViewerWindow::run(ViewerSession& session, const std::function<void(const st
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    if (!ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false))
+    // Esc quits unless a text field has it (there it ends the edit).
+    if (!ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false))
       glfwSetWindowShouldClose(window_, GLFW_TRUE);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     session.frame(fbWidth, fbHeight, winHeight, bufferAge_->age());
     ++frames;
-    if (session.takeScreenshotRequest()) {
-      const std::string stem = uniqueTimestampedStem("", "fccvdb", {".png", ".exr"});
-      writeScreenshots(session, stem + ".png", stem + ".exr", report);
-    }
     if (automated && frames >= options_.frames && session.shownSettled()) {
       const bool exr = endsWith(options_.screenshot, ".exr");
-      writeScreenshots(session, exr ? "" : options_.screenshot, exr ? options_.screenshot : "", report);
+      session.writeScreenshots(exr ? "" : options_.screenshot, exr ? options_.screenshot : "");
       return;
     }
     glfwSwapBuffers(window_);

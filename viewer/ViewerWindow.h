@@ -34,14 +34,11 @@ class ViewerWindow {
 
   // The framebuffer's aspect ratio (for framing the camera before the session exists).
   double aspect() const;
-  // Runs until the window closes (or the automation screenshot is written). `report` gets one line
-  // per screenshot written.
-  void run(ViewerSession& session, const std::function<void(const std::string&)>& report);
+  // Runs until the window closes (or the automation screenshot is written); the session reports
+  // the files it writes (ViewerSession::setReport).
+  void run(ViewerSession& session);
 
  private:
-  void writeScreenshots(ViewerSession& session, const std::string& pngPath, const std::string& exrPath,
-                        const std::function<void(const std::string&)>& report);
-
   WindowOptions options_;
   GLFWwindow* window_ = nullptr;
   bool imguiReady_ = false;

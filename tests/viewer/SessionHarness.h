@@ -26,7 +26,13 @@ struct SessionHarness {
 
   explicit SessionHarness(const std::string& path, float iso = 0.3f, std::size_t gpuCacheBytes = kSmallPoolBytes)
       : store(path) {
-    ImGui::GetIO().FontGlobalScale = 0.5f;  // a narrower panel: more image, fewer rays on llvmpipe
+    ImGuiIO& io = ImGui::GetIO();
+    io.FontGlobalScale = 0.5f;  // a narrower panel: more image, fewer rays on llvmpipe
+    // The keys text fields use, mapped as GLFW's backend maps them.
+    io.KeyMap[ImGuiKey_Enter] = GLFW_KEY_ENTER;
+    io.KeyMap[ImGuiKey_Escape] = GLFW_KEY_ESCAPE;
+    io.KeyMap[ImGuiKey_Backspace] = GLFW_KEY_BACKSPACE;
+    io.KeyMap[ImGuiKey_A] = GLFW_KEY_A;
     render::RenderOptions options;
     options.iso = iso;
     options.gpuCacheBytes = gpuCacheBytes;
@@ -63,6 +69,12 @@ struct SessionHarness {
       io.KeysDown[glfwKey] = false;
       io.KeyShift = false;
       io.KeyCtrl = false;
+    });
+  }
+  // Characters typed into ImGui (a text field), one frame.
+  void type(const std::string& text) {
+    frame([&](ImGuiIO& io) {
+      for (char c : text) io.AddInputCharacter(static_cast<unsigned>(c));
     });
   }
   // A click at (x, y) in window units: moved there, pressed a frame, released the next.

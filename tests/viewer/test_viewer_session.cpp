@@ -2,7 +2,9 @@
 // what its keys and mouse do.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -11,6 +13,7 @@
 #include "tests/tools/ExrRead.h"
 #include "viewer/CameraFile.h"
 #include "viewer/OrbitControls.h"
+#include "viewer/Srgb.h"
 
 namespace fcc {
 namespace {
@@ -124,6 +127,91 @@ TEST_F(ViewerSession, SavedCameraRendersTheSameImageWithRender) {
     EXPECT_EQ(differing, 0) << "channel " << channel;
     EXPECT_GT(hits, int(a.size()) / 50) << "channel " << channel << ": the surface must show";
   }
+}
+
+// Files of `extension` in `dir`.
+std::vector<std::string> filesWith(const TempDir& dir, const std::string& extension) {
+  std::vector<std::string> out;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path))
+    if (entry.path().extension() == extension) out.push_back(entry.path().string());
+  return out;
+}
+
+// S works while the panel holds the keyboard (here: the mouse held on the iso slider, which makes
+// ImGui want the keyboard), writes both files into the output directory and says so on screen.
+TEST_F(ViewerSession, ScreenshotKeyWorksWhileThePanelHasFocusAndIsConfirmed) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  h.session->setOutputDirectory(dir.path.string());
+  for (int i = 0; i < 3; ++i) h.frame();  // the panel's scroll bar appears on its second frame
+  const render::ImRectF slider = h.session->panelLayout().isoSlider;
+  ASSERT_FALSE(slider.empty());
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(slider.centreX(), slider.centreY()); });
+  h.frame([&](ImGuiIO& io) { io.MouseDown[0] = true; });
+  h.frame();
+  ASSERT_TRUE(ImGui::GetIO().WantCaptureKeyboard) << "the panel does not hold the keyboard: nothing is tested";
+  h.press(GLFW_KEY_S);
+  h.frame([&](ImGuiIO& io) { io.MouseDown[0] = false; });
+  const std::vector<std::string> pngs = filesWith(dir, ".png"), exrs = filesWith(dir, ".exr");
+  ASSERT_EQ(pngs.size(), 1u) << "S wrote no PNG while the panel had focus";
+  ASSERT_EQ(exrs.size(), 1u);
+  EXPECT_NE(h.session->notice().find("screenshot written: " + pngs[0] + " and " + exrs[0]), std::string::npos)
+      << h.session->notice();
+}
+
+// Ctrl + click on the iso slider types its value (as the help says); S there is a letter for the
+// field, not a screenshot.
+TEST_F(ViewerSession, TextFieldKeepsItsKeysAndCtrlClickTypesAValue) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  h.session->setOutputDirectory(dir.path.string());
+  for (int i = 0; i < 3; ++i) h.frame();  // the panel's scroll bar appears on its second frame
+  const render::ImRectF slider = h.session->panelLayout().isoSlider;
+  h.click(slider.centreX(), slider.centreY(), /*ctrl=*/true);
+  ASSERT_TRUE(ImGui::GetIO().WantTextInput) << "ctrl + click did not open the slider's text field";
+  h.press(GLFW_KEY_S);
+  h.press(GLFW_KEY_R);
+  EXPECT_TRUE(filesWith(dir, ".png").empty()) << "S in a text field wrote a screenshot";
+  h.type("0.25");
+  h.press(GLFW_KEY_ENTER);
+  h.frame();  // ImGui tells whether it wants text at the start of a frame, from the frame before
+  EXPECT_FALSE(ImGui::GetIO().WantTextInput);
+  EXPECT_EQ(h.session->settings().iso, 0.25f);
+}
+
+// The help window's descriptions start right of its widest key; the iso slider's label is beside the
+// slider, not under its handle.
+TEST_F(ViewerSession, HelpColumnsAndIsoLabelDoNotOverlap) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  h.press(GLFW_KEY_H);
+  ASSERT_TRUE(h.session->settings().showHelp);
+  const render::PanelLayout& l = h.session->panelLayout();
+  EXPECT_GT(l.helpKeysRight, 0.0f);
+  EXPECT_LT(l.helpKeysRight, l.helpTextLeft) << "a key runs into its description";
+  ASSERT_FALSE(l.isoLabel.empty());
+  ASSERT_FALSE(l.isoSlider.empty());
+  EXPECT_LE(l.isoLabel.x1, l.isoSlider.x0) << "the label is inside the slider's frame";
+}
+
+// The background swatch shows the colour the background is drawn in: the sRGB encoding of the
+// linear colour the renderer keeps.
+TEST_F(ViewerSession, BackgroundSwatchShowsTheDrawnColour) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  const glm::vec3 linear(0.3f, 0.1f, 0.02f);
+  h.session->settings().background = linear;
+  h.frame();
+  h.frame();
+  const render::ImRectF swatch = h.session->panelLayout().backgroundSwatch;
+  ASSERT_FALSE(swatch.empty());
+  const std::vector<unsigned char> rgba = h.pixels();
+  const std::size_t i = (std::size_t(swatch.centreY()) * SessionHarness::kWidth + std::size_t(swatch.centreX())) * 4;
+  for (int c = 0; c < 3; ++c) {
+    const int expected = int(std::lround(255.0f * render::srgbFromLinear(linear[c])));
+    EXPECT_NEAR(int(rgba[i + std::size_t(c)]), expected, 1) << "channel " << c;
+  }
+  EXPECT_EQ(h.session->settings().background, linear) << "showing the colour must not change it";
 }
 
 }  // namespace
