@@ -89,20 +89,7 @@ void ViewerSession::drawPanel(int windowHeight) {
     // Instant: the bounds do not depend on the isovalue, only which bricks are needed does.
     ImGui::SliderFloat("##iso", &settings_.iso, summary_.valueMin, summary_.valueMax, "%.5g");
     layout_.isoSlider = lastItemRect();
-    const auto& h = summary_.histogram;
-    if (!h.empty()) {
-      // Logarithmic counts: a large background bin would flatten everything else.
-      std::vector<float> logCounts(h.size());
-      std::transform(h.begin(), h.end(), logCounts.begin(), [](float c) { return std::log1p(c); });
-      ImGui::PlotHistogram("##histogram", logCounts.data(), int(logCounts.size()), 0, "coefficients (log count)", 0.0f,
-                           FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 56.0f * scale));
-      // The isovalue's place under the histogram.
-      const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-      const float span = summary_.valueMax - summary_.valueMin;
-      const float t = span > 0.0f ? std::clamp((settings_.iso - summary_.valueMin) / span, 0.0f, 1.0f) : 0.5f;
-      const float x = lo.x + t * (hi.x - lo.x);
-      ImGui::GetWindowDrawList()->AddLine(ImVec2(x, lo.y), ImVec2(x, hi.y), IM_COL32(255, 90, 60, 255), 2.0f);
-    }
+    drawHistogram();
   }
   if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) {
     // Light direction in camera space as azimuth (from the view axis towards the right) and

@@ -42,6 +42,7 @@ struct ImRectF {
 };
 struct PanelLayout {
   ImRectF isoLabel, isoSlider, histogram, backgroundSwatch;
+  std::string histogramTooltip;  // the last one shown
   // The help window's rows: the rightmost end of a key's text and the leftmost start of a description.
   float helpKeysRight = 0.0f, helpTextLeft = 0.0f;
 };
@@ -130,6 +131,7 @@ class ViewerSession {
   void drawPanel(int windowHeight);  // viewer/ViewerPanel.cpp
   void drawHelp();
   void drawCameraSection();
+  void drawHistogram();  // viewer/PanelHistogram.cpp
   void drawAxisIndicator(int windowHeight);
   void drawNotice();
   std::string statusLine() const;  // of the last frame's figures; empty once settled

@@ -12,6 +12,7 @@
 #include "SessionHarness.h"
 #include "tests/tools/ExrRead.h"
 #include "viewer/CameraFile.h"
+#include "viewer/HistogramAxis.h"
 #include "viewer/OrbitControls.h"
 #include "viewer/Srgb.h"
 
@@ -212,6 +213,33 @@ TEST_F(ViewerSession, BackgroundSwatchShowsTheDrawnColour) {
     EXPECT_NEAR(int(rgba[i + std::size_t(c)]), expected, 1) << "channel " << c;
   }
   EXPECT_EQ(h.session->settings().background, linear) << "showing the colour must not change it";
+}
+
+// The histogram's tooltip names the bin under the mouse (its value range and count), and a click
+// sets the isovalue to the value there; its axis is the recorded samples' range.
+TEST_F(ViewerSession, HistogramTooltipNamesTheBinAndAClickSetsTheIsovalue) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  for (int i = 0; i < 3; ++i) h.frame();  // the panel's scroll bar appears on its second frame
+  const render::DatasetSummary& summary = h.session->summary();
+  ASSERT_TRUE(summary.histogramOfSamples);
+  const render::ImRectF plot = h.session->panelLayout().histogram;
+  ASSERT_FALSE(plot.empty());
+  const float padX = ImGui::GetStyle().FramePadding.x;
+  const float t = 0.3f, x = plot.x0 + padX + t * (plot.x1 - plot.x0 - 2.0f * padX), y = plot.centreY();
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(x, y); });
+  h.frame();
+  const render::HistogramAxis axis{summary.histogramMin, summary.histogramMax, int(summary.histogram.size())};
+  const int bin = axis.binAt(t);
+  char range[64];
+  std::snprintf(range, sizeof range, "%.5g .. %.5g: %.0f samples", axis.binLow(bin), axis.binHigh(bin),
+                double(summary.histogram[std::size_t(bin)]));
+  EXPECT_EQ(h.session->panelLayout().histogramTooltip.rfind(range, 0), 0u) << h.session->panelLayout().histogramTooltip;
+  h.click(x, y);
+  const float expected = std::clamp(axis.valueAt(t), summary.valueMin, summary.valueMax);
+  // Within a pixel's worth of value (ImGui rounds the plot's frame to pixels).
+  EXPECT_NEAR(h.session->settings().iso, expected, (summary.histogramMax - summary.histogramMin) / (plot.x1 - plot.x0));
+  EXPECT_NE(h.session->settings().iso, 0.3f) << "the click left the isovalue as it was";
 }
 
 }  // namespace
