@@ -32,9 +32,9 @@ Camera orbit(const Camera& camera, double dxPixels, double dyPixels) {
   return out;
 }
 
-Camera pan(const Camera& camera, double dxPixels, double dyPixels, int viewportHeight) {
+Camera pan(const Camera& camera, double dxPixels, double dyPixels, int viewportHeight, double depth) {
   const CameraFrame frame = cameraFrame(camera, 1.0);
-  const double distance = glm::length(camera.lookat - camera.eye);
+  const double distance = depth > 0.0 ? depth : glm::length(camera.lookat - camera.eye);
   // frame.up spans half the viewport height at unit distance.
   const double worldPerPixel = 2.0 * glm::length(frame.up) * distance / std::max(viewportHeight, 1);
   const glm::dvec3 shift = worldPerPixel * (-dxPixels * glm::normalize(frame.right) + dyPixels * glm::normalize(frame.up));

@@ -115,6 +115,7 @@ void ViewerSession::drawPanel(int windowHeight) {
     row("brick layout", brickLayoutName(*raycaster_.options().layout));
   }
   drawCameraSection();
+  drawCursorSection();
   if (ImGui::CollapsingHeader("Dataset", ImGuiTreeNodeFlags_DefaultOpen)) {
     row("file", summary_.file);
     row("grid", summary_.grid);
@@ -195,6 +196,25 @@ void ViewerSession::drawCameraSection() {
   }
 }
 
+void ViewerSession::drawCursorSection() {
+  if (!ImGui::CollapsingHeader("Under the cursor", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (!cursor_.hit) {
+    ImGui::TextDisabled("no surface under the cursor");
+    return;
+  }
+  char text[96];
+  std::snprintf(text, sizeof text, "%.5g, %.5g, %.5g", cursor_.pWorld.x, cursor_.pWorld.y, cursor_.pWorld.z);
+  row("world", text);
+  std::snprintf(text, sizeof text, "%.5g, %.5g, %.5g", cursor_.xyz.x, cursor_.xyz.y, cursor_.xyz.z);
+  row("lattice xyz", text);
+  // The nearest FCC site and the spline's value there: the data's sample for a prefiltered file.
+  std::snprintf(text, sizeof text, "%d, %d, %d: %.5g", cursor_.ijk.x, cursor_.ijk.y, cursor_.ijk.z,
+                double(cursor_.valueAtSite));
+  row("nearest site", text);
+  std::snprintf(text, sizeof text, "%.5g (the surface's)", double(cursor_.valueAtPoint));
+  row("value", text);
+}
+
 void ViewerSession::drawHelp() {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
@@ -207,6 +227,8 @@ void ViewerSession::drawHelp() {
       {"wheel", "zoom"},
       {"R", "reset the camera (frame the data)"},
       {"C", "save the camera as JSON (for --camera) and copy it"},
+      {"+, - (or keypad)", "isovalue up or down by 1% of its range"},
+      {"Page Up, Page Down", "isovalue up or down by 10%"},
       {"S, F12", "screenshot: PNG of the window and EXR of the image, in the current directory"},
       {"P", "show or hide the panel"},
       {"H, F1", "show or hide this help"},

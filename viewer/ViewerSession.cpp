@@ -32,7 +32,9 @@ ViewerSession::ViewerSession(const io::BrickStore& store, const RenderOptions& o
       raycaster_(store, options),
       camera_(initialCamera),
       initialCamera_(initialCamera),
-      summary_(std::move(summary)) {
+      summary_(std::move(summary)),
+      splineProbe_(store),
+      indexFromWorld_(glm::inverse(store.worldFromIndex())) {
   settings_.iso = raycaster_.iso();
   settings_.lightInCamera = options.lightInCamera;
   settings_.surfaceColor = options.surfaceColor;
@@ -104,7 +106,12 @@ void ViewerSession::handleInput(int windowHeight) {
     const bool moved = (dx != 0.0 || dy != 0.0) && io.MousePos.x > -1e30f;
     const bool panning = io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
     const bool rolling = io.MouseDown[0] && io.KeyCtrl && !io.KeyShift;
-    if (moved && panning) camera_ = pan(camera_, dx, dy, windowHeight);
+    if (io.MouseClicked[2] || (io.MouseClicked[0] && io.KeyShift)) {
+      // The pan holds the surface point under the cursor (else the look-at plane) under the cursor.
+      const glm::dvec3 forward = glm::normalize(camera_.lookat - camera_.eye);
+      panDepth_ = cursor_.hit ? glm::dot(cursor_.pWorld - camera_.eye, forward) : 0.0;
+    }
+    if (moved && panning) camera_ = pan(camera_, dx, dy, windowHeight, panDepth_);
     else if (moved && rolling) camera_ = roll(camera_, dx * kOrbitDegreesPerPixel);
     else if (moved && io.MouseDown[0]) camera_ = orbit(camera_, dx, dy);
     if (io.MouseWheel != 0.0f) camera_ = zoom(camera_, io.MouseWheel);
@@ -118,6 +125,15 @@ void ViewerSession::handleInput(int windowHeight) {
     if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) settings_.showPanel = !settings_.showPanel;
     if (ImGui::IsKeyPressed(GLFW_KEY_S, false) || ImGui::IsKeyPressed(GLFW_KEY_F12, false))
       screenshotRequested_ = true;
+    // The isovalue by keyboard, within the surface range; held keys repeat.
+    const float range = summary_.valueMax - summary_.valueMin;
+    float isoSteps = 0.0f;
+    if (ImGui::IsKeyPressed(GLFW_KEY_EQUAL, true) || ImGui::IsKeyPressed(GLFW_KEY_KP_ADD, true)) isoSteps += kIsoKeyStep;
+    if (ImGui::IsKeyPressed(GLFW_KEY_MINUS, true) || ImGui::IsKeyPressed(GLFW_KEY_KP_SUBTRACT, true)) isoSteps -= kIsoKeyStep;
+    if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_UP, true)) isoSteps += kIsoPageStep;
+    if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_DOWN, true)) isoSteps -= kIsoPageStep;
+    if (isoSteps != 0.0f)
+      settings_.iso = std::clamp(settings_.iso + isoSteps * range, summary_.valueMin, summary_.valueMax);
     if (ImGui::IsKeyPressed(GLFW_KEY_C, false)) {
       try {
         saveCamera();
@@ -126,6 +142,29 @@ void ViewerSession::handleInput(int windowHeight) {
       }
     }
   }
+}
+
+void ViewerSession::updateCursor(int fbWidth, int fbHeight, int windowHeight) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const float pixelsPerUnit = windowHeight > 0 ? float(fbHeight) / float(windowHeight) : 1.0f;
+  const bool overImage = io.MousePos.x > -1e30f && !io.WantCaptureMouse && io.MousePos.x >= panelWidth() &&
+                         io.MousePos.y >= 0.0f;
+  const glm::ivec2 pixel(int(std::floor(io.MousePos.x * pixelsPerUnit)), int(std::floor(io.MousePos.y * pixelsPerUnit)));
+  const GlTexture2D& normalDepth = raycaster_.normalDepthTexture();
+  if (!overImage || pixel.x >= std::min(fbWidth, normalDepth.width()) || pixel.y >= std::min(fbHeight, normalDepth.height())) {
+    cursor_ = CursorProbe{};
+    cursorPixel_ = glm::ivec2(-1);
+    return;
+  }
+  // A settled image under a still cursor reads nothing: no GPU sync while idle.
+  if (pixel == cursorPixel_ && stats_.complete && shownSettled_) return;
+  cursorPixel_ = pixel;
+  float normalDepthTexel[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  glGetTextureSubImage(normalDepth.id(), 0, pixel.x, pixel.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof normalDepthTexel,
+                       normalDepthTexel);
+  checkGl("reading the depth under the cursor");
+  cursor_ = probeSurface(splineProbe_, indexFromWorld_, camera_, pixel.x, pixel.y, normalDepth.width(),
+                         normalDepth.height(), normalDepthTexel[3]);
 }
 
 // The raycaster's setters restart the progressive frame, so only what changed is passed on.
@@ -210,6 +249,7 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   const bool uiShown = kUiMaySkip && overlays.empty() && redraw_.holdsUi(look, bufferAge, uiHash);
   if (!uiShown) ImGui_ImplOpenGL3_RenderDrawData(ui);
   const StepStats step = raycaster_.finishStep();
+  updateCursor(fbWidth, fbHeight, windowHeight);
   regions.front() = intersected(united(regions.front(), raycaster_.surfaceRect()), look.imageArea());  // as drawn
   redraw_.drawn(look, raycaster_.surfaceRect(), overlays, uiHash);
   applySettings();

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "Camera.h"
+#include "CursorProbe.h"
 #include "DatasetSummary.h"
 #include "Presenter.h"
 #include "Raycaster.h"
@@ -111,6 +112,13 @@ class ViewerSession {
   // directory, copies its JSON to the clipboard, and says so. Returns the file's path.
   std::string saveCamera();
 
+  // What is under the mouse, as of the last frame: the surface point (world, lattice index space),
+  // the nearest FCC site and the spline's values; hit false over the background, the panel or
+  // outside the window. Read back from the raycaster's depth only when the pixel or the image changed.
+  const CursorProbe& cursor() const { return cursor_; }
+  // The isovalue keys' steps, as fractions of the surface range: + / - and Page Up / Page Down.
+  static constexpr float kIsoKeyStep = 0.01f, kIsoPageStep = 0.1f;
+
   const Camera& camera() const { return camera_; }
   void setCamera(const Camera& camera) { camera_ = camera; }
   const ViewerSettings& settings() const { return settings_; }
@@ -127,6 +135,8 @@ class ViewerSession {
  private:
   void handleInput(int windowHeight);
   void applySettings();
+  void updateCursor(int fbWidth, int fbHeight, int windowHeight);
+  void drawCursorSection();
   void updateStats(const StepStats& step, double imageDrawn, bool uiDrawn);
   void drawPanel(int windowHeight);  // viewer/ViewerPanel.cpp
   void drawHelp();
@@ -146,6 +156,11 @@ class ViewerSession {
   ViewerStats stats_;
   DatasetSummary summary_;
   PanelLayout layout_;
+  SplineProbe splineProbe_;
+  glm::dmat4 indexFromWorld_{1.0};
+  CursorProbe cursor_;
+  glm::ivec2 cursorPixel_{-1, -1};  // the framebuffer pixel cursor_ was read at
+  double panDepth_ = 0.0;           // along the view, of the point a pan grabbed (0: the look-at point's)
   float panelWidth_ = 0.0f;
   int fbWidth_ = 0, fbHeight_ = 0, windowHeight_ = 0;  // of the last frame
   bool screenshotRequested_ = false;

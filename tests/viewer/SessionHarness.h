@@ -19,6 +19,8 @@ namespace fcc::test {
 
 struct SessionHarness {
   static constexpr int kWidth = 400, kHeight = 240;
+  // A pool that holds every brick of the small blobs: one load, no eviction (tests not of streaming).
+  static constexpr std::size_t kLargePoolBytes = std::size_t(64) << 20;
   io::BrickStore store;
   render::HeadlessImGui imgui{kWidth, kHeight};
   render::OffscreenTarget target{kWidth, kHeight};

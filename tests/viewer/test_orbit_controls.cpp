@@ -97,6 +97,23 @@ TEST(OrbitControls, PanMovesThePointUnderTheCursorWithIt) {
   EXPECT_NEAR(after.y - before.y, dy, 1e-6);
 }
 
+// Grabbed at another depth than the look-at point's, the point at that depth follows the cursor.
+TEST(OrbitControls, PanAtADepthMovesThePointAtThatDepthWithTheCursor) {
+  const Camera c = testCamera();
+  const int width = 800, height = 600;
+  const CameraFrame f = cameraFrame(c, double(width) / height);
+  const double depth = 0.4 * glm::length(c.lookat - c.eye);
+  const glm::dvec3 grabbed = c.eye + depth * f.forward + 0.3 * depth * f.right;  // off centre, nearer
+  const glm::dvec2 before = project(c, grabbed, width, height);
+  const double dx = -21.0, dy = 17.5;
+  const Camera p = pan(c, dx, dy, height, depth);
+  const glm::dvec2 after = project(p, grabbed, width, height);
+  EXPECT_NEAR(after.x - before.x, dx, 1e-6);
+  EXPECT_NEAR(after.y - before.y, dy, 1e-6);
+  const glm::dvec2 lookatMoved = project(p, c.lookat, width, height) - project(c, c.lookat, width, height);
+  EXPECT_LT(std::abs(lookatMoved.x), std::abs(dx) * 0.9) << "the farther look-at point moves less";
+}
+
 TEST(OrbitControls, ZoomScalesTheDistanceAndUndoes) {
   const Camera c = testCamera();
   const double distance = glm::length(c.eye - c.lookat);

@@ -242,5 +242,54 @@ TEST_F(ViewerSession, HistogramTooltipNamesTheBinAndAClickSetsTheIsovalue) {
   EXPECT_NE(h.session->settings().iso, 0.3f) << "the click left the isovalue as it was";
 }
 
+// The panel's cursor readout: over a surface pixel, the surface point (the spline there is the
+// isovalue); over the background, or over the panel, nothing.
+TEST_F(ViewerSession, CursorReadoutIsTheSurfacePointUnderTheMouse) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes);
+  ASSERT_TRUE(h.settle());
+  const std::string exr = dir / "view.exr";
+  h.session->writeExr(exr);
+  int w = 0, hgt = 0;
+  const std::vector<float> alpha = test::readExrChannel(exr, "A", w, hgt);
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  int hitX = -1, hitY = -1, missX = -1, missY = -1;
+  for (int y = 0; y < hgt; ++y)
+    for (int x = panel + 1; x < w; ++x) {
+      const float a = alpha[std::size_t(y) * w + x];
+      if (a > 0.5f && hitX < 0) hitX = x, hitY = y;
+      if (a == 0.0f && missX < 0) missX = x, missY = y;
+    }
+  ASSERT_GE(hitX, 0);
+  ASSERT_GE(missX, 0);
+  ASSERT_TRUE(h.settle()) << "the EXR's complete frame restarts the progressive one";
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(float(hitX) + 0.5f, float(hitY) + 0.5f); });
+  ASSERT_TRUE(h.session->cursor().hit) << "pixel " << hitX << "," << hitY;
+  EXPECT_NEAR(h.session->cursor().valueAtPoint, 0.3f, 1e-3f);
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(float(missX) + 0.5f, float(missY) + 0.5f); });
+  EXPECT_FALSE(h.session->cursor().hit) << "pixel " << missX << "," << missY;
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(5.0f, float(hitY) + 0.5f); });
+  EXPECT_FALSE(h.session->cursor().hit) << "over the panel";
+}
+
+// + and - step the isovalue by 1% of the surface range, Page Up and Page Down by 10%, never past it.
+TEST_F(ViewerSession, IsovalueKeysStepWithinTheSurfaceRange) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes);
+  const render::DatasetSummary& s = h.session->summary();
+  const float range = s.valueMax - s.valueMin;
+  const float start = h.session->settings().iso;
+  h.press(GLFW_KEY_EQUAL);
+  EXPECT_NEAR(h.session->settings().iso, start + 0.01f * range, 1e-5f * range);
+  h.press(GLFW_KEY_KP_SUBTRACT);
+  h.press(GLFW_KEY_MINUS);
+  EXPECT_NEAR(h.session->settings().iso, start - 0.01f * range, 1e-5f * range);
+  h.press(GLFW_KEY_PAGE_UP);
+  EXPECT_NEAR(h.session->settings().iso, start + 0.09f * range, 1e-5f * range);
+  h.session->settings().iso = s.valueMax - 0.05f * range;
+  h.press(GLFW_KEY_PAGE_UP);
+  EXPECT_EQ(h.session->settings().iso, s.valueMax) << "past the end of the surface range";
+}
+
 }  // namespace
 }  // namespace fcc
