@@ -6,6 +6,7 @@
 #include "RenderFlags.h"
 #include "io/Convert.h"
 #include "sparse/Error.h"
+#include "viewer/CameraFile.h"
 #include "viewer/DatasetSummary.h"
 #include "viewer/ViewerWindow.h"
 
@@ -36,6 +37,8 @@ Command addViewCommand(CLI::App& parent) {
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
             if (!args->screenshot.empty()) checkOutputWritable(args->screenshot, args->force);
+            // A bad camera file is one line before any window opens (it is read again for the camera).
+            if (!args->flags.camera.empty()) render::readCameraFile(args->flags.camera);
 
             const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);
             const auto store = std::make_unique<io::BrickStore>(input->path(), args->flags.grid);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -114,6 +115,44 @@ TEST(CliView, ExrScreenshotHoldsTheWholeView) {
     }
   EXPECT_GT(hitsLeft, 0) << "the surface must reach the panel's columns for this test to mean anything";
   EXPECT_EQ(mismatches, 0);
+}
+
+// One camera file for both: `view --camera F --screenshot OUT.exr` holds what `render --camera F` renders.
+TEST(CliView, CameraFileGivesViewAndRenderTheSameView) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
+  TempDir dir;
+  const std::string vdb = dir / "blobs.vdb", camera = dir / "camera.json", shot = dir / "view.exr",
+                    ref = dir / "render.exr";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 64,64,64 --quiet").status, 0);
+  std::ofstream(camera) << "{\"eye\": [90, 20, 110], \"lookat\": [30, 34, 28], \"up\": [0.2, 0, 1], \"fov\": 35}\n";
+  const std::string common = vdb + " --res 480x320 --iso 0.4 --camera " + camera;
+  const CommandResult view = runView(common + " --screenshot " + shot + " --frames 3");
+  ASSERT_EQ(view.status, 0) << view.err;
+  ASSERT_EQ(runFccvdb("render " + common + " -o " + ref + " --quiet").status, 0);
+  int w = 0, h = 0, rw = 0, rh = 0;
+  const std::vector<float> depth = readExrChannel(shot, "Z", w, h), refDepth = readExrChannel(ref, "Z", rw, rh);
+  ASSERT_EQ(w, rw);
+  ASSERT_EQ(h, rh);
+  int hits = 0, mismatches = 0;
+  for (std::size_t i = 0; i < depth.size(); ++i) {
+    hits += std::isfinite(refDepth[i]);
+    mismatches += !(depth[i] == refDepth[i] || (std::isinf(depth[i]) && std::isinf(refDepth[i])));
+  }
+  EXPECT_GT(hits, int(depth.size()) / 50) << "the surface must show";
+  EXPECT_EQ(mismatches, 0);
+}
+
+TEST(CliView, BadCameraFileIsOneLineAndStatus1) {
+  TempDir dir;
+  const std::string vdb = dir / "s.vdb", camera = dir / "camera.json";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 16,16,16 --quiet").status, 0);
+  std::ofstream(camera) << "{\"eye\": [1, 2, 3], \"lookat\": [0, 0, 0], \"fov\": \"wide\"}";
+  for (const std::string& command : {"render " + vdb + " -o " + (dir / "x.png"), "view " + vdb}) {
+    const CommandResult r = runFccvdb(command + " --camera " + camera);
+    EXPECT_EQ(r.status, 1) << command;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("camera file " + camera + ": \"fov\" expects numbers; valid is"), std::string::npos) << r.err;
+  }
 }
 
 TEST(CliView, NoDisplayGivesOneLineAndStatus1) {
