@@ -57,7 +57,7 @@ void ViewerSession::drawNotice() {
 }
 
 void ViewerSession::drawAxisIndicator(int windowHeight) {
-  if (settings_.showPanel) return;  // the panel holds it (ViewerPanel.cpp)
+  if (settings_.showPanel) return;  // the panel's Camera section holds it (ViewerPanel.cpp)
   const float side = kAxisIndicatorSide * ImGui::GetIO().FontGlobalScale;
   drawAxes(*ImGui::GetForegroundDrawList(), ImVec2(0.5f * side + 8.0f, float(windowHeight) - 0.5f * side - 8.0f),
            0.4f * side, camera_);

@@ -8,7 +8,7 @@
 namespace fcc::render {
 
 // Side of the axis indicator's square, in window units before the font scale.
-inline constexpr float kAxisIndicatorSide = 64.0f;
+inline constexpr float kAxisIndicatorSide = 56.0f;
 
 // World x (red), y (green) and z (blue) as seen by `camera`, from `centre`, `radius` long when in the
 // image plane; the axis nearest the viewer drawn last, each labelled at its tip.

@@ -67,7 +67,6 @@ bool colourEdit(const char* label, glm::vec3& srgb, ImRectF* swatch = nullptr) {
 
 void ViewerSession::drawPanel(int windowHeight) {
   if (!settings_.showPanel) return;
-  const float scale = ImGui::GetIO().FontGlobalScale;
   ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
   ImGui::SetNextWindowSize(ImVec2(panelWidth_, float(windowHeight)));
   // Opaque: the raycaster casts no rays under it (ViewerSession::frame). No border: it would reach a
@@ -163,13 +162,6 @@ void ViewerSession::drawPanel(int windowHeight) {
     row("redrawn", drawn);
   }
   ImGui::TextDisabled("H or F1: help");
-  // The axis indicator in the panel's bottom corner (in the panel, not over the image: the image
-  // beside an unchanged panel is then all a settled frame draws, see ViewerSession::frame).
-  const float side = kAxisIndicatorSide * scale;
-  ImGui::SetCursorPosY(std::max(ImGui::GetCursorPosY(), float(windowHeight) - side - ImGui::GetStyle().WindowPadding.y));
-  const ImVec2 corner = ImGui::GetCursorScreenPos();
-  ImGui::Dummy(ImVec2(side, side));
-  drawAxes(*ImGui::GetWindowDrawList(), ImVec2(corner.x + 0.5f * side, corner.y + 0.5f * side), 0.4f * side, camera_);
   ImGui::PopItemWidth();
   ImGui::End();
 }
@@ -186,7 +178,7 @@ void ViewerSession::drawCameraSection() {
   row("up", triple(camera_.up));
   char fov[32];
   std::snprintf(fov, sizeof fov, "%.4g deg", camera_.fovYDegrees);
-  row("field of view", fov);
+  row("fov", fov);
   if (ImGui::Button("save and copy (C)")) {
     try {
       saveCamera();
@@ -194,6 +186,13 @@ void ViewerSession::drawCameraSection() {
       notify(e.what());  // an unwritable directory must not end the session
     }
   }
+  // The axis indicator at the section's right edge, beside the button. In the panel, not over the
+  // image: the image beside an unchanged panel is then all a settled frame draws (ViewerSession::frame).
+  const float side = kAxisIndicatorSide * ImGui::GetIO().FontGlobalScale;
+  ImGui::SameLine(std::max(ImGui::GetCursorPosX(), ImGui::GetWindowContentRegionMax().x - side));
+  const ImVec2 corner = ImGui::GetCursorScreenPos();
+  ImGui::Dummy(ImVec2(side, side));
+  drawAxes(*ImGui::GetWindowDrawList(), ImVec2(corner.x + 0.5f * side, corner.y + 0.5f * side), 0.4f * side, camera_);
 }
 
 void ViewerSession::drawCursorSection() {
