@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdio>
 #include <numeric>
+#include <utility>
 
 #include "AxisIndicator.h"
 #include "ViewerSession.h"
@@ -54,6 +55,26 @@ void ViewerSession::drawNotice() {
   list.AddRectFilled(ImVec2(at.x - 4.0f, at.y - 2.0f), ImVec2(at.x + size.x + 4.0f, at.y + size.y + 2.0f),
                      IM_COL32(0, 0, 0, 180));
   list.AddText(at, IM_COL32(255, 255, 255, 255), notice_.c_str());
+}
+
+void ViewerSession::drawOpenField() {
+  if (!openField_.shown) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(0.5f * (panelWidth() + display.x), 0.3f * display.y), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowSize(ImVec2(0.5f * (display.x - panelWidth()), 0.0f));
+  ImGui::Begin("Open a file", &openField_.shown, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
+  ImGui::TextUnformatted("any file `fccvdb view` takes (or drop one on the window)");
+  if (std::exchange(openField_.focus, false)) ImGui::SetKeyboardFocusHere();
+  ImGui::SetNextItemWidth(-1.0f);
+  const bool entered = ImGui::InputText("##path", openField_.path, sizeof openField_.path, ImGuiInputTextFlags_EnterReturnsTrue);
+  // Esc closes the field (and, the field having the keys this frame, does not quit the viewer).
+  const bool cancelled = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false);
+  if ((entered || ImGui::Button("open")) && openField_.path[0] != '\0') {
+    openRequest_ = std::string(openField_.path);
+    openField_.shown = false;
+  }
+  if (cancelled) openField_.shown = false;
+  ImGui::End();
 }
 
 void ViewerSession::drawAxisIndicator(int windowHeight) {

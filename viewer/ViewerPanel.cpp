@@ -80,13 +80,14 @@ void ViewerSession::drawPanel(int windowHeight) {
   ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);  // room for the labels
 
   if (ImGui::CollapsingHeader("Isosurface", ImGuiTreeNodeFlags_DefaultOpen)) {
-    // The label left of the slider, not in it: the slider's handle would cover it.
-    ImGui::TextUnformatted("isovalue");
+    // The value above the slider, not in it: the slider's handle would cover it wherever it stands.
+    ImGui::Text("isovalue %.6g", double(settings_.iso));
     layout_.isoLabel = lastItemRect();
-    ImGui::SameLine();
     ImGui::SetNextItemWidth(-1.0f);
-    // Instant: the bounds do not depend on the isovalue, only which bricks are needed does.
-    ImGui::SliderFloat("##iso", &settings_.iso, summary_.valueMin, summary_.valueMax, "%.5g");
+    // Instant: the bounds do not depend on the isovalue, only which bricks are needed does. No text
+    // in the slider (an empty format), so no rounding to one either; ctrl + click still types a value.
+    ImGui::SliderFloat("##iso", &settings_.iso, summary_.valueMin, summary_.valueMax, "",
+                       ImGuiSliderFlags_NoRoundToFormat);
     layout_.isoSlider = lastItemRect();
     drawHistogram();
   }
@@ -229,6 +230,7 @@ void ViewerSession::drawHelp() {
       {"+, - (or keypad)", "isovalue up or down by 1% of its range"},
       {"Page Up, Page Down", "isovalue up or down by 10%"},
       {"S, F12", "screenshot: PNG of the window and EXR of the image, in the current directory"},
+      {"O, or drop a file", "open another file (any input `fccvdb view` takes)"},
       {"P", "show or hide the panel"},
       {"H, F1", "show or hide this help"},
       {"ctrl + click a slider", "type an exact value (Enter applies it, Esc cancels)"},

@@ -134,6 +134,10 @@ void ViewerSession::handleInput(int windowHeight) {
     if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_DOWN, true)) isoSteps -= kIsoPageStep;
     if (isoSteps != 0.0f)
       settings_.iso = std::clamp(settings_.iso + isoSteps * range, summary_.valueMin, summary_.valueMax);
+    if (ImGui::IsKeyPressed(GLFW_KEY_O, false)) {
+      openField_.shown = true;
+      openField_.focus = true;
+    }
     if (ImGui::IsKeyPressed(GLFW_KEY_C, false)) {
       try {
         saveCamera();
@@ -231,6 +235,7 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   drawPanel(windowHeight);
   if (settings_.showHelp) drawHelp();
   drawAxisIndicator(windowHeight);
+  drawOpenField();
   if (!notice_.empty() && std::chrono::steady_clock::now() > noticeUntil_) notice_.clear();
   drawNotice();
   shownStatusLine_ = statusLine();

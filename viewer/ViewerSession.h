@@ -10,7 +10,9 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "Camera.h"
 #include "CursorProbe.h"
@@ -119,6 +121,12 @@ class ViewerSession {
   // The isovalue keys' steps, as fractions of the surface range: + / - and Page Up / Page Down.
   static constexpr float kIsoKeyStep = 0.01f, kIsoPageStep = 0.1f;
 
+  // Another file to open in this window: from a file dropped on it (requestOpen) or typed after O.
+  // The window hands it to whoever opens datasets (`fccvdb view`), which replaces this session.
+  void requestOpen(const std::string& path) { openRequest_ = path; }
+  std::optional<std::string> takeOpenRequest() { return std::exchange(openRequest_, std::nullopt); }
+  bool openFieldShown() const { return openField_.shown; }
+
   const Camera& camera() const { return camera_; }
   void setCamera(const Camera& camera) { camera_ = camera; }
   const ViewerSettings& settings() const { return settings_; }
@@ -144,6 +152,7 @@ class ViewerSession {
   void drawHistogram();  // viewer/PanelHistogram.cpp
   void drawAxisIndicator(int windowHeight);
   void drawNotice();
+  void drawOpenField();  // viewer/ViewerOverlays.cpp
   std::string statusLine() const;  // of the last frame's figures; empty once settled
   void drawStreamingLine(int windowHeight);
 
@@ -164,6 +173,11 @@ class ViewerSession {
   float panelWidth_ = 0.0f;
   int fbWidth_ = 0, fbHeight_ = 0, windowHeight_ = 0;  // of the last frame
   bool screenshotRequested_ = false;
+  std::optional<std::string> openRequest_;
+  struct OpenField {
+    bool shown = false, focus = false;
+    char path[1024] = {};
+  } openField_;
   std::string outputDirectory_;
   std::function<void(const std::string&)> report_;
   std::string notice_;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "io/ImageOutput.h"
@@ -20,6 +21,12 @@ namespace {
 std::string glfwLastError;  // GLFW reports errors through a callback; the last one explains a failure
 
 void onGlfwError(int, const char* description) { glfwLastError = description ? description : "unknown error"; }
+
+std::string droppedPath;  // the first file of the last drop on the window (one window per process)
+
+void onDrop(GLFWwindow*, int count, const char** paths) {
+  if (count > 0 && paths[0]) droppedPath = paths[0];
+}
 
 bool endsWith(const std::string& s, const std::string& suffix) {
   if (s.size() < suffix.size()) return false;
@@ -59,6 +66,7 @@ ViewerWindow::ViewerWindow(const WindowOptions& options) : options_(options) {
   ImGui::StyleColorsDark();
   ImGui::GetStyle().ScaleAllSizes(scale);
   ImGui_ImplGlfw_InitForOpenGL(window_, true);
+  glfwSetDropCallback(window_, onDrop);  // ImGui's backend installs none
   ImGui_ImplOpenGL3_Init("#version 450");
   imguiReady_ = true;
 }
@@ -79,13 +87,16 @@ double ViewerWindow::aspect() const {
   return w > 0 && h > 0 ? double(w) / double(h) : double(options_.width) / double(options_.height);
 }
 
-void ViewerWindow::run(ViewerSession& session) {
+void ViewerWindow::setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
+
+std::optional<std::string> ViewerWindow::run(ViewerSession& session) {
   const bool automated = !options_.screenshot.empty();
   int frames = 0;
   while (!glfwWindowShouldClose(window_)) {
     // Idle and complete: wait for input instead of redrawing the same image.
     if (!automated && session.shownSettled()) glfwWaitEventsTimeout(0.25);
     else glfwPollEvents();
+    if (!droppedPath.empty()) session.requestOpen(std::exchange(droppedPath, std::string()));
     int fbWidth = 0, fbHeight = 0, winHeight = 0;
     glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
     glfwGetWindowSize(window_, nullptr, &winHeight);
@@ -105,10 +116,12 @@ void ViewerWindow::run(ViewerSession& session) {
     if (automated && frames >= options_.frames && session.shownSettled()) {
       const bool exr = endsWith(options_.screenshot, ".exr");
       session.writeScreenshots(exr ? "" : options_.screenshot, exr ? options_.screenshot : "");
-      return;
+      return std::nullopt;
     }
     glfwSwapBuffers(window_);
+    if (std::optional<std::string> next = session.takeOpenRequest()) return next;
   }
+  return std::nullopt;
 }
 
 }  // namespace fcc::render

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "ViewerSession.h"
@@ -34,9 +35,12 @@ class ViewerWindow {
 
   // The framebuffer's aspect ratio (for framing the camera before the session exists).
   double aspect() const;
-  // Runs until the window closes (or the automation screenshot is written); the session reports
-  // the files it writes (ViewerSession::setReport).
-  void run(ViewerSession& session);
+  // Runs until the window closes (or the automation screenshot is written): nullopt; or until the
+  // session is asked to open another file (dropped on the window, or typed after O): its path, and
+  // the window stays open for the next session. The session reports the files it writes
+  // (ViewerSession::setReport).
+  std::optional<std::string> run(ViewerSession& session);
+  void setTitle(const std::string& title);
 
  private:
   WindowOptions options_;

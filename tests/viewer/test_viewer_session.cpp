@@ -180,8 +180,8 @@ TEST_F(ViewerSession, TextFieldKeepsItsKeysAndCtrlClickTypesAValue) {
   EXPECT_EQ(h.session->settings().iso, 0.25f);
 }
 
-// The help window's descriptions start right of its widest key; the iso slider's label is beside the
-// slider, not under its handle.
+// The help window's descriptions start right of its widest key; the isovalue's text is outside the
+// slider, never under its handle.
 TEST_F(ViewerSession, HelpColumnsAndIsoLabelDoNotOverlap) {
   TempDir dir;
   SessionHarness h(test::writeSmallBlobs(dir));
@@ -192,7 +192,9 @@ TEST_F(ViewerSession, HelpColumnsAndIsoLabelDoNotOverlap) {
   EXPECT_LT(l.helpKeysRight, l.helpTextLeft) << "a key runs into its description";
   ASSERT_FALSE(l.isoLabel.empty());
   ASSERT_FALSE(l.isoSlider.empty());
-  EXPECT_LE(l.isoLabel.x1, l.isoSlider.x0) << "the label is inside the slider's frame";
+  const bool overlap = l.isoLabel.x0 < l.isoSlider.x1 && l.isoSlider.x0 < l.isoLabel.x1 &&
+                       l.isoLabel.y0 < l.isoSlider.y1 && l.isoSlider.y0 < l.isoLabel.y1;
+  EXPECT_FALSE(overlap) << "the isovalue's text is inside the slider's frame, where the handle covers it";
 }
 
 // The background swatch shows the colour the background is drawn in: the sRGB encoding of the
@@ -289,6 +291,39 @@ TEST_F(ViewerSession, IsovalueKeysStepWithinTheSurfaceRange) {
   h.session->settings().iso = s.valueMax - 0.05f * range;
   h.press(GLFW_KEY_PAGE_UP);
   EXPECT_EQ(h.session->settings().iso, s.valueMax) << "past the end of the surface range";
+}
+
+// O opens a field for a path: Enter asks for that file (the window then opens it in place of this
+// session), Esc closes the field without asking. A file dropped on the window asks the same way.
+TEST_F(ViewerSession, OpenFieldAsksForAnotherFile) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes);
+  // The key as GLFW gives it: a key press and its character, which must not land in the field.
+  h.frame([](ImGuiIO& io) {
+    io.KeysDown[GLFW_KEY_O] = true;
+    io.AddInputCharacter('o');
+  });
+  h.frame([](ImGuiIO& io) { io.KeysDown[GLFW_KEY_O] = false; });
+  EXPECT_TRUE(h.session->openFieldShown());
+  h.frame();
+  ASSERT_TRUE(ImGui::GetIO().WantTextInput) << "the path field does not have the keys";
+  h.type("/data/other.nii");
+  EXPECT_FALSE(h.session->takeOpenRequest()) << "nothing is asked before Enter";
+  h.press(GLFW_KEY_ENTER);
+  const std::optional<std::string> asked = h.session->takeOpenRequest();
+  ASSERT_TRUE(asked);
+  EXPECT_EQ(*asked, "/data/other.nii");
+  EXPECT_FALSE(h.session->openFieldShown());
+  EXPECT_FALSE(h.session->takeOpenRequest()) << "asked once";
+
+  h.press(GLFW_KEY_O);
+  h.frame();
+  h.press(GLFW_KEY_ESCAPE);
+  EXPECT_FALSE(h.session->openFieldShown());
+  EXPECT_FALSE(h.session->takeOpenRequest());
+
+  h.session->requestOpen("/dropped.vdb");
+  EXPECT_EQ(h.session->takeOpenRequest().value_or(""), "/dropped.vdb");
 }
 
 }  // namespace
