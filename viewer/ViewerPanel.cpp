@@ -199,7 +199,9 @@ void ViewerSession::drawCameraSection() {
 void ViewerSession::drawCursorSection() {
   if (!ImGui::CollapsingHeader("Under the cursor", ImGuiTreeNodeFlags_DefaultOpen)) return;
   if (!cursor_.hit) {
-    ImGui::TextDisabled("no surface under the cursor");
+    // As many lines as a hit shows: the sections below do not jump as the mouse crosses a silhouette.
+    row("world", "no surface under the cursor");
+    for (const char* label : {"lattice xyz", "nearest site", "value"}) row(label, "-");
     return;
   }
   char text[96];
