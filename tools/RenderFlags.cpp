@@ -11,6 +11,7 @@
 #include "io/AtomicOutput.h"
 #include "io/ImageOutput.h"
 #include "sparse/Error.h"
+#include "viewer/CameraFile.h"
 
 namespace fcc::cli {
 namespace {
@@ -47,6 +48,9 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
                  "Isovalue (default: 0 for a level set; else Otsu's threshold of the samples' histogram, as "
                  "`fccvdb info` suggests; the middle of the range the surface can take for files without one)");
   app.add_option("--res", flags.res, "Image size WxH")->capture_default_str();
+  app.add_option("--camera", flags.camera,
+                 "Camera file FILE.json, as the viewer's C key saves it: {\"eye\": [X,Y,Z], \"lookat\": [X,Y,Z], "
+                 "\"up\": [X,Y,Z], \"fov\": DEGREES} (--eye/--lookat/--up/--fov replace its fields)");
   app.add_option("--eye", flags.eye, "Camera position X,Y,Z in world space (default: frames the data)");
   app.add_option("--lookat", flags.lookat, "Point looked at X,Y,Z (default: the data's centre)");
   app.add_option("--up", flags.up, "Up vector X,Y,Z (default: 0,1,0)");
@@ -110,13 +114,20 @@ render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& s
     if (end == flags.fov.c_str() || *end != '\0' || !(fov > 0.0 && fov < 180.0))
       throw ValueError("--fov '" + flags.fov + "': valid is a number of degrees in (0, 180)");
   }
-  glm::dvec3 lo, hi;
-  store.worldBounds(lo, hi);
-  render::Camera camera = render::frameBox(lo, hi, fov, aspect);
-  if (!flags.lookat.empty()) {
-    const glm::dvec3 lookat = tripleOrThrow(flags.lookat, "--lookat");
-    camera.eye += lookat - camera.lookat;
-    camera.lookat = lookat;
+  render::Camera camera;
+  if (!flags.camera.empty()) {
+    camera = render::readCameraFile(flags.camera);
+    if (!flags.fov.empty()) camera.fovYDegrees = fov;
+    if (!flags.lookat.empty()) camera.lookat = tripleOrThrow(flags.lookat, "--lookat");
+  } else {
+    glm::dvec3 lo, hi;
+    store.worldBounds(lo, hi);
+    camera = render::frameBox(lo, hi, fov, aspect);
+    if (!flags.lookat.empty()) {  // the framing distance kept: the eye moves with the look-at point
+      const glm::dvec3 lookat = tripleOrThrow(flags.lookat, "--lookat");
+      camera.eye += lookat - camera.lookat;
+      camera.lookat = lookat;
+    }
   }
   if (!flags.eye.empty()) camera.eye = tripleOrThrow(flags.eye, "--eye");
   if (!flags.up.empty()) camera.up = tripleOrThrow(flags.up, "--up");

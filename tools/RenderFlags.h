@@ -18,13 +18,14 @@ namespace fcc::cli {
 
 struct RenderFlags {
   std::string file, grid, iso, res = "1024x1024", eye, lookat, up, fov;
+  std::string camera;  // a camera file (viewer/CameraFile.h); --eye/--lookat/--up/--fov replace its fields
   double gpuCacheMiB = 0.0, hostCacheMiB = 0.0;  // 0: the defaults
   std::string layout = "auto";                   // a render::BrickLayout by name, or auto (chooseBrickLayout)
   SourceFlags source;                            // how to read a Cartesian FILE (raw layout)
   bool noCache = false;                          // convert a Cartesian FILE into a temporary file
 };
 
-// Registers FILE, --grid, --iso, --res, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache, --layout,
+// Registers FILE, --grid, --iso, --res, --camera, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache, --layout,
 // the raw input flags (--dims, --type, ...) and --no-cache.
 void addRenderFlags(CLI::App& app, RenderFlags& flags);
 
@@ -39,7 +40,8 @@ io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::BrickStore& store
 void warnIfIsoOutside(float iso, const io::BrickStore& store);
 // --res (or `flag`) "WxH"; ValueError naming the flag for anything else or a zero size.
 void resolutionFromFlags(const std::string& res, int& width, int& height, const char* flag = "--res");
-// The camera: frames the data unless --eye/--lookat/--up/--fov say otherwise.
+// The camera: --camera FILE.json, else one that frames the data; --eye/--lookat/--up/--fov replace
+// what they name.
 // The flags that give `camera` again, ready to paste: "--eye X,Y,Z --lookat X,Y,Z --up X,Y,Z --fov F",
 // every number with all the digits a double needs to come back the same.
 std::string cameraFlags(const render::Camera& camera);

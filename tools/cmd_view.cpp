@@ -1,15 +1,52 @@
 // fccvdb view FILE: the interactive viewer (GLFW window, Dear ImGui panel) over the brick-paged
 // renderer, streaming bricks progressively; --screenshot OUT --frames N for automation.
 #include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
 
 #include "Command.h"
 #include "RenderFlags.h"
 #include "io/Convert.h"
 #include "sparse/Error.h"
+#include "viewer/CameraFile.h"
 #include "viewer/DatasetSummary.h"
 #include "viewer/ViewerWindow.h"
 
 namespace fcc::cli {
+namespace {
+
+// One file open in the viewer: its FCC input (itself, or its cached or temporary conversion) and store.
+struct Dataset {
+  std::unique_ptr<io::FccInput> input;
+  std::unique_ptr<io::BrickStore> store;
+  float iso = 0.0f;
+};
+
+Dataset openDataset(const RenderFlags& flags) {
+  Dataset d;
+  d.input = openFccInput(flags, false);
+  d.store = std::make_unique<io::BrickStore>(d.input->path(), flags.grid);
+  d.iso = isoFromFlags(flags, *d.store).value;
+  warnIfIsoOutside(d.iso, *d.store);
+  return d;
+}
+
+// The flags for a file opened from the window: the budgets and layout stay; what belonged to the
+// first file (its grid, isovalue, camera, raw layout) goes, so the new one gets its own defaults.
+RenderFlags flagsForAnotherFile(const RenderFlags& first, const std::string& path) {
+  RenderFlags f;
+  f.file = path;
+  f.res = first.res;
+  f.gpuCacheMiB = first.gpuCacheMiB;
+  f.hostCacheMiB = first.hostCacheMiB;
+  f.layout = first.layout;
+  f.noCache = first.noCache;
+  return f;
+}
+
+}  // namespace
+
 Command addViewCommand(CLI::App& parent) {
   struct Args {
     RenderFlags flags;
@@ -36,14 +73,10 @@ Command addViewCommand(CLI::App& parent) {
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
             if (!args->screenshot.empty()) checkOutputWritable(args->screenshot, args->force);
+            // A bad camera file is one line before any window opens (it is read again for the camera).
+            if (!args->flags.camera.empty()) render::readCameraFile(args->flags.camera);
 
-            const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);
-            const auto store = std::make_unique<io::BrickStore>(input->path(), args->flags.grid);
-            const float iso = isoFromFlags(args->flags, *store).value;
-            warnIfIsoOutside(iso, *store);
-            render::RenderOptions options = renderOptionsFromFlags(args->flags);
-            options.iso = iso;
-
+            Dataset data = openDataset(args->flags);
             render::WindowOptions windowOptions;
             windowOptions.width = width;
             windowOptions.height = height;
@@ -51,9 +84,34 @@ Command addViewCommand(CLI::App& parent) {
             windowOptions.screenshot = args->screenshot;
             windowOptions.frames = args->frames;
             render::ViewerWindow window(windowOptions);
-            const render::Camera camera = cameraFromFlags(args->flags, *store, window.aspect());
-            render::ViewerSession session(*store, options, camera, render::summarizeDataset(*store));
-            window.run(session, [](const std::string& line) { std::printf("%s\n", line.c_str()); });
+            const render::RenderOptions budgets = renderOptionsFromFlags(args->flags);
+            const auto print = [](const std::string& line) { std::printf("%s\n", line.c_str()); };
+            auto newSession = [&](const RenderFlags& flags, const Dataset& d) {
+              render::RenderOptions options = budgets;
+              options.iso = d.iso;
+              auto session = std::make_unique<render::ViewerSession>(
+                  *d.store, options, cameraFromFlags(flags, *d.store, window.aspect()), render::summarizeDataset(*d.store));
+              session->setReport(print);
+              return session;
+            };
+            std::unique_ptr<render::ViewerSession> session = newSession(args->flags, data);
+            // Another file dropped on the window or typed after O replaces the dataset; the window,
+            // budgets and layout stay. One that does not open leaves the old one, and says why.
+            while (std::optional<std::string> next = window.run(*session)) {
+              const RenderFlags nextFlags = flagsForAnotherFile(args->flags, *next);
+              Dataset opened;
+              try {
+                opened = openDataset(nextFlags);  // a Cartesian file is converted first (progress on stderr)
+              } catch (const std::exception& e) {  // fcc::Error's one line, or anything a reader threw
+                session->notify(std::string("cannot open it: ") + e.what());
+                continue;
+              }
+              session.reset();  // before the store it reads
+              data = std::move(opened);
+              session = newSession(nextFlags, data);
+              window.setTitle("fccvdb — " + *next);
+              print("opened " + *next);
+            }
             return 0;
           }};
 }

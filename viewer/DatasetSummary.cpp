@@ -6,7 +6,7 @@
 
 namespace fcc::render {
 
-DatasetSummary summarizeDataset(const io::BrickStore& store, std::size_t maxBricks, int bins) {
+DatasetSummary summarizeDataset(const io::BrickStore& store, std::size_t maxBricks, int bins, bool preferRecorded) {
   DatasetSummary s;
   s.file = store.path();
   const FccGrid& index = store.index();
@@ -16,12 +16,29 @@ DatasetSummary summarizeDataset(const io::BrickStore& store, std::size_t maxBric
   s.bytes = s.bricks * sizeof(io::BrickValues);
   s.valueMin = store.valueMin();
   s.valueMax = store.valueMax();
-  if (const std::optional<SampleSummary> samples = recordedSamples(index)) {
+  const std::optional<SampleSummary> samples = recordedSamples(index);
+  if (samples) {
     s.hasDataRange = true;
     s.dataMin = samples->min;
     s.dataMax = samples->max;
   }
+  if (preferRecorded && samples && !samples->histogram.empty()) {
+    // The file's own record of every sample: exact, and free to read. Merged by whole groups so the
+    // bins stay equal (256 recorded bins become 64 for the default).
+    const std::size_t recorded = samples->histogram.size();
+    std::size_t group = std::max<std::size_t>(1, recorded / std::size_t(std::max(bins, 1)));
+    while (recorded % group != 0) --group;
+    s.histogram.assign(recorded / group, 0.0f);
+    for (std::size_t b = 0; b < recorded; ++b) s.histogram[b / group] += float(samples->histogram[b]);
+    s.histogramMin = samples->min;
+    s.histogramMax = samples->max;
+    s.histogramOfSamples = true;
+    s.histogramValues = samples->total();
+    return s;
+  }
   s.histogram.assign(std::size_t(std::max(bins, 1)), 0.0f);
+  s.histogramMin = s.valueMin;
+  s.histogramMax = s.valueMax;
 
   const std::size_t stride = std::max<std::size_t>(1, (s.bricks + maxBricks - 1) / std::max<std::size_t>(maxBricks, 1));
   const float span = s.valueMax - s.valueMin;

@@ -22,13 +22,21 @@ struct DatasetSummary {
   // (fcc_sample_min/max); the spline overshoots it where the data jumps. False for other files.
   bool hasDataRange = false;
   float dataMin = 0.0f, dataMax = 0.0f;
-  // Counts of the active values of up to `maxBricks` bricks spread evenly over the file, in equal
-  // bins over [valueMin, valueMax] (values outside go to the end bins).
+  // The panel's histogram, counts in equal bins over [histogramMin, histogramMax]. Preferably the
+  // samples' histogram the file records (fcc_sample_histogram, sparse/SampleHistogram.h: every sample,
+  // before the prefilter, over the data range; bins merged down to about `bins`), read without
+  // decoding a brick: `histogramOfSamples`. Else the counts of the stored coefficients of up to
+  // `maxBricks` bricks spread evenly over the file, over [valueMin, valueMax] (values outside go to
+  // the end bins).
   std::vector<float> histogram;
+  float histogramMin = 0.0f, histogramMax = 0.0f;
+  bool histogramOfSamples = false;
   uint64_t histogramValues = 0;
-  uint64_t histogramBricks = 0;
+  uint64_t histogramBricks = 0;  // bricks decoded for it (0 for the recorded one)
 };
 
-DatasetSummary summarizeDataset(const io::BrickStore& store, std::size_t maxBricks = 256, int bins = 64);
+// `preferRecorded` false: the coefficients' histogram even where the file records its samples' (tests).
+DatasetSummary summarizeDataset(const io::BrickStore& store, std::size_t maxBricks = 256, int bins = 64,
+                                bool preferRecorded = true);
 
 }  // namespace fcc::render

@@ -32,15 +32,24 @@ Camera orbit(const Camera& camera, double dxPixels, double dyPixels) {
   return out;
 }
 
-Camera pan(const Camera& camera, double dxPixels, double dyPixels, int viewportHeight) {
+Camera pan(const Camera& camera, double dxPixels, double dyPixels, int viewportHeight, double depth) {
   const CameraFrame frame = cameraFrame(camera, 1.0);
-  const double distance = glm::length(camera.lookat - camera.eye);
+  const double distance = depth > 0.0 ? depth : glm::length(camera.lookat - camera.eye);
   // frame.up spans half the viewport height at unit distance.
   const double worldPerPixel = 2.0 * glm::length(frame.up) * distance / std::max(viewportHeight, 1);
   const glm::dvec3 shift = worldPerPixel * (-dxPixels * glm::normalize(frame.right) + dyPixels * glm::normalize(frame.up));
   Camera out = camera;
   out.eye += shift;
   out.lookat += shift;
+  return out;
+}
+
+Camera roll(const Camera& camera, double degrees) {
+  const glm::dvec3 forward = glm::normalize(camera.lookat - camera.eye);
+  const glm::dvec3 up = glm::normalize(camera.up - glm::dot(camera.up, forward) * forward);
+  Camera out = camera;
+  // Rotating up about the forward axis by -degrees turns the camera counter-clockwise as seen from behind it.
+  out.up = glm::normalize(glm::dvec3(glm::rotate(glm::dmat4(1.0), glm::radians(-degrees), forward) * glm::dvec4(up, 0.0)));
   return out;
 }
 

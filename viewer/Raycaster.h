@@ -109,6 +109,9 @@ class Raycaster {
   FrameImages readImages(bool withNormalDepth = true) const;
   // The colour image (RGBA32F, premultiplied, row 0 at the top) for drawing on screen.
   const GlTexture2D& colorTexture() const { return color_; }
+  // The normal and depth image (RGBA32F as FrameImages::normalDepth, row 0 at the top): the viewer
+  // reads the pixel under its cursor.
+  const GlTexture2D& normalDepthTexture() const { return normalDepth_; }
   // The pixels of the colour image that show the surface (A = 1), as of the last pass; the rest shows
   // the background. Empty when no ray hit.
   PixelRect surfaceRect() const { return surfaceRect_; }

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "Srgb.h"
+#include "ViewerOverlays.h"
 #include "ViewerSession.h"
 
 namespace fcc::render {
@@ -43,11 +45,28 @@ void usageBar(const char* label, double used, double budget) {
   ImGui::ProgressBar(budget > 0.0 ? float(std::min(used / budget, 1.0)) : 0.0f, ImVec2(-1.0f, 0.0f), overlay);
 }
 
+ImRectF lastItemRect() {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  return {lo.x, lo.y, hi.x, hi.y};
+}
+
+// A colour's fields and swatch (sRGB, 0..1), then its label; `swatch` gets where the swatch is.
+bool colourEdit(const char* label, glm::vec3& srgb, ImRectF* swatch = nullptr) {
+  ImGui::PushID(label);
+  const bool changed = ImGui::ColorEdit3("##colour", &srgb.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_NoLabel);
+  // Without its label the widget ends with the swatch, a square of the frame's height.
+  const ImRectF all = lastItemRect();
+  if (swatch) *swatch = {all.x1 - ImGui::GetFrameHeight(), all.y0, all.x1, all.y0 + ImGui::GetFrameHeight()};
+  ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
+  ImGui::TextUnformatted(label);
+  ImGui::PopID();
+  return changed;
+}
+
 }  // namespace
 
 void ViewerSession::drawPanel(int windowHeight) {
   if (!settings_.showPanel) return;
-  const float scale = ImGui::GetIO().FontGlobalScale;
   ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
   ImGui::SetNextWindowSize(ImVec2(panelWidth_, float(windowHeight)));
   // Opaque: the raycaster casts no rays under it (ViewerSession::frame). No border: it would reach a
@@ -61,23 +80,16 @@ void ViewerSession::drawPanel(int windowHeight) {
   ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);  // room for the labels
 
   if (ImGui::CollapsingHeader("Isosurface", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // The value above the slider, not in it: the slider's handle would cover it wherever it stands.
+    ImGui::Text("isovalue %.6g", double(settings_.iso));
+    layout_.isoLabel = lastItemRect();
     ImGui::SetNextItemWidth(-1.0f);
-    // Instant: the bounds do not depend on the isovalue, only which bricks are needed does.
-    ImGui::SliderFloat("##iso", &settings_.iso, summary_.valueMin, summary_.valueMax, "iso %.4g");
-    const auto& h = summary_.histogram;
-    if (!h.empty()) {
-      // Logarithmic counts: a large background bin would flatten everything else.
-      std::vector<float> logCounts(h.size());
-      std::transform(h.begin(), h.end(), logCounts.begin(), [](float c) { return std::log1p(c); });
-      ImGui::PlotHistogram("##histogram", logCounts.data(), int(logCounts.size()), 0, "coefficients (log count)", 0.0f,
-                           FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 56.0f * scale));
-      // The isovalue's place under the histogram.
-      const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-      const float span = summary_.valueMax - summary_.valueMin;
-      const float t = span > 0.0f ? std::clamp((settings_.iso - summary_.valueMin) / span, 0.0f, 1.0f) : 0.5f;
-      const float x = lo.x + t * (hi.x - lo.x);
-      ImGui::GetWindowDrawList()->AddLine(ImVec2(x, lo.y), ImVec2(x, hi.y), IM_COL32(255, 90, 60, 255), 2.0f);
-    }
+    // Instant: the bounds do not depend on the isovalue, only which bricks are needed does. No text
+    // in the slider (an empty format), so no rounding to one either; ctrl + click still types a value.
+    ImGui::SliderFloat("##iso", &settings_.iso, summary_.valueMin, summary_.valueMax, "",
+                       ImGuiSliderFlags_NoRoundToFormat);
+    layout_.isoSlider = lastItemRect();
+    drawHistogram();
   }
   if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) {
     // Light direction in camera space as azimuth (from the view axis towards the right) and
@@ -90,14 +102,20 @@ void ViewerSession::drawPanel(int windowHeight) {
       const float a = glm::radians(azimuth), e = glm::radians(elevation);
       settings_.lightInCamera = glm::vec3(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
     }
-    ImGui::ColorEdit3("surface", &settings_.surfaceColor.x, ImGuiColorEditFlags_Float);
-    ImGui::ColorEdit3("background", &settings_.background.x, ImGuiColorEditFlags_Float);
+    // The renderer's colours are linear; the swatches and fields show them as drawn on screen (sRGB),
+    // and an edit is converted back (only then: the defaults stay bit-exact).
+    glm::vec3 surface = srgbFromLinear(settings_.surfaceColor), background = srgbFromLinear(settings_.background);
+    if (colourEdit("surface", surface)) settings_.surfaceColor = linearFromSrgb(surface);
+    if (colourEdit("background", background, &layout_.backgroundSwatch))
+      settings_.background = linearFromSrgb(background);
   }
   if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("empty-space skipping", &settings_.skipEmpty);
     ImGui::Checkbox("finite-difference normals", &settings_.finiteDifferenceNormals);
     row("brick layout", brickLayoutName(*raycaster_.options().layout));
   }
+  drawCameraSection();
+  drawCursorSection();
   if (ImGui::CollapsingHeader("Dataset", ImGuiTreeNodeFlags_DefaultOpen)) {
     row("file", summary_.file);
     row("grid", summary_.grid);
@@ -149,39 +167,91 @@ void ViewerSession::drawPanel(int windowHeight) {
   ImGui::End();
 }
 
+void ViewerSession::drawCameraSection() {
+  if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  const auto triple = [](const glm::dvec3& v) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.4g, %.4g, %.4g", v.x, v.y, v.z);
+    return std::string(text);
+  };
+  row("eye", triple(camera_.eye));
+  row("look at", triple(camera_.lookat));
+  row("up", triple(camera_.up));
+  char fov[32];
+  std::snprintf(fov, sizeof fov, "%.4g deg", camera_.fovYDegrees);
+  row("fov", fov);
+  if (ImGui::Button("save and copy (C)")) {
+    try {
+      saveCamera();
+    } catch (const std::exception& e) {
+      notify(e.what());  // an unwritable directory must not end the session
+    }
+  }
+  // The axis indicator at the section's right edge, beside the button. In the panel, not over the
+  // image: the image beside an unchanged panel is then all a settled frame draws (ViewerSession::frame).
+  const float side = kAxisIndicatorSide * ImGui::GetIO().FontGlobalScale;
+  ImGui::SameLine(std::max(ImGui::GetCursorPosX(), ImGui::GetWindowContentRegionMax().x - side));
+  const ImVec2 corner = ImGui::GetCursorScreenPos();
+  ImGui::Dummy(ImVec2(side, side));
+  drawAxes(*ImGui::GetWindowDrawList(), ImVec2(corner.x + 0.5f * side, corner.y + 0.5f * side), 0.4f * side, camera_);
+}
+
+void ViewerSession::drawCursorSection() {
+  if (!ImGui::CollapsingHeader("Under the cursor", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (!cursor_.hit) {
+    // As many lines as a hit shows: the sections below do not jump as the mouse crosses a silhouette.
+    row("world", "no surface under the cursor");
+    for (const char* label : {"lattice xyz", "nearest site", "value"}) row(label, "-");
+    return;
+  }
+  char text[96];
+  std::snprintf(text, sizeof text, "%.5g, %.5g, %.5g", cursor_.pWorld.x, cursor_.pWorld.y, cursor_.pWorld.z);
+  row("world", text);
+  std::snprintf(text, sizeof text, "%.5g, %.5g, %.5g", cursor_.xyz.x, cursor_.xyz.y, cursor_.xyz.z);
+  row("lattice xyz", text);
+  // The nearest FCC site and the spline's value there: the data's sample for a prefiltered file.
+  std::snprintf(text, sizeof text, "%d, %d, %d: %.5g", cursor_.ijk.x, cursor_.ijk.y, cursor_.ijk.z,
+                double(cursor_.valueAtSite));
+  row("nearest site", text);
+  std::snprintf(text, sizeof text, "%.5g (the surface's)", double(cursor_.valueAtPoint));
+  row("value", text);
+}
+
 void ViewerSession::drawHelp() {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
   ImGui::Begin("Help", &settings_.showHelp,
                ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
-  static const char* const kKeys[][2] = {
+  static const char* const kRows[][2] = {
       {"left drag", "orbit about the look-at point"},
+      {"ctrl + left drag", "roll"},
       {"middle drag, shift + left drag", "pan"},
       {"wheel", "zoom"},
       {"R", "reset the camera (frame the data)"},
+      {"C", "save the camera as JSON (for --camera) and copy it"},
+      {"+, - (or keypad)", "isovalue up or down by 1% of its range"},
+      {"Page Up, Page Down", "isovalue up or down by 10%"},
       {"S, F12", "screenshot: PNG of the window and EXR of the image, in the current directory"},
+      {"O, or drop a file", "open another file (any input `fccvdb view` takes)"},
       {"P", "show or hide the panel"},
       {"H, F1", "show or hide this help"},
+      {"ctrl + click a slider", "type an exact value (Enter applies it, Esc cancels)"},
       {"Esc", "quit"},
   };
-  for (const auto& k : kKeys) {
-    ImGui::TextUnformatted(k[0]);
-    ImGui::SameLine(ImGui::GetFontSize() * 15.0f);
-    ImGui::TextUnformatted(k[1]);
+  // The descriptions start right of the widest key, at any font size.
+  float keysWidth = 0.0f;
+  for (const auto& r : kRows) keysWidth = std::max(keysWidth, ImGui::CalcTextSize(r[0]).x);
+  const float column = ImGui::GetStyle().WindowPadding.x + keysWidth + ImGui::GetFontSize();
+  layout_.helpKeysRight = 0.0f;
+  layout_.helpTextLeft = FLT_MAX;
+  for (const auto& r : kRows) {
+    ImGui::TextUnformatted(r[0]);
+    layout_.helpKeysRight = std::max(layout_.helpKeysRight, ImGui::GetItemRectMax().x);
+    ImGui::SameLine(column);
+    ImGui::TextUnformatted(r[1]);
+    layout_.helpTextLeft = std::min(layout_.helpTextLeft, ImGui::GetItemRectMin().x);
   }
   ImGui::End();
-}
-
-void ViewerSession::drawStreamingLine(int windowHeight) {
-  if (stats_.complete && stats_.streaming == 0) return;
-  char text[96];
-  if (stats_.streaming > 0)
-    std::snprintf(text, sizeof text, "streaming %zu bricks (%zu at the isovalue not loaded)", stats_.streaming,
-                  stats_.missing);
-  else
-    std::snprintf(text, sizeof text, "refining (%u bricks requested)", stats_.requested);
-  const ImVec2 at(panelWidth() + 10.0f, float(windowHeight) - ImGui::GetFontSize() - 10.0f);
-  ImGui::GetForegroundDrawList()->AddText(at, IM_COL32(255, 255, 255, 220), text);
 }
 
 }  // namespace fcc::render

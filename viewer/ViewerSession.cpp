@@ -5,14 +5,19 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <epoxy/gl.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string_view>
 
+#include "CameraFile.h"
 #include "ImGuiDrawData.h"
 #include "OrbitControls.h"
+#include "OutputNames.h"
+#include "GlProgram.h"
 #include "io/ImageOutput.h"
 
 namespace fcc::render {
@@ -27,7 +32,9 @@ ViewerSession::ViewerSession(const io::BrickStore& store, const RenderOptions& o
       raycaster_(store, options),
       camera_(initialCamera),
       initialCamera_(initialCamera),
-      summary_(std::move(summary)) {
+      summary_(std::move(summary)),
+      splineProbe_(store),
+      indexFromWorld_(glm::inverse(store.worldFromIndex())) {
   settings_.iso = raycaster_.iso();
   settings_.lightInCamera = options.lightInCamera;
   settings_.surfaceColor = options.surfaceColor;
@@ -35,7 +42,53 @@ ViewerSession::ViewerSession(const io::BrickStore& store, const RenderOptions& o
   settings_.finiteDifferenceNormals = options.finiteDifferenceNormals;
 }
 
-bool ViewerSession::takeScreenshotRequest() { return std::exchange(screenshotRequested_, false); }
+void ViewerSession::notify(const std::string& text) {
+  notice_ = text;
+  noticeUntil_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                        std::chrono::duration<double>(kNoticeSeconds));
+}
+
+std::string ViewerSession::saveCamera() {
+  const std::string path = uniqueTimestampedStem(outputDirectory_, "fccvdb-camera", {".json"}) + ".json";
+  writeCameraFile(path, camera_);
+  // The clipboard gets the same JSON (GLFW's clipboard in the window; ImGui's own without one).
+  ImGui::SetClipboardText(cameraJson(camera_).c_str());
+  const std::string line = "camera saved to " + path + " and copied (use it with --camera)";
+  if (report_) report_(line);
+  notify(line);
+  return path;
+}
+
+void ViewerSession::writeScreenshots(const std::string& pngPath, const std::string& exrPath) {
+  std::string written;
+  if (!pngPath.empty()) {
+    // The bound framebuffer as this frame drew it (image and panel), rows flipped to put row 0 at the top.
+    const int w = fbWidth_, h = fbHeight_;
+    std::vector<unsigned char> bottomUp(std::size_t(w) * h * 3), rgb(bottomUp.size());
+    // Read what this frame drew into: the window's back buffer, or an offscreen target.
+    GLint drawFramebuffer = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(drawFramebuffer));
+    if (drawFramebuffer == 0) glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, bottomUp.data());
+    checkGl("reading the frame for a screenshot");
+    for (int y = 0; y < h; ++y)
+      std::copy_n(bottomUp.data() + std::size_t(h - 1 - y) * w * 3, std::size_t(w) * 3, rgb.data() + std::size_t(y) * w * 3);
+    io::writeScreenPng(pngPath, w, h, rgb);
+    const long panelPixels = windowHeight_ > 0 ? std::lround(panelWidth() * float(h) / float(windowHeight_)) : 0;
+    if (report_)
+      report_("wrote " + pngPath + " (" + std::to_string(w) + "x" + std::to_string(h) + " window, panel " +
+              std::to_string(panelPixels) + " px wide)");
+    written = pngPath;
+  }
+  if (!exrPath.empty()) {
+    writeExr(exrPath);
+    if (report_) report_("wrote " + exrPath + " (R,G,B,A,Z,N.X,N.Y,N.Z)");
+    written += (written.empty() ? "" : " and ") + exrPath;
+  }
+  if (!written.empty()) notify("screenshot written: " + written);
+}
 
 void ViewerSession::writeExr(const std::string& path) {
   // A complete frame of the whole view: the progressive one leaves the columns under the panel empty.
@@ -52,18 +105,70 @@ void ViewerSession::handleInput(int windowHeight) {
     const double dx = io.MouseDelta.x, dy = io.MouseDelta.y;
     const bool moved = (dx != 0.0 || dy != 0.0) && io.MousePos.x > -1e30f;
     const bool panning = io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
-    if (moved && panning) camera_ = pan(camera_, dx, dy, windowHeight);
+    const bool rolling = io.MouseDown[0] && io.KeyCtrl && !io.KeyShift;
+    if (io.MouseClicked[2] || (io.MouseClicked[0] && io.KeyShift)) {
+      // The pan holds the surface point under the cursor (else the look-at plane) under the cursor.
+      const glm::dvec3 forward = glm::normalize(camera_.lookat - camera_.eye);
+      panDepth_ = cursor_.hit ? glm::dot(cursor_.pWorld - camera_.eye, forward) : 0.0;
+    }
+    if (moved && panning) camera_ = pan(camera_, dx, dy, windowHeight, panDepth_);
+    else if (moved && rolling) camera_ = roll(camera_, dx * kOrbitDegreesPerPixel);
     else if (moved && io.MouseDown[0]) camera_ = orbit(camera_, dx, dy);
     if (io.MouseWheel != 0.0f) camera_ = zoom(camera_, io.MouseWheel);
   }
-  if (!io.WantCaptureKeyboard) {
+  // Keys reach the viewer while the panel has focus (a slider held, a colour picked), but not while
+  // a text field takes them (ctrl + click on a slider types its value: an "s" there is a letter).
+  if (!io.WantTextInput) {
     if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) camera_ = initialCamera_;
     if (ImGui::IsKeyPressed(GLFW_KEY_H, false) || ImGui::IsKeyPressed(GLFW_KEY_F1, false))
       settings_.showHelp = !settings_.showHelp;
     if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) settings_.showPanel = !settings_.showPanel;
     if (ImGui::IsKeyPressed(GLFW_KEY_S, false) || ImGui::IsKeyPressed(GLFW_KEY_F12, false))
       screenshotRequested_ = true;
+    // The isovalue by keyboard, within the surface range; held keys repeat.
+    const float range = summary_.valueMax - summary_.valueMin;
+    float isoSteps = 0.0f;
+    if (ImGui::IsKeyPressed(GLFW_KEY_EQUAL, true) || ImGui::IsKeyPressed(GLFW_KEY_KP_ADD, true)) isoSteps += kIsoKeyStep;
+    if (ImGui::IsKeyPressed(GLFW_KEY_MINUS, true) || ImGui::IsKeyPressed(GLFW_KEY_KP_SUBTRACT, true)) isoSteps -= kIsoKeyStep;
+    if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_UP, true)) isoSteps += kIsoPageStep;
+    if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_DOWN, true)) isoSteps -= kIsoPageStep;
+    if (isoSteps != 0.0f)
+      settings_.iso = std::clamp(settings_.iso + isoSteps * range, summary_.valueMin, summary_.valueMax);
+    if (ImGui::IsKeyPressed(GLFW_KEY_O, false)) {
+      openField_.shown = true;
+      openField_.focus = true;
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_C, false)) {
+      try {
+        saveCamera();
+      } catch (const std::exception& e) {
+        notify(e.what());  // an unwritable directory must not end the session
+      }
+    }
   }
+}
+
+void ViewerSession::updateCursor(int fbWidth, int fbHeight, int windowHeight) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const float pixelsPerUnit = windowHeight > 0 ? float(fbHeight) / float(windowHeight) : 1.0f;
+  const bool overImage = io.MousePos.x > -1e30f && !io.WantCaptureMouse && io.MousePos.x >= panelWidth() &&
+                         io.MousePos.y >= 0.0f;
+  const glm::ivec2 pixel(int(std::floor(io.MousePos.x * pixelsPerUnit)), int(std::floor(io.MousePos.y * pixelsPerUnit)));
+  const GlTexture2D& normalDepth = raycaster_.normalDepthTexture();
+  if (!overImage || pixel.x >= std::min(fbWidth, normalDepth.width()) || pixel.y >= std::min(fbHeight, normalDepth.height())) {
+    cursor_ = CursorProbe{};
+    cursorPixel_ = glm::ivec2(-1);
+    return;
+  }
+  // A settled image under a still cursor reads nothing: no GPU sync while idle.
+  if (pixel == cursorPixel_ && stats_.complete && shownSettled_) return;
+  cursorPixel_ = pixel;
+  float normalDepthTexel[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  glGetTextureSubImage(normalDepth.id(), 0, pixel.x, pixel.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof normalDepthTexel,
+                       normalDepthTexel);
+  checkGl("reading the depth under the cursor");
+  cursor_ = probeSurface(splineProbe_, indexFromWorld_, camera_, pixel.x, pixel.y, normalDepth.width(),
+                         normalDepth.height(), normalDepthTexel[3]);
 }
 
 // The raycaster's setters restart the progressive frame, so only what changed is passed on.
@@ -113,6 +218,9 @@ void ViewerSession::updateStats(const StepStats& step, double imageDrawn, bool u
 }
 
 void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int bufferAge) {
+  fbWidth_ = fbWidth;
+  fbHeight_ = fbHeight;
+  windowHeight_ = windowHeight;
   handleInput(windowHeight);
   panelWidth_ = kPanelWidth * ImGui::GetIO().FontGlobalScale;
   // The panel is opaque: the columns wholly under it get no rays and no image. Framebuffer pixels
@@ -126,6 +234,11 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   raycaster_.startStep(camera_, fbWidth, fbHeight, kUploadSecondsPerFrame, covered);
   drawPanel(windowHeight);
   if (settings_.showHelp) drawHelp();
+  drawAxisIndicator(windowHeight);
+  drawOpenField();
+  if (!notice_.empty() && std::chrono::steady_clock::now() > noticeUntil_) notice_.clear();
+  drawNotice();
+  shownStatusLine_ = statusLine();
   drawStreamingLine(windowHeight);
   ImGui::Render();
   ImDrawData* ui = ImGui::GetDrawData();
@@ -141,10 +254,22 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   const bool uiShown = kUiMaySkip && overlays.empty() && redraw_.holdsUi(look, bufferAge, uiHash);
   if (!uiShown) ImGui_ImplOpenGL3_RenderDrawData(ui);
   const StepStats step = raycaster_.finishStep();
+  updateCursor(fbWidth, fbHeight, windowHeight);
   regions.front() = intersected(united(regions.front(), raycaster_.surfaceRect()), look.imageArea());  // as drawn
   redraw_.drawn(look, raycaster_.surfaceRect(), overlays, uiHash);
   applySettings();
   updateStats(step, double(coveredArea(regions)) / double(std::max<long long>(1, look.imageArea().area())), !uiShown);
+  // This frame's image is complete (its pass was the last one) and its line told a settled frame.
+  shownSettled_ = shownStatusLine_.empty() && settled();
+  if (std::exchange(screenshotRequested_, false)) {
+    // Here, once the frame is drawn: the PNG shows it as the window will (the notice from the next frame on).
+    const std::string stem = uniqueTimestampedStem(outputDirectory_, "fccvdb", {".png", ".exr"});
+    try {
+      writeScreenshots(stem + ".png", stem + ".exr");
+    } catch (const std::exception& e) {
+      notify(e.what());  // an unwritable directory must not end the session
+    }
+  }
 }
 
 }  // namespace fcc::render

@@ -8,10 +8,14 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "Camera.h"
+#include "CursorProbe.h"
 #include "DatasetSummary.h"
 #include "Presenter.h"
 #include "Raycaster.h"
@@ -29,6 +33,21 @@ struct ViewerSettings {
   bool finiteDifferenceNormals = false;
   bool showPanel = true;
   bool showHelp = false;
+};
+
+// Where the last frame put some of the panel's and help window's items, in window units (tests
+// check the layout with it: a click on the histogram, the swatch's colour, labels that must not overlap).
+struct ImRectF {
+  float x0 = 0.0f, y0 = 0.0f, x1 = 0.0f, y1 = 0.0f;
+  bool empty() const { return !(x1 > x0 && y1 > y0); }
+  float centreX() const { return 0.5f * (x0 + x1); }
+  float centreY() const { return 0.5f * (y0 + y1); }
+};
+struct PanelLayout {
+  ImRectF isoLabel, isoSlider, histogram, backgroundSwatch;
+  std::string histogramTooltip;  // the last one shown
+  // The help window's rows: the rightmost end of a key's text and the leftmost start of a description.
+  float helpKeysRight = 0.0f, helpTextLeft = 0.0f;
 };
 
 // Live figures for the statistics section, updated every frame.
@@ -64,13 +83,49 @@ class ViewerSession {
   // everything; see RedrawTracker.h) and then ImGui's windows over it.
   void frame(int fbWidth, int fbHeight, int windowHeight, int bufferAge = 0);
 
-  // True once the frame is complete and no brick is streaming (screenshots wait for it).
+  // True once the frame is complete and no brick is streaming.
   bool settled() const { return stats_.complete && stats_.streaming == 0; }
-  // Set by the screenshot key (S, F12); cleared by takeScreenshotRequest().
-  bool takeScreenshotRequest();
-  // Writes a complete frame of the current view as EXR (channels as `fccvdb render`), panel columns
-  // included; waits for bricks still streaming.
+  // True when the frame just drawn is the settled image and shows no "streaming" line: what an
+  // automated screenshot captures. One frame later than settled(): the line a frame draws tells the
+  // figures of the frame before (the panel is built while the pass runs), so the first settled frame
+  // still shows "streaming N bricks".
+  bool shownSettled() const { return shownSettled_; }
+  // The status line the last frame drew over the image ("streaming ...", "refining ..."); empty when none.
+  const std::string& shownStatusLine() const { return shownStatusLine_; }
+  // Writes the frame just drawn into the bound framebuffer (.png: image and panel, as shown) and/or
+  // a complete frame of the current view (.exr: channels as `fccvdb render`, panel columns
+  // included; waits for bricks still streaming); an empty path is skipped. Reports each file and
+  // shows a notice naming them. The screenshot key (S, F12) calls it at the end of its frame with a
+  // new timestamped name in the output directory.
+  void writeScreenshots(const std::string& pngPath, const std::string& exrPath);
   void writeExr(const std::string& path);
+
+  // Where the keys write their files (screenshots, cameras): empty, the current directory.
+  void setOutputDirectory(const std::string& directory) { outputDirectory_ = directory; }
+  // Gets one line for each file a key wrote (the window prints it); also shown on screen (notice()).
+  void setReport(std::function<void(const std::string&)> report) { report_ = std::move(report); }
+  // A line shown over the top of the image for kNoticeSeconds ("camera saved to ...").
+  void notify(const std::string& text);
+  // The notice shown now; empty when none.
+  const std::string& notice() const { return notice_; }
+  static constexpr double kNoticeSeconds = 4.0;
+
+  // The C key: writes the camera (viewer/CameraFile.h) to a new timestamped .json in the output
+  // directory, copies its JSON to the clipboard, and says so. Returns the file's path.
+  std::string saveCamera();
+
+  // What is under the mouse, as of the last frame: the surface point (world, lattice index space),
+  // the nearest FCC site and the spline's values; hit false over the background, the panel or
+  // outside the window. Read back from the raycaster's depth only when the pixel or the image changed.
+  const CursorProbe& cursor() const { return cursor_; }
+  // The isovalue keys' steps, as fractions of the surface range: + / - and Page Up / Page Down.
+  static constexpr float kIsoKeyStep = 0.01f, kIsoPageStep = 0.1f;
+
+  // Another file to open in this window: from a file dropped on it (requestOpen) or typed after O.
+  // The window hands it to whoever opens datasets (`fccvdb view`), which replaces this session.
+  void requestOpen(const std::string& path) { openRequest_ = path; }
+  std::optional<std::string> takeOpenRequest() { return std::exchange(openRequest_, std::nullopt); }
+  bool openFieldShown() const { return openField_.shown; }
 
   const Camera& camera() const { return camera_; }
   void setCamera(const Camera& camera) { camera_ = camera; }
@@ -78,6 +133,7 @@ class ViewerSession {
   ViewerSettings& settings() { return settings_; }
   const ViewerStats& stats() const { return stats_; }
   const DatasetSummary& summary() const { return summary_; }
+  const PanelLayout& panelLayout() const { return layout_; }
   // The panel's width in window coordinates (0 while hidden), where the image is covered.
   float panelWidth() const { return settings_.showPanel ? panelWidth_ : 0.0f; }
   // The upload time budget per frame (seconds), so a frame's uploads do not stall the UI.
@@ -87,9 +143,17 @@ class ViewerSession {
  private:
   void handleInput(int windowHeight);
   void applySettings();
+  void updateCursor(int fbWidth, int fbHeight, int windowHeight);
+  void drawCursorSection();
   void updateStats(const StepStats& step, double imageDrawn, bool uiDrawn);
   void drawPanel(int windowHeight);  // viewer/ViewerPanel.cpp
   void drawHelp();
+  void drawCameraSection();
+  void drawHistogram();  // viewer/PanelHistogram.cpp
+  void drawAxisIndicator(int windowHeight);
+  void drawNotice();
+  void drawOpenField();  // viewer/ViewerOverlays.cpp
+  std::string statusLine() const;  // of the last frame's figures; empty once settled
   void drawStreamingLine(int windowHeight);
 
   const io::BrickStore& store_;  // for the damage it met (io/BrickStore.h)
@@ -100,8 +164,26 @@ class ViewerSession {
   ViewerSettings settings_;
   ViewerStats stats_;
   DatasetSummary summary_;
+  PanelLayout layout_;
+  SplineProbe splineProbe_;
+  glm::dmat4 indexFromWorld_{1.0};
+  CursorProbe cursor_;
+  glm::ivec2 cursorPixel_{-1, -1};  // the framebuffer pixel cursor_ was read at
+  double panDepth_ = 0.0;           // along the view, of the point a pan grabbed (0: the look-at point's)
   float panelWidth_ = 0.0f;
+  int fbWidth_ = 0, fbHeight_ = 0, windowHeight_ = 0;  // of the last frame
   bool screenshotRequested_ = false;
+  std::optional<std::string> openRequest_;
+  struct OpenField {
+    bool shown = false, focus = false;
+    char path[1024] = {};
+  } openField_;
+  std::string outputDirectory_;
+  std::function<void(const std::string&)> report_;
+  std::string notice_;
+  std::chrono::steady_clock::time_point noticeUntil_;
+  std::string shownStatusLine_;
+  bool shownSettled_ = false;
   std::chrono::steady_clock::time_point rateWindowStart_;
   int framesInWindow_ = 0;
   double imageDrawnInWindow_ = 0.0;

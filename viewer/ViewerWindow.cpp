@@ -6,11 +6,10 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <ctime>
+#include <utility>
 #include <vector>
 
 #include "io/ImageOutput.h"
@@ -23,22 +22,10 @@ std::string glfwLastError;  // GLFW reports errors through a callback; the last 
 
 void onGlfwError(int, const char* description) { glfwLastError = description ? description : "unknown error"; }
 
-bool exists(const std::string& path) {
-  struct stat st;
-  return ::stat(path.c_str(), &st) == 0;
-}
+std::string droppedPath;  // the first file of the last drop on the window (one window per process)
 
-// "fccvdb-20261121-153012" in the current directory, with "-2", "-3", ... when taken.
-std::string timestampedStem() {
-  const std::time_t now = std::time(nullptr);
-  std::tm local{};
-  localtime_r(&now, &local);
-  char stem[64];
-  std::strftime(stem, sizeof stem, "fccvdb-%Y%m%d-%H%M%S", &local);
-  std::string candidate = stem;
-  for (int n = 2; exists(candidate + ".png") || exists(candidate + ".exr"); ++n)
-    candidate = std::string(stem) + "-" + std::to_string(n);
-  return candidate;
+void onDrop(GLFWwindow*, int count, const char** paths) {
+  if (count > 0 && paths[0]) droppedPath = paths[0];
 }
 
 bool endsWith(const std::string& s, const std::string& suffix) {
@@ -79,6 +66,7 @@ ViewerWindow::ViewerWindow(const WindowOptions& options) : options_(options) {
   ImGui::StyleColorsDark();
   ImGui::GetStyle().ScaleAllSizes(scale);
   ImGui_ImplGlfw_InitForOpenGL(window_, true);
+  glfwSetDropCallback(window_, onDrop);  // ImGui's backend installs none
   ImGui_ImplOpenGL3_Init("#version 450");
   imguiReady_ = true;
 }
@@ -99,37 +87,16 @@ double ViewerWindow::aspect() const {
   return w > 0 && h > 0 ? double(w) / double(h) : double(options_.width) / double(options_.height);
 }
 
-void ViewerWindow::writeScreenshots(ViewerSession& session, const std::string& pngPath, const std::string& exrPath,
-                                    const std::function<void(const std::string&)>& report) {
-  int w = 0, h = 0, windowWidth = 0, windowHeight = 0;
-  glfwGetFramebufferSize(window_, &w, &h);
-  glfwGetWindowSize(window_, &windowWidth, &windowHeight);
-  if (!pngPath.empty()) {
-    // The back buffer as drawn this frame (image and panel), rows flipped to put row 0 at the top.
-    std::vector<unsigned char> bottomUp(std::size_t(w) * h * 3), rgb(bottomUp.size());
-    glReadBuffer(GL_BACK);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, bottomUp.data());
-    checkGl("reading the window for a screenshot");
-    for (int y = 0; y < h; ++y)
-      std::copy_n(bottomUp.data() + std::size_t(h - 1 - y) * w * 3, std::size_t(w) * 3, rgb.data() + std::size_t(y) * w * 3);
-    io::writeScreenPng(pngPath, w, h, rgb);
-    report("wrote " + pngPath + " (" + std::to_string(w) + "x" + std::to_string(h) + " window, panel " +
-           std::to_string(int(std::lround(session.panelWidth() * w / std::max(1, windowWidth)))) + " px wide)");
-  }
-  if (!exrPath.empty()) {
-    session.writeExr(exrPath);
-    report("wrote " + exrPath + " (R,G,B,A,Z,N.X,N.Y,N.Z)");
-  }
-}
+void ViewerWindow::setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
 
-void ViewerWindow::run(ViewerSession& session, const std::function<void(const std::string&)>& report) {
+std::optional<std::string> ViewerWindow::run(ViewerSession& session) {
   const bool automated = !options_.screenshot.empty();
   int frames = 0;
   while (!glfwWindowShouldClose(window_)) {
     // Idle and complete: wait for input instead of redrawing the same image.
-    if (!automated && session.settled()) glfwWaitEventsTimeout(0.25);
+    if (!automated && session.shownSettled()) glfwWaitEventsTimeout(0.25);
     else glfwPollEvents();
+    if (!droppedPath.empty()) session.requestOpen(std::exchange(droppedPath, std::string()));
     int fbWidth = 0, fbHeight = 0, winHeight = 0;
     glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
     glfwGetWindowSize(window_, nullptr, &winHeight);
@@ -140,22 +107,21 @@ void ViewerWindow::run(ViewerSession& session, const std::function<void(const st
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    if (!ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false))
+    // Esc quits unless a text field has it (there it ends the edit).
+    if (!ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false))
       glfwSetWindowShouldClose(window_, GLFW_TRUE);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     session.frame(fbWidth, fbHeight, winHeight, bufferAge_->age());
     ++frames;
-    if (session.takeScreenshotRequest()) {
-      const std::string stem = timestampedStem();
-      writeScreenshots(session, stem + ".png", stem + ".exr", report);
-    }
-    if (automated && frames >= options_.frames && session.settled()) {
+    if (automated && frames >= options_.frames && session.shownSettled()) {
       const bool exr = endsWith(options_.screenshot, ".exr");
-      writeScreenshots(session, exr ? "" : options_.screenshot, exr ? options_.screenshot : "", report);
-      return;
+      session.writeScreenshots(exr ? "" : options_.screenshot, exr ? options_.screenshot : "");
+      return std::nullopt;
     }
     glfwSwapBuffers(window_);
+    if (std::optional<std::string> next = session.takeOpenRequest()) return next;
   }
+  return std::nullopt;
 }
 
 }  // namespace fcc::render

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "ViewerSession.h"
@@ -34,14 +35,14 @@ class ViewerWindow {
 
   // The framebuffer's aspect ratio (for framing the camera before the session exists).
   double aspect() const;
-  // Runs until the window closes (or the automation screenshot is written). `report` gets one line
-  // per screenshot written.
-  void run(ViewerSession& session, const std::function<void(const std::string&)>& report);
+  // Runs until the window closes (or the automation screenshot is written): nullopt; or until the
+  // session is asked to open another file (dropped on the window, or typed after O): its path, and
+  // the window stays open for the next session. The session reports the files it writes
+  // (ViewerSession::setReport).
+  std::optional<std::string> run(ViewerSession& session);
+  void setTitle(const std::string& title);
 
  private:
-  void writeScreenshots(ViewerSession& session, const std::string& pngPath, const std::string& exrPath,
-                        const std::function<void(const std::string&)>& report);
-
   WindowOptions options_;
   GLFWwindow* window_ = nullptr;
   bool imguiReady_ = false;

@@ -1,19 +1,18 @@
 // `fccvdb view` under Xvfb (Debian's xvfb-run): the automation screenshot shows the panel and the
 // surface, and its 3D area matches `fccvdb render` of the same camera; a missing display and a
 // Cartesian input each give one clear line.
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
 
+#include "ExrRead.h"
 #include "PngRead.h"
 #include "RunCommand.h"
 
@@ -22,6 +21,7 @@ namespace {
 
 using test::CommandResult;
 using test::lineCount;
+using test::readExrChannel;
 using test::readPng;
 using test::Rgb8;
 using test::runFccvdb;
@@ -86,21 +86,6 @@ TEST(CliView, ScreenshotShowsThePanelAndMatchesRenderOutsideIt) {
   EXPECT_GT(panelDiffers, long(panel) * a.height / 4) << "the panel must show";
 }
 
-// One float channel of an EXR, row 0 at the top.
-std::vector<float> readExrChannel(const std::string& path, const char* channel, int& width, int& height) {
-  Imf::InputFile file(path.c_str());
-  const auto dw = file.header().dataWindow();
-  width = dw.max.x - dw.min.x + 1;
-  height = dw.max.y - dw.min.y + 1;
-  std::vector<float> values(std::size_t(width) * height);
-  Imf::FrameBuffer fb;
-  fb.insert(channel, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data() - dw.min.x - dw.min.y * width),
-                                sizeof(float), sizeof(float) * width));
-  file.setFrameBuffer(fb);
-  file.readPixels(dw.min.y, dw.max.y);
-  return values;
-}
-
 // The EXR screenshot holds the whole view, the columns under the panel (where the viewer casts no
 // rays) included: the same coverage and depth as `fccvdb render`.
 TEST(CliView, ExrScreenshotHoldsTheWholeView) {
@@ -130,6 +115,44 @@ TEST(CliView, ExrScreenshotHoldsTheWholeView) {
     }
   EXPECT_GT(hitsLeft, 0) << "the surface must reach the panel's columns for this test to mean anything";
   EXPECT_EQ(mismatches, 0);
+}
+
+// One camera file for both: `view --camera F --screenshot OUT.exr` holds what `render --camera F` renders.
+TEST(CliView, CameraFileGivesViewAndRenderTheSameView) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
+  TempDir dir;
+  const std::string vdb = dir / "blobs.vdb", camera = dir / "camera.json", shot = dir / "view.exr",
+                    ref = dir / "render.exr";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 64,64,64 --quiet").status, 0);
+  std::ofstream(camera) << "{\"eye\": [90, 20, 110], \"lookat\": [30, 34, 28], \"up\": [0.2, 0, 1], \"fov\": 35}\n";
+  const std::string common = vdb + " --res 480x320 --iso 0.4 --camera " + camera;
+  const CommandResult view = runView(common + " --screenshot " + shot + " --frames 3");
+  ASSERT_EQ(view.status, 0) << view.err;
+  ASSERT_EQ(runFccvdb("render " + common + " -o " + ref + " --quiet").status, 0);
+  int w = 0, h = 0, rw = 0, rh = 0;
+  const std::vector<float> depth = readExrChannel(shot, "Z", w, h), refDepth = readExrChannel(ref, "Z", rw, rh);
+  ASSERT_EQ(w, rw);
+  ASSERT_EQ(h, rh);
+  int hits = 0, mismatches = 0;
+  for (std::size_t i = 0; i < depth.size(); ++i) {
+    hits += std::isfinite(refDepth[i]);
+    mismatches += !(depth[i] == refDepth[i] || (std::isinf(depth[i]) && std::isinf(refDepth[i])));
+  }
+  EXPECT_GT(hits, int(depth.size()) / 50) << "the surface must show";
+  EXPECT_EQ(mismatches, 0);
+}
+
+TEST(CliView, BadCameraFileIsOneLineAndStatus1) {
+  TempDir dir;
+  const std::string vdb = dir / "s.vdb", camera = dir / "camera.json";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 16,16,16 --quiet").status, 0);
+  std::ofstream(camera) << "{\"eye\": [1, 2, 3], \"lookat\": [0, 0, 0], \"fov\": \"wide\"}";
+  for (const std::string& command : {"render " + vdb + " -o " + (dir / "x.png"), "view " + vdb}) {
+    const CommandResult r = runFccvdb(command + " --camera " + camera);
+    EXPECT_EQ(r.status, 1) << command;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("camera file " + camera + ": \"fov\" expects numbers; valid is"), std::string::npos) << r.err;
+  }
 }
 
 TEST(CliView, NoDisplayGivesOneLineAndStatus1) {

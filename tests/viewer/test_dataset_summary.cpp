@@ -8,7 +8,9 @@
 #include "RenderTestSupport.h"
 #include "tests/tools/RunCommand.h"
 #include "sparse/SynthFields.h"
+#include "sparse/SampleHistogram.h"
 #include "viewer/DatasetSummary.h"
+#include "viewer/HistogramAxis.h"
 
 namespace fcc {
 namespace {
@@ -49,6 +51,45 @@ TEST(DatasetSummary, CountsAndHistogramMatchTheFullGrid) {
   EXPECT_LE(few.histogramBricks, 3u);
   EXPECT_GE(few.histogramBricks, 1u);
   EXPECT_EQ(std::accumulate(few.histogram.begin(), few.histogram.end(), 0.0), double(few.histogramValues));
+}
+
+// A file that records its samples' histogram (synth, convert) gives the panel that one: every
+// sample, over the data range, merged into equal bins, and no brick decoded for it.
+TEST(DatasetSummary, RecordedSampleHistogramIsPreferred) {
+  test::TempDir dir;
+  const io::BrickStore store(test::writeSmallBlobs(dir));
+  const std::optional<SampleSummary> recorded = recordedSamples(store.index());
+  ASSERT_TRUE(recorded && !recorded->histogram.empty()) << "synth records no histogram: nothing to prefer";
+  const render::DatasetSummary s = render::summarizeDataset(store, 256, 64);
+  EXPECT_TRUE(s.histogramOfSamples);
+  EXPECT_EQ(s.histogramBricks, 0u);
+  EXPECT_EQ(s.histogramMin, recorded->min);
+  EXPECT_EQ(s.histogramMax, recorded->max);
+  ASSERT_EQ(s.histogram.size(), 64u);
+  const std::size_t group = recorded->histogram.size() / 64;
+  for (std::size_t b = 0; b < s.histogram.size(); ++b) {
+    double expected = 0.0;
+    for (std::size_t k = 0; k < group; ++k) expected += double(recorded->histogram[b * group + k]);
+    EXPECT_EQ(double(s.histogram[b]), expected) << "bin " << b;
+  }
+  EXPECT_EQ(s.histogramValues, recorded->total());
+  const render::DatasetSummary coefficients = render::summarizeDataset(store, 256, 64, /*preferRecorded=*/false);
+  EXPECT_FALSE(coefficients.histogramOfSamples);
+  EXPECT_GT(coefficients.histogramBricks, 0u);
+  EXPECT_EQ(coefficients.histogramMin, coefficients.valueMin);
+}
+
+TEST(HistogramAxis, BinsAndPositions) {
+  const render::HistogramAxis axis{-2.0f, 6.0f, 4};  // bins of 2
+  EXPECT_EQ(axis.binAt(0.0f), 0);
+  EXPECT_EQ(axis.binAt(0.49f), 1);
+  EXPECT_EQ(axis.binAt(1.0f), 3) << "the right edge belongs to the last bin";
+  EXPECT_EQ(axis.binAt(-3.0f), 0);
+  EXPECT_EQ(axis.binLow(1), 0.0f);
+  EXPECT_EQ(axis.binHigh(1), 2.0f);
+  EXPECT_EQ(axis.valueAt(0.75f), 4.0f);
+  EXPECT_EQ(axis.positionOf(4.0f), 0.75f);
+  EXPECT_EQ(axis.positionOf(100.0f), 1.0f);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "viewer/AxisIndicator.h"
 #include "viewer/OrbitControls.h"
 
 namespace fcc::render {
@@ -96,6 +97,23 @@ TEST(OrbitControls, PanMovesThePointUnderTheCursorWithIt) {
   EXPECT_NEAR(after.y - before.y, dy, 1e-6);
 }
 
+// Grabbed at another depth than the look-at point's, the point at that depth follows the cursor.
+TEST(OrbitControls, PanAtADepthMovesThePointAtThatDepthWithTheCursor) {
+  const Camera c = testCamera();
+  const int width = 800, height = 600;
+  const CameraFrame f = cameraFrame(c, double(width) / height);
+  const double depth = 0.4 * glm::length(c.lookat - c.eye);
+  const glm::dvec3 grabbed = c.eye + depth * f.forward + 0.3 * depth * f.right;  // off centre, nearer
+  const glm::dvec2 before = project(c, grabbed, width, height);
+  const double dx = -21.0, dy = 17.5;
+  const Camera p = pan(c, dx, dy, height, depth);
+  const glm::dvec2 after = project(p, grabbed, width, height);
+  EXPECT_NEAR(after.x - before.x, dx, 1e-6);
+  EXPECT_NEAR(after.y - before.y, dy, 1e-6);
+  const glm::dvec2 lookatMoved = project(p, c.lookat, width, height) - project(c, c.lookat, width, height);
+  EXPECT_LT(std::abs(lookatMoved.x), std::abs(dx) * 0.9) << "the farther look-at point moves less";
+}
+
 TEST(OrbitControls, ZoomScalesTheDistanceAndUndoes) {
   const Camera c = testCamera();
   const double distance = glm::length(c.eye - c.lookat);
@@ -104,6 +122,43 @@ TEST(OrbitControls, ZoomScalesTheDistanceAndUndoes) {
   expectNear(glm::normalize(z.eye - z.lookat), glm::normalize(c.eye - c.lookat), "direction");
   expectNear(zoom(z, -3.0).eye, c.eye, "zoom undone");
   EXPECT_GT(glm::length(zoom(c, 500.0).eye - c.lookat), 0.0) << "zoom never reaches the look-at point";
+}
+
+// Roll turns the image about its centre: eye and look-at stay, the up vector turns about the view by
+// the given angle (a point right of the centre moves down for a positive roll: the image turns
+// clockwise), and rolling back undoes it.
+TEST(OrbitControls, RollTurnsTheImageAboutTheViewAxis) {
+  const Camera c = testCamera();
+  const Camera r = roll(c, 30.0);
+  expectNear(r.eye, c.eye, "eye");
+  expectNear(r.lookat, c.lookat, "look-at");
+  const glm::dvec3 forward = glm::normalize(c.lookat - c.eye);
+  const glm::dvec3 upBefore = glm::normalize(c.up - glm::dot(c.up, forward) * forward);
+  EXPECT_NEAR(glm::dot(r.up, forward), 0.0, kTol);
+  EXPECT_NEAR(glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(r.up), upBefore), -1.0, 1.0))), 30.0, 1e-9);
+  // A point on the image's horizontal through the centre moves down (y grows) after a positive roll.
+  const CameraFrame f = cameraFrame(c, 1.0);
+  const glm::dvec3 rightOfCentre = c.lookat + glm::normalize(f.right);
+  EXPECT_GT(project(r, rightOfCentre, 600, 600).y, project(c, rightOfCentre, 600, 600).y + 1.0);
+  expectNear(glm::normalize(roll(r, -30.0).up), upBefore, "roll undone");
+  // Orbiting after a roll turns about the rolled up vector and keeps it.
+  expectNear(orbit(r, 50.0, 0.0).up, r.up, "turntable about the rolled up");
+}
+
+// The axis indicator: looking along -z with y up, x points right, y up, z at the viewer; a quarter
+// roll turns the image clockwise, so y then points right.
+TEST(AxisIndicator, WorldAxesAsTheCameraSeesThem) {
+  Camera c;
+  c.eye = glm::dvec3(2.0, 3.0, 9.0);
+  c.lookat = glm::dvec3(2.0, 3.0, 4.0);
+  const auto axes = worldAxesInView(c);
+  expectNear(axes[0], glm::dvec3(1, 0, 0), "x");
+  expectNear(axes[1], glm::dvec3(0, 1, 0), "y");
+  expectNear(axes[2], glm::dvec3(0, 0, 1), "z");
+  const auto rolled = worldAxesInView(roll(c, 90.0));
+  expectNear(rolled[0], glm::dvec3(0, -1, 0), "x after a quarter roll");
+  expectNear(rolled[1], glm::dvec3(1, 0, 0), "y after a quarter roll");
+  expectNear(rolled[2], glm::dvec3(0, 0, 1), "z after a quarter roll");
 }
 
 }  // namespace

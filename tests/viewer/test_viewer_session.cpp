@@ -1,0 +1,330 @@
+// The viewer's session without a window (tests/viewer/SessionHarness.h): what its frames show and
+// what its keys and mouse do.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "SessionHarness.h"
+#include "tests/tools/ExrRead.h"
+#include "viewer/CameraFile.h"
+#include "viewer/HistogramAxis.h"
+#include "viewer/OrbitControls.h"
+#include "viewer/Srgb.h"
+
+namespace fcc {
+namespace {
+
+using test::GlSuite;
+using test::SessionHarness;
+using test::TempDir;
+
+class ViewerSession : public GlSuite {};
+
+// Differing channels of two RGBA images of the harness, right of `firstColumn`.
+int differingChannels(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b, int firstColumn) {
+  int n = 0;
+  for (int y = 0; y < SessionHarness::kHeight; ++y)
+    for (int x = firstColumn; x < SessionHarness::kWidth; ++x)
+      for (int c = 0; c < 4; ++c) {
+        const std::size_t i = (std::size_t(y) * SessionHarness::kWidth + x) * 4 + c;
+        n += a[i] != b[i];
+      }
+  return n;
+}
+
+// `view --screenshot` saves the frame for which shownSettled() turns true: its image is final and it
+// shows no "streaming" line. The first frame that settled() still drew the line (of the frame before).
+TEST_F(ViewerSession, ScreenshotFrameIsSettledAndShowsNoStreamingLine) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  int frames = 0, settledButShowingALine = 0, framesWithALine = 0;
+  while (!h.session->shownSettled() && frames++ < 2000) {
+    h.frame();
+    framesWithALine += !h.session->shownStatusLine().empty();
+    settledButShowingALine += h.session->settled() && !h.session->shownStatusLine().empty();
+  }
+  ASSERT_TRUE(h.session->shownSettled()) << "did not settle in 2000 frames";
+  EXPECT_GT(framesWithALine, 0) << "the view never streamed: nothing was tested";
+  EXPECT_EQ(settledButShowingALine, 1) << "the frame that first settled shows the line of the one before";
+  EXPECT_EQ(h.session->shownStatusLine(), "");
+  const std::vector<unsigned char> shot = h.pixels();
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  h.frame();
+  h.frame();
+  EXPECT_EQ(differingChannels(shot, h.pixels(), panel), 0) << "the screenshot's frame is not the final image";
+}
+
+// Ctrl + left drag rolls: the eye and look-at point stay, the up vector turns about the view.
+TEST_F(ViewerSession, CtrlDragRolls) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  const render::Camera before = h.session->camera();
+  const float x = SessionHarness::kWidth - 60.0f, y = 120.0f;
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(x, y); });
+  h.frame([&](ImGuiIO& io) {
+    io.MouseDown[0] = true;
+    io.KeyCtrl = true;
+  });
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(x + 40.0f, y); });
+  h.frame([&](ImGuiIO& io) {
+    io.MouseDown[0] = false;
+    io.KeyCtrl = false;
+  });
+  const render::Camera after = h.session->camera();
+  EXPECT_EQ(after.eye, before.eye) << "a roll is not an orbit";
+  EXPECT_EQ(after.lookat, before.lookat);
+  const glm::dvec3 expectedUp = render::roll(before, 40.0 * render::kOrbitDegreesPerPixel).up;
+  EXPECT_NEAR(glm::length(after.up - expectedUp), 0.0, 1e-12);
+}
+
+// C writes the camera beside the other outputs, copies it and says so on screen; `fccvdb render
+// --camera` of that file renders what the session shows (the complete frame the EXR screenshot
+// holds), pixel for pixel and depth for depth.
+TEST_F(ViewerSession, SavedCameraRendersTheSameImageWithRender) {
+  TempDir dir;
+  const std::string blobs = test::writeSmallBlobs(dir);
+  SessionHarness h(blobs);
+  h.session->setOutputDirectory(dir.path.string());
+  // A camera no default gives: orbited, rolled and panned, with digits a short format would lose.
+  render::Camera camera = render::roll(render::orbit(h.session->camera(), 37.0, 11.0), 23.0);
+  camera = render::pan(camera, 7.3, -3.1, SessionHarness::kHeight);
+  h.session->setCamera(camera);
+  std::vector<std::string> reported;
+  h.session->setReport([&](const std::string& line) { reported.push_back(line); });
+  h.press(GLFW_KEY_C);
+  std::string saved;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path))
+    if (entry.path().extension() == ".json") saved = entry.path().string();
+  ASSERT_FALSE(saved.empty()) << "C wrote no camera file into the output directory";
+  EXPECT_EQ(saved.find(dir.path.string() + "/fccvdb-camera-"), 0u) << saved;
+  ASSERT_EQ(reported.size(), 1u);
+  EXPECT_NE(reported[0].find(saved), std::string::npos) << reported[0];
+  EXPECT_NE(h.session->notice().find(saved), std::string::npos) << "no on-screen confirmation: " << h.session->notice();
+  EXPECT_EQ(std::string(ImGui::GetClipboardText()), render::cameraJson(camera));
+
+  const std::string shown = dir / "session.exr", rendered = dir / "render.exr";
+  h.session->writeExr(shown);
+  const test::CommandResult r = test::runFccvdb("render " + blobs + " --camera " + saved + " --iso 0.3 --res " +
+                                                std::to_string(SessionHarness::kWidth) + "x" +
+                                                std::to_string(SessionHarness::kHeight) + " -o " + rendered + " --quiet");
+  if (test::failedForLackOfGl(r)) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* channel : {"R", "G", "B", "A", "Z"}) {
+    int w = 0, hgt = 0, rw = 0, rh = 0;
+    const std::vector<float> a = test::readExrChannel(shown, channel, w, hgt);
+    const std::vector<float> b = test::readExrChannel(rendered, channel, rw, rh);
+    ASSERT_EQ(w, rw);
+    ASSERT_EQ(hgt, rh);
+    int differing = 0, hits = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      differing += !(a[i] == b[i] || (std::isinf(a[i]) && std::isinf(b[i])));
+      hits += std::isfinite(b[i]) && b[i] != 0.0f;
+    }
+    EXPECT_EQ(differing, 0) << "channel " << channel;
+    EXPECT_GT(hits, int(a.size()) / 50) << "channel " << channel << ": the surface must show";
+  }
+}
+
+// Files of `extension` in `dir`.
+std::vector<std::string> filesWith(const TempDir& dir, const std::string& extension) {
+  std::vector<std::string> out;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path))
+    if (entry.path().extension() == extension) out.push_back(entry.path().string());
+  return out;
+}
+
+// S works while the panel holds the keyboard (here: the mouse held on the iso slider, which makes
+// ImGui want the keyboard), writes both files into the output directory and says so on screen.
+TEST_F(ViewerSession, ScreenshotKeyWorksWhileThePanelHasFocusAndIsConfirmed) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  h.session->setOutputDirectory(dir.path.string());
+  for (int i = 0; i < 3; ++i) h.frame();  // the panel's scroll bar appears on its second frame
+  const render::ImRectF slider = h.session->panelLayout().isoSlider;
+  ASSERT_FALSE(slider.empty());
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(slider.centreX(), slider.centreY()); });
+  h.frame([&](ImGuiIO& io) { io.MouseDown[0] = true; });
+  h.frame();
+  ASSERT_TRUE(ImGui::GetIO().WantCaptureKeyboard) << "the panel does not hold the keyboard: nothing is tested";
+  h.press(GLFW_KEY_S);
+  h.frame([&](ImGuiIO& io) { io.MouseDown[0] = false; });
+  const std::vector<std::string> pngs = filesWith(dir, ".png"), exrs = filesWith(dir, ".exr");
+  ASSERT_EQ(pngs.size(), 1u) << "S wrote no PNG while the panel had focus";
+  ASSERT_EQ(exrs.size(), 1u);
+  EXPECT_NE(h.session->notice().find("screenshot written: " + pngs[0] + " and " + exrs[0]), std::string::npos)
+      << h.session->notice();
+}
+
+// Ctrl + click on the iso slider types its value (as the help says); S there is a letter for the
+// field, not a screenshot.
+TEST_F(ViewerSession, TextFieldKeepsItsKeysAndCtrlClickTypesAValue) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  h.session->setOutputDirectory(dir.path.string());
+  for (int i = 0; i < 3; ++i) h.frame();  // the panel's scroll bar appears on its second frame
+  const render::ImRectF slider = h.session->panelLayout().isoSlider;
+  h.click(slider.centreX(), slider.centreY(), /*ctrl=*/true);
+  ASSERT_TRUE(ImGui::GetIO().WantTextInput) << "ctrl + click did not open the slider's text field";
+  h.press(GLFW_KEY_S);
+  h.press(GLFW_KEY_R);
+  EXPECT_TRUE(filesWith(dir, ".png").empty()) << "S in a text field wrote a screenshot";
+  h.type("0.25");
+  h.press(GLFW_KEY_ENTER);
+  h.frame();  // ImGui tells whether it wants text at the start of a frame, from the frame before
+  EXPECT_FALSE(ImGui::GetIO().WantTextInput);
+  EXPECT_EQ(h.session->settings().iso, 0.25f);
+}
+
+// The help window's descriptions start right of its widest key; the isovalue's text is outside the
+// slider, never under its handle.
+TEST_F(ViewerSession, HelpColumnsAndIsoLabelDoNotOverlap) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  h.press(GLFW_KEY_H);
+  ASSERT_TRUE(h.session->settings().showHelp);
+  const render::PanelLayout& l = h.session->panelLayout();
+  EXPECT_GT(l.helpKeysRight, 0.0f);
+  EXPECT_LT(l.helpKeysRight, l.helpTextLeft) << "a key runs into its description";
+  ASSERT_FALSE(l.isoLabel.empty());
+  ASSERT_FALSE(l.isoSlider.empty());
+  const bool overlap = l.isoLabel.x0 < l.isoSlider.x1 && l.isoSlider.x0 < l.isoLabel.x1 &&
+                       l.isoLabel.y0 < l.isoSlider.y1 && l.isoSlider.y0 < l.isoLabel.y1;
+  EXPECT_FALSE(overlap) << "the isovalue's text is inside the slider's frame, where the handle covers it";
+}
+
+// The background swatch shows the colour the background is drawn in: the sRGB encoding of the
+// linear colour the renderer keeps.
+TEST_F(ViewerSession, BackgroundSwatchShowsTheDrawnColour) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  const glm::vec3 linear(0.3f, 0.1f, 0.02f);
+  h.session->settings().background = linear;
+  h.frame();
+  h.frame();
+  const render::ImRectF swatch = h.session->panelLayout().backgroundSwatch;
+  ASSERT_FALSE(swatch.empty());
+  const std::vector<unsigned char> rgba = h.pixels();
+  const std::size_t i = (std::size_t(swatch.centreY()) * SessionHarness::kWidth + std::size_t(swatch.centreX())) * 4;
+  for (int c = 0; c < 3; ++c) {
+    const int expected = int(std::lround(255.0f * render::srgbFromLinear(linear[c])));
+    EXPECT_NEAR(int(rgba[i + std::size_t(c)]), expected, 1) << "channel " << c;
+  }
+  EXPECT_EQ(h.session->settings().background, linear) << "showing the colour must not change it";
+}
+
+// The histogram's tooltip names the bin under the mouse (its value range and count), and a click
+// sets the isovalue to the value there; its axis is the recorded samples' range.
+TEST_F(ViewerSession, HistogramTooltipNamesTheBinAndAClickSetsTheIsovalue) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  for (int i = 0; i < 3; ++i) h.frame();  // the panel's scroll bar appears on its second frame
+  const render::DatasetSummary& summary = h.session->summary();
+  ASSERT_TRUE(summary.histogramOfSamples);
+  const render::ImRectF plot = h.session->panelLayout().histogram;
+  ASSERT_FALSE(plot.empty());
+  const float padX = ImGui::GetStyle().FramePadding.x;
+  const float t = 0.3f, x = plot.x0 + padX + t * (plot.x1 - plot.x0 - 2.0f * padX), y = plot.centreY();
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(x, y); });
+  h.frame();
+  const render::HistogramAxis axis{summary.histogramMin, summary.histogramMax, int(summary.histogram.size())};
+  const int bin = axis.binAt(t);
+  char range[64];
+  std::snprintf(range, sizeof range, "%.5g .. %.5g: %.0f samples", axis.binLow(bin), axis.binHigh(bin),
+                double(summary.histogram[std::size_t(bin)]));
+  EXPECT_EQ(h.session->panelLayout().histogramTooltip.rfind(range, 0), 0u) << h.session->panelLayout().histogramTooltip;
+  h.click(x, y);
+  const float expected = std::clamp(axis.valueAt(t), summary.valueMin, summary.valueMax);
+  // Within a pixel's worth of value (ImGui rounds the plot's frame to pixels).
+  EXPECT_NEAR(h.session->settings().iso, expected, (summary.histogramMax - summary.histogramMin) / (plot.x1 - plot.x0));
+  EXPECT_NE(h.session->settings().iso, 0.3f) << "the click left the isovalue as it was";
+}
+
+// The panel's cursor readout: over a surface pixel, the surface point (the spline there is the
+// isovalue); over the background, or over the panel, nothing.
+TEST_F(ViewerSession, CursorReadoutIsTheSurfacePointUnderTheMouse) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes);
+  ASSERT_TRUE(h.settle());
+  const std::string exr = dir / "view.exr";
+  h.session->writeExr(exr);
+  int w = 0, hgt = 0;
+  const std::vector<float> alpha = test::readExrChannel(exr, "A", w, hgt);
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  int hitX = -1, hitY = -1, missX = -1, missY = -1;
+  for (int y = 0; y < hgt; ++y)
+    for (int x = panel + 1; x < w; ++x) {
+      const float a = alpha[std::size_t(y) * w + x];
+      if (a > 0.5f && hitX < 0) hitX = x, hitY = y;
+      if (a == 0.0f && missX < 0) missX = x, missY = y;
+    }
+  ASSERT_GE(hitX, 0);
+  ASSERT_GE(missX, 0);
+  ASSERT_TRUE(h.settle()) << "the EXR's complete frame restarts the progressive one";
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(float(hitX) + 0.5f, float(hitY) + 0.5f); });
+  ASSERT_TRUE(h.session->cursor().hit) << "pixel " << hitX << "," << hitY;
+  EXPECT_NEAR(h.session->cursor().valueAtPoint, 0.3f, 1e-3f);
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(float(missX) + 0.5f, float(missY) + 0.5f); });
+  EXPECT_FALSE(h.session->cursor().hit) << "pixel " << missX << "," << missY;
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(5.0f, float(hitY) + 0.5f); });
+  EXPECT_FALSE(h.session->cursor().hit) << "over the panel";
+}
+
+// + and - step the isovalue by 1% of the surface range, Page Up and Page Down by 10%, never past it.
+TEST_F(ViewerSession, IsovalueKeysStepWithinTheSurfaceRange) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes);
+  const render::DatasetSummary& s = h.session->summary();
+  const float range = s.valueMax - s.valueMin;
+  const float start = h.session->settings().iso;
+  h.press(GLFW_KEY_EQUAL);
+  EXPECT_NEAR(h.session->settings().iso, start + 0.01f * range, 1e-5f * range);
+  h.press(GLFW_KEY_KP_SUBTRACT);
+  h.press(GLFW_KEY_MINUS);
+  EXPECT_NEAR(h.session->settings().iso, start - 0.01f * range, 1e-5f * range);
+  h.press(GLFW_KEY_PAGE_UP);
+  EXPECT_NEAR(h.session->settings().iso, start + 0.09f * range, 1e-5f * range);
+  h.session->settings().iso = s.valueMax - 0.05f * range;
+  h.press(GLFW_KEY_PAGE_UP);
+  EXPECT_EQ(h.session->settings().iso, s.valueMax) << "past the end of the surface range";
+}
+
+// O opens a field for a path: Enter asks for that file (the window then opens it in place of this
+// session), Esc closes the field without asking. A file dropped on the window asks the same way.
+TEST_F(ViewerSession, OpenFieldAsksForAnotherFile) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes);
+  // The key as GLFW gives it: a key press and its character, which must not land in the field.
+  h.frame([](ImGuiIO& io) {
+    io.KeysDown[GLFW_KEY_O] = true;
+    io.AddInputCharacter('o');
+  });
+  h.frame([](ImGuiIO& io) { io.KeysDown[GLFW_KEY_O] = false; });
+  EXPECT_TRUE(h.session->openFieldShown());
+  h.frame();
+  ASSERT_TRUE(ImGui::GetIO().WantTextInput) << "the path field does not have the keys";
+  h.type("/data/other.nii");
+  EXPECT_FALSE(h.session->takeOpenRequest()) << "nothing is asked before Enter";
+  h.press(GLFW_KEY_ENTER);
+  const std::optional<std::string> asked = h.session->takeOpenRequest();
+  ASSERT_TRUE(asked);
+  EXPECT_EQ(*asked, "/data/other.nii");
+  EXPECT_FALSE(h.session->openFieldShown());
+  EXPECT_FALSE(h.session->takeOpenRequest()) << "asked once";
+
+  h.press(GLFW_KEY_O);
+  h.frame();
+  h.press(GLFW_KEY_ESCAPE);
+  EXPECT_FALSE(h.session->openFieldShown());
+  EXPECT_FALSE(h.session->takeOpenRequest());
+
+  h.session->requestOpen("/dropped.vdb");
+  EXPECT_EQ(h.session->takeOpenRequest().value_or(""), "/dropped.vdb");
+}
+
+}  // namespace
+}  // namespace fcc

@@ -1,0 +1,61 @@
+// The panel's histogram under the isovalue slider: log counts, a value axis, a tooltip naming the
+// bin under the mouse, and a click that sets the isovalue there.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "HistogramAxis.h"
+#include "ViewerSession.h"
+
+namespace fcc::render {
+
+void ViewerSession::drawHistogram() {
+  const std::vector<float>& h = summary_.histogram;
+  layout_.histogram = {};
+  if (h.empty()) return;
+  const HistogramAxis axis{summary_.histogramMin, summary_.histogramMax, int(h.size())};
+  // Logarithmic counts: a large background bin would flatten everything else.
+  std::vector<float> logCounts(h.size());
+  std::transform(h.begin(), h.end(), logCounts.begin(), [](float c) { return std::log1p(c); });
+  const char* what = summary_.histogramOfSamples ? "samples" : "coefficients";
+  char title[64];
+  std::snprintf(title, sizeof title, "%s (log count)", what);
+  const float scale = ImGui::GetIO().FontGlobalScale;
+  ImGui::PlotHistogram("##histogram", logCounts.data(), int(logCounts.size()), 0, title, 0.0f, FLT_MAX,
+                       ImVec2(ImGui::GetContentRegionAvail().x, 56.0f * scale));
+  const ImVec2 outerLo = ImGui::GetItemRectMin(), outerHi = ImGui::GetItemRectMax();
+  layout_.histogram = {outerLo.x, outerLo.y, outerHi.x, outerHi.y};
+  // The bars span the frame less its padding, as ImGui lays them out and picks the hovered one.
+  const ImVec2 pad = ImGui::GetStyle().FramePadding;
+  const float x0 = outerLo.x + pad.x, x1 = outerHi.x - pad.x;
+  const auto positionOfMouse = [&] { return x1 > x0 ? (ImGui::GetIO().MousePos.x - x0) / (x1 - x0) : 0.5f; };
+  if (ImGui::IsItemHovered()) {
+    // Replaces ImGui's own tooltip (the bin's index and log count).
+    const int bin = axis.binAt(positionOfMouse());
+    char tip[128];
+    std::snprintf(tip, sizeof tip, "%.5g .. %.5g: %.0f %s\nclick: isovalue %.5g", axis.binLow(bin),
+                  axis.binHigh(bin), double(h[std::size_t(bin)]), what, double(axis.valueAt(positionOfMouse())));
+    ImGui::SetTooltip("%s", tip);
+    layout_.histogramTooltip = tip;
+  }
+  if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
+    // Where a surface can be: the samples' range may reach past the spline's.
+    settings_.iso = std::clamp(axis.valueAt(positionOfMouse()), summary_.valueMin, summary_.valueMax);
+  }
+  // The isovalue's place in the histogram.
+  const float x = x0 + axis.positionOf(settings_.iso) * (x1 - x0);
+  ImGui::GetWindowDrawList()->AddLine(ImVec2(x, outerLo.y), ImVec2(x, outerHi.y), IM_COL32(255, 90, 60, 255), 2.0f);
+  // The value axis: the first bin's low end under the left edge, the last bin's high end under the right.
+  char low[32], high[32];
+  std::snprintf(low, sizeof low, "%.4g", double(axis.min));
+  std::snprintf(high, sizeof high, "%.4g", double(axis.max));
+  ImGui::TextDisabled("%s", low);
+  ImGui::SameLine(std::max(0.0f, outerHi.x - ImGui::GetWindowPos().x - ImGui::CalcTextSize(high).x));
+  ImGui::TextDisabled("%s", high);
+}
+
+}  // namespace fcc::render
