@@ -23,3 +23,14 @@ __kernel void fcc_recon_eval(__global const float4* points, uint count, int id, 
   FccValueGradient r = fcc_recon_value_gradient(id, points[i].xyz, params.xyz, values, origin, dims, background);
   results[i] = (float4)(r.value, r.gradient);
 }
+
+// results[i] = the first root (or -1) on the segment points[2i] -> points[2i + 1] at iso points[2i].w.
+__kernel void fcc_recon_segment_roots(__global const float4* points, uint count, int id, int4 params,
+                                      __global const float* values, int4 origin, int4 dims, float background,
+                                      __global float4* results) {
+  uint i = get_global_id(0);
+  if (i >= count) return;
+  float u = fcc_recon_segment_root(id, points[2 * i].xyz, points[2 * i + 1].xyz, points[2 * i].w, params.xyz, values,
+                                   origin, dims, background);
+  results[i] = (float4)(u, 0.0f, 0.0f, 0.0f);
+}

@@ -20,6 +20,8 @@ uniform float uBackground;
 uniform uint uCount;
 uniform int uId;
 uniform ivec3 uParams;  // stack axis, shear signs
+uniform int uMode;      // 0: (value, gradient) at points[i]; 1: results[i].x = the first root on the
+                        // segment points[2i] -> points[2i + 1] at iso points[2i].w
 
 float fcc_block_value(ivec3 site) {
   ivec3 r = site - uOrigin.xyz;
@@ -32,6 +34,10 @@ float fcc_block_value(ivec3 site) {
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= uCount) return;
+  if (uMode == 1) {
+    results[i] = vec4(fcc_recon_segment_root(uId, points[2 * i].xyz, points[2 * i + 1].xyz, points[2 * i].w, uParams), 0.0, 0.0, 0.0);
+    return;
+  }
   FccValueGradient r = fcc_recon_value_gradient(uId, points[i].xyz, uParams);
   results[i] = vec4(r.value, r.gradient);
 }

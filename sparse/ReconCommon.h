@@ -60,12 +60,16 @@ FCC_FUNC FccSplits fcc_splits_none() {
 // s with t inserted in order if it lies strictly inside (ta, tb) and there is room.
 FCC_FUNC FccSplits fcc_splits_with(FccSplits s, float t, float ta, float tb) {
   if (!(t > ta && t < tb) || s.n >= 8) return s;
-  int i = s.n;
-  while (i > 0 && s.t[i - 1] > t) {
+  // Its place: after every entry not above it. Entries after it move up one, the index counted up
+  // (Mesa's GLSL compiler mishandled a loop counting down: see fcc_bernstein9_restrict).
+  int at = 0;
+  for (int i = 0; i < s.n; ++i)
+    if (s.t[i] <= t) at = i + 1;
+  for (int k = 0; k < s.n - at; ++k) {
+    int i = s.n - k;
     s.t[i] = s.t[i - 1];
-    --i;
   }
-  s.t[i] = t;
+  s.t[at] = t;
   s.n = s.n + 1;
   return s;
 }
@@ -156,16 +160,22 @@ FCC_STRUCT_END(FccBernstein9)
 // de Casteljau split at hi keeps the left part, a second at lo / hi keeps its right part.
 FCC_FUNC FccBernstein9 fcc_bernstein9_restrict(FccBernstein9 p, float lo, float hi) {
   FccBernstein9 r = p;
+  int n = p.n;
   if (hi < 1.0f) {
-    // Left part of a split at hi: r_k = the k-th level's first coefficient.
-    for (int level = 1; level <= p.n; ++level)
-      for (int i = p.n; i >= level; --i) r.b[i] = r.b[i - 1] + hi * (r.b[i] - r.b[i - 1]);
+    // Left part of a split at hi: r_k = the k-th level's first coefficient. The inner loop runs down
+    // through an index counted up: Mesa's GLSL compiler (llvmpipe) skipped this loop written with a
+    // decreasing induction variable (tests/sparse/DialectComparison.h, the segment roots, found it).
+    for (int level = 1; level <= n; ++level)
+      for (int k = 0; k <= n - level; ++k) {
+        int i = n - k;
+        r.b[i] = r.b[i - 1] + hi * (r.b[i] - r.b[i - 1]);
+      }
   }
   float u = hi > 0.0f ? lo / hi : 0.0f;
   if (u > 0.0f) {
     // Right part of a split at u: r_k = the (n - k)-th level's last coefficient.
-    for (int level = 1; level <= p.n; ++level)
-      for (int i = 0; i <= p.n - level; ++i) r.b[i] = r.b[i] + u * (r.b[i + 1] - r.b[i]);
+    for (int level = 1; level <= n; ++level)
+      for (int i = 0; i <= n - level; ++i) r.b[i] = r.b[i] + u * (r.b[i + 1] - r.b[i]);
   }
   return r;
 }
@@ -186,12 +196,12 @@ FCC_FUNC float fcc_bernstein9_at(FccBernstein9 p, float u) {
 FCC_FUNC float fcc_first_root_bernstein9(FccBernstein9 p) {
   float stackLo[24];
   float stackHi[24];
-  int top = 0;
   stackLo[0] = 0.0f;
   stackHi[0] = 1.0f;
-  top = 1;
-  while (top > 0) {
-    --top;
+  int top = 1;
+  float result = -1.0f;
+  while (top > 0 && result < 0.0f) {
+    top = top - 1;
     float lo = stackLo[top], hi = stackHi[top];
     FccBernstein9 q = fcc_bernstein9_restrict(p, lo, hi);
     float mn = q.b[0], mx = q.b[0];
@@ -199,31 +209,36 @@ FCC_FUNC float fcc_first_root_bernstein9(FccBernstein9 p) {
     for (int i = 1; i <= q.n; ++i) {
       mn = min(mn, q.b[i]);
       mx = max(mx, q.b[i]);
-      if ((q.b[i] < 0.0f) != (q.b[i - 1] < 0.0f)) ++changes;
+      if ((q.b[i] < 0.0f) != (q.b[i - 1] < 0.0f)) changes = changes + 1;
     }
-    if (mn > 0.0f || mx < 0.0f) continue;
-    if (q.b[0] == 0.0f) return lo;
-    if (changes == 1 && (q.b[0] < 0.0f) != (q.b[q.n] < 0.0f)) {
-      float a = 0.0f, c = 1.0f;
-      bool aNegative = q.b[0] < 0.0f;
-      for (int it = 0; it < 26; ++it) {
-        float mid = 0.5f * (a + c);
-        float g = fcc_bernstein9_at(q, mid);
-        if (g == 0.0f) return lo + mid * (hi - lo);
-        if ((g < 0.0f) == aNegative) a = mid;
-        else c = mid;
+    if (!(mn > 0.0f || mx < 0.0f)) {
+      if (q.b[0] == 0.0f) {
+        result = lo;
+      } else if (changes == 1 && (q.b[0] < 0.0f) != (q.b[q.n] < 0.0f)) {
+        float a = 0.0f, c = 1.0f;
+        bool aNegative = q.b[0] < 0.0f;
+        float exact = -1.0f;
+        for (int it = 0; it < 26 && exact < 0.0f; ++it) {
+          float mid = 0.5f * (a + c);
+          float g = fcc_bernstein9_at(q, mid);
+          if (g == 0.0f) exact = mid;
+          else if ((g < 0.0f) == aNegative) a = mid;
+          else c = mid;
+        }
+        result = lo + (exact >= 0.0f ? exact : 0.5f * (a + c)) * (hi - lo);
+      } else if (hi - lo < 9.5367e-7f || top + 2 > 24) {
+        result = lo;
+      } else {
+        float mid = 0.5f * (lo + hi);
+        stackLo[top] = mid;
+        stackHi[top] = hi;
+        stackLo[top + 1] = lo;
+        stackHi[top + 1] = mid;
+        top = top + 2;
       }
-      return lo + 0.5f * (a + c) * (hi - lo);
     }
-    if (hi - lo < 9.5367e-7f || top + 2 > 24) return lo;
-    float mid = 0.5f * (lo + hi);
-    stackLo[top] = mid;
-    stackHi[top] = hi;
-    stackLo[top + 1] = lo;
-    stackHi[top + 1] = mid;
-    top += 2;
   }
-  return -1.0f;
+  return result;
 }
 
 FCC_NAMESPACE_END

@@ -63,6 +63,25 @@ class OpenCl : public test::ClSuite<ClRunner> {
   }
 };
 
+TEST_F(OpenCl, EveryReconstructionsSegmentRootMatchesCpp) {
+  test::expectSegmentRootsMatchCpp("OpenCL", [](const DenseBlock& block, const std::vector<glm::vec4>& endpoints, int id,
+                                                const glm::ivec3& params) {
+    cl::Kernel kernel = device->kernel(std::string(embedded::kernels("kernels/recon_eval.cl")), "fcc_recon_segment_roots");
+    const size_t count = endpoints.size() / 2;
+    cl::Buffer pointBuffer = device->upload(endpoints);
+    cl::Buffer valueBuffer = device->upload(block.values);
+    cl::Buffer resultBuffer = device->allocate(count * sizeof(glm::vec4), CL_MEM_WRITE_ONLY);
+    const cl_int4 paramsCl = {{params.x, params.y, params.z, 0}};
+    const cl_int4 origin = {{block.origin.x, block.origin.y, block.origin.z, 0}};
+    const cl_int4 dims = {{block.dims.x, block.dims.y, block.dims.z, 0}};
+    device->launch("segment roots", kernel, count, pointBuffer, cl_uint(count), cl_int(id), paramsCl, valueBuffer, origin,
+                   dims, cl_float(block.background), resultBuffer);
+    std::vector<glm::vec4> results(count);
+    device->download(resultBuffer, results);
+    return results;
+  });
+}
+
 TEST_F(OpenCl, EveryReconstructionMatchesCpp) {
   test::expectReconstructionsMatchCpp("OpenCL", evaluateReconstruction);
 }

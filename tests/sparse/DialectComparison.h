@@ -6,9 +6,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <vector>
 
 #include "SplineTestData.h"
+// The dispatch compiled in C++ too, reading a DenseBlock: what the device dialects are compared with.
+#define FCC_SITE_PARAMS , const fcc::test::DenseBlock& block
+#define FCC_SITE_ARGS , block
+#define FCC_SITE_VALUE(ijk) block.at(ijk)
+#include "sparse/Spline.h"
 #include "sparse/ReconDispatch.h"
 #include "sparse/Reconstruction.h"
 #include "sparse/Spline.h"
@@ -91,6 +97,62 @@ void expectReconstructionsMatchCpp(const char* dialect, Evaluate&& evaluate) {
     }
     std::printf("[   INFO   ] %s %s: max |value diff| %.3g, max |gradient diff| %.3g\n", dialect,
                 std::string(info.name).c_str(), maxValue, maxGradient);
+  }
+}
+
+// The ray fast path of every reconstruction (fcc_recon_segment_root: each piece's Bernstein form along
+// a segment and its first root) on a device against the same function in C++, and the C++ against the
+// piece's polynomial itself (evaluateInPiece): the root is a root, and no sign change comes before it.
+// Segments of length up to 1 anywhere in the block, iso the piece's value somewhere on the segment.
+// `evaluate(block, endpoints, id, params)` returns the device's roots (x of each result).
+template <class Evaluate>
+void expectSegmentRootsMatchCpp(const char* dialect, Evaluate&& evaluate) {
+  const DenseBlock block(glm::ivec3(-7, 3, 12), kBlockSide, kBackground, 33);
+  std::mt19937 rng(34);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const glm::vec3 view(0.9f, -0.3f, 0.2f);
+  const glm::ivec3 params = spline::bcc_sheared_params_for_view(view);
+  for (const ReconstructionInfo& info : reconstructionInfos()) {
+    if (info.continuity < 0) continue;  // the nearest-plane scheme's steps are not a polynomial's roots
+    const auto recon = makeReconstruction(info.name);
+    recon->setView(view);
+    const SiteValue at = [&](const glm::ivec3& ijk) { return block.at(ijk); };
+    std::vector<glm::vec4> endpoints;
+    const int kSegments = 3000;
+    for (int i = 0; i < kSegments; ++i) {
+      const glm::vec3 a = glm::vec3(block.origin) + 3.0f + (float(kBlockSide) - 7.0f) * glm::vec3(u(rng), u(rng), u(rng));
+      const glm::vec3 b = a + glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f);
+      const float iso = recon->evaluateInPiece(0.5f * (a + b), a + u(rng) * (b - a), at).value;
+      endpoints.push_back(glm::vec4(a, iso));
+      endpoints.push_back(glm::vec4(b, 0.0f));
+    }
+    const std::vector<glm::vec4> device = evaluate(block, endpoints, reconstructionDeviceId(info), params);
+    ASSERT_EQ(device.size(), size_t(kSegments));
+    int found = 0, differ = 0;
+    for (int i = 0; i < kSegments; ++i) {
+      const glm::vec3 a(endpoints[2 * i]), b(endpoints[2 * i + 1]);
+      const float iso = endpoints[2 * i].w;
+      const float cpu = spline::fcc_recon_segment_root(reconstructionDeviceId(info), a, b, iso, params, block);
+      auto f = [&](float w) { return recon->evaluateInPiece(0.5f * (a + b), a + w * (b - a), at).value - iso; };
+      if (cpu >= 0.0f) {
+        ++found;
+        ASSERT_LT(std::abs(f(cpu)), 2e-4f) << info.name << " segment " << i << ": the root " << cpu << " is not one";
+        const float f0 = f(0.0f);
+        for (int k = 1; k < 200 && float(k) / 200 < cpu - 1e-3f; ++k)
+          ASSERT_EQ(f(float(k) / 200) < 0.0f, f0 < 0.0f) << info.name << " segment " << i << ": a root before " << cpu;
+      }
+      // The dialects agree but where the polynomial barely touches iso (rounding decides there).
+      if ((cpu < 0.0f) != (device[i].x < 0.0f) || (cpu >= 0.0f && std::abs(cpu - device[i].x) > 1e-3f)) {
+        if (++differ <= 3)
+          std::printf("[   INFO   ] %s %s segment %d: C++ root %.6f, %s %.6f; f there %.3g and %.3g\n", dialect,
+                      std::string(info.name).c_str(), i, cpu, dialect, device[i].x, cpu >= 0.0f ? f(cpu) : 0.0f,
+                      device[i].x >= 0.0f ? f(device[i].x) : 0.0f);
+      }
+    }
+    std::printf("[   INFO   ] %s %s: %d of %d segments with a root, %d differ from C++\n", dialect,
+                std::string(info.name).c_str(), found, kSegments, differ);
+    EXPECT_GT(found, kSegments / 2) << info.name;
+    EXPECT_LE(differ, kSegments / 200) << info.name << ": " << dialect << " and C++ disagree on " << differ << " segments";
   }
 }
 

@@ -77,7 +77,22 @@ class Glsl : public test::GlSuite {
     return runPoints(*reconProgram, "reconstruction evaluation", block, points, [&](const GlProgram& p) {
       glUniform1i(p.uniformLocation("uId"), id);
       glUniform3i(p.uniformLocation("uParams"), params.x, params.y, params.z);
+      glUniform1i(p.uniformLocation("uMode"), 0);
     });
+  }
+
+  // The first root on each segment (endpoints in pairs, iso in the first's w): one result per pair.
+  static std::vector<glm::vec4> segmentRoots(const DenseBlock& block, const std::vector<glm::vec4>& endpoints, int id,
+                                             const glm::ivec3& params) {
+    if (!reconProgram) reconProgram = GlProgram::compute(embedded::shaders(kReconPath), kReconPath);
+    std::vector<glm::vec4> roots = runPoints(*reconProgram, "segment roots", block, endpoints, [&](const GlProgram& p) {
+      glUniform1i(p.uniformLocation("uId"), id);
+      glUniform3i(p.uniformLocation("uParams"), params.x, params.y, params.z);
+      glUniform1i(p.uniformLocation("uMode"), 1);
+      glUniform1ui(p.uniformLocation("uCount"), GLuint(endpoints.size() / 2));
+    });
+    roots.resize(endpoints.size() / 2);
+    return roots;
   }
 
   static inline std::optional<GlProgram> program;
@@ -110,6 +125,10 @@ TEST_F(Glsl, SplineUsesTheBackgroundOutsideTheBlock) { test::expectBackgroundOut
 
 TEST_F(Glsl, EveryReconstructionMatchesCpp) {
   test::expectReconstructionsMatchCpp("GLSL", evaluateReconstruction);
+}
+
+TEST_F(Glsl, EveryReconstructionsSegmentRootMatchesCpp) {
+  test::expectSegmentRootsMatchCpp("GLSL", segmentRoots);
 }
 
 TEST_F(Glsl, CompileErrorCarriesTheInfoLog) {
