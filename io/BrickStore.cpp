@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "VdbFile.h"
+#include "WorldFromIndex.h"
 #include "VdbLeafReader.h"
 #include "sparse/Error.h"
 
@@ -17,18 +18,6 @@ static_assert(LeafT::DIM == kBrickPackedDim, "a brick is one leaf of the FCC tre
 
 openvdb::Coord leafOrigin(const glm::ivec3& brick) {
   return openvdb::Coord(brick.x * kBrickPackedDim, brick.y * kBrickPackedDim, brick.z * kBrickPackedDim);
-}
-
-glm::dmat4 affineWorldFromIndex(const openvdb::math::Transform& xform, const std::string& path) {
-  if (!xform.isLinear())
-    throw InputError(path + ": the FCC grid's transform (" + xform.mapType() +
-                     ") is not affine; the renderer supports linear transforms only");
-  // OpenVDB multiplies row vectors (p' = p * M): the column-vector matrix is M transposed.
-  const openvdb::Mat4d m = xform.baseMap()->getAffineMap()->getMat4();
-  glm::dmat4 out;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) out[r][c] = m(r, c);  // glm: out[column][row]; column r = row r of m
-  return out;
 }
 
 // Bounds for a file written before bounds grids existed: every brick within one brick of a leaf or an

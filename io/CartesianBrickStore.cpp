@@ -9,6 +9,7 @@
 #include <map>
 
 #include "VdbFile.h"
+#include "WorldFromIndex.h"
 #include "VdbLeafReader.h"
 #include "sparse/Error.h"
 
@@ -17,16 +18,6 @@ namespace {
 
 constexpr int kLeafDim = 8;
 constexpr int kLeavesPerBrick = CartesianBrickStore::kBrickSites / kLeafDim;  // 2 along each axis
-
-glm::dmat4 affineWorldFromIndex(const openvdb::math::Transform& xform, const std::string& path) {
-  if (!xform.isLinear())
-    throw InputError(path + ": the grid's transform (" + xform.mapType() + ") is not affine; the renderer supports linear transforms only");
-  const openvdb::Mat4d m = xform.baseMap()->getAffineMap()->getMat4();
-  glm::dmat4 out;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) out[r][c] = m(r, c);  // OpenVDB's row-vector matrix, transposed
-  return out;
-}
 
 // The leaf-sized boxes (by origin, in leaf units) a brick's block touches: 16 b - 2 .. 16 b + 17 spans
 // leaves 2 b - 1 .. 2 b + 2.

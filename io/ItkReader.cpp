@@ -193,16 +193,27 @@ DenseVolume readDicom(const std::string& path) {
   }
 }
 
+namespace {
+
+// A MetaImage's ImageIO with its header read and checked: a 3-D scalar image whose data is the size the
+// header says (one place for the whole read and the streamed source).
+itk::MetaImageIO::Pointer openMetaImageIO(const std::string& path) {
+  auto io = itk::MetaImageIO::New();
+  if (!io->CanReadFile(path.c_str())) throw InputError(path + ": not a MetaImage (.mha/.mhd) file ITK can read");
+  io->SetFileName(path);
+  io->ReadImageInformation();
+  if (io->GetNumberOfDimensions() != 3 || io->GetNumberOfComponents() != 1)
+    throw InputError(path + ": a MetaImage of " + std::to_string(io->GetNumberOfDimensions()) + " dimensions and " +
+                     std::to_string(io->GetNumberOfComponents()) + " components per voxel; valid: 3-D scalar images");
+  checkMetaImageDataSize(*io, path);
+  return io;
+}
+
+}  // namespace
+
 DenseVolume readMetaImage(const std::string& path) {
   try {
-    auto io = itk::MetaImageIO::New();
-    if (!io->CanReadFile(path.c_str())) throw InputError(path + ": not a MetaImage (.mha/.mhd) file ITK can read");
-    io->SetFileName(path);
-    io->ReadImageInformation();
-    if (io->GetNumberOfDimensions() != 3 || io->GetNumberOfComponents() != 1)
-      throw InputError(path + ": a MetaImage of " + std::to_string(io->GetNumberOfDimensions()) + " dimensions and " +
-                       std::to_string(io->GetNumberOfComponents()) + " components per voxel; valid: 3-D scalar images");
-    checkMetaImageDataSize(*io, path);
+    const auto io = openMetaImageIO(path);
     auto reader = itk::ImageFileReader<Image>::New();
     reader->SetImageIO(io);
     reader->SetFileName(path);
@@ -228,14 +239,7 @@ std::unique_ptr<DenseSource> openDicom(const std::string& path) {
 
 std::unique_ptr<DenseSource> openMetaImage(const std::string& path) {
   try {
-    auto io = itk::MetaImageIO::New();
-    if (!io->CanReadFile(path.c_str())) throw InputError(path + ": not a MetaImage (.mha/.mhd) file ITK can read");
-    io->SetFileName(path);
-    io->ReadImageInformation();
-    if (io->GetNumberOfDimensions() != 3 || io->GetNumberOfComponents() != 1)
-      throw InputError(path + ": a MetaImage of " + std::to_string(io->GetNumberOfDimensions()) + " dimensions and " +
-                       std::to_string(io->GetNumberOfComponents()) + " components per voxel; valid: 3-D scalar images");
-    checkMetaImageDataSize(*io, path);
+    const auto io = openMetaImageIO(path);
     auto reader = itk::ImageFileReader<Image>::New();
     reader->SetImageIO(io);
     reader->SetFileName(path);
