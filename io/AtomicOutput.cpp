@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "sparse/Error.h"
 
@@ -57,6 +58,16 @@ void AtomicOutput::commit() {
   if (std::rename(tempPath_.c_str(), finalPath_.c_str()) != 0)
     throw OutputError(finalPath_ + ": cannot rename the finished output into place: " + std::strerror(errno));
   committed_ = true;
+}
+
+void writeTextFile(const std::string& path, const std::string& text, bool overwrite) {
+  AtomicOutput out(path, overwrite);
+  {
+    std::ofstream file(out.tempPath(), std::ios::binary);
+    file << text;
+    if (!file.flush()) throw OutputError("cannot write " + path);
+  }
+  out.commit();
 }
 
 }  // namespace fcc::io

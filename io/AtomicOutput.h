@@ -30,4 +30,7 @@ class AtomicOutput {
   bool committed_ = false;
 };
 
+// A whole text (JSON, Markdown, SVG) written through an AtomicOutput; OutputError "cannot write PATH".
+void writeTextFile(const std::string& path, const std::string& text, bool overwrite);
+
 }  // namespace fcc::io

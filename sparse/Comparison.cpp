@@ -188,10 +188,12 @@ double worldPerIndexFor(Lattice lattice, int64_t budget, const glm::dvec3& halfE
   return std::cbrt(volume * latticeDensity(lattice) / double(budget));
 }
 
-glm::ivec3 boxDimsFor(Lattice lattice, int64_t budget, const glm::dvec3& halfExtent) {
-  const glm::ivec3 reach(glm::floor(halfExtent / worldPerIndexFor(lattice, budget, halfExtent) + 1e-9));
-  return 2 * (reach + kPad) + 1;
+// Index units from the origin to the last site inside the domain, per axis.
+glm::ivec3 reachFor(double worldPerIndex, const glm::dvec3& halfExtent) {
+  return glm::ivec3(glm::floor(halfExtent / worldPerIndex + 1e-9));
 }
+
+glm::ivec3 boxDimsFor(const glm::ivec3& reach) { return 2 * (reach + kPad) + 1; }
 
 double boxPoints(const glm::ivec3& dims) { return double(dims.x) * dims.y * dims.z; }
 
@@ -203,15 +205,15 @@ LatticeSampling samplingFor(Lattice lattice, int64_t budget, const glm::dvec3& h
   s.lattice = lattice;
   s.budget = budget;
   s.worldPerIndex = worldPerIndexFor(lattice, budget, halfExtent);
-  const glm::ivec3 reach(glm::floor(halfExtent / s.worldPerIndex + 1e-9));
+  const glm::ivec3 reach = reachFor(s.worldPerIndex, halfExtent);
   s.boxMin = -reach - kPad;
-  s.boxDims = 2 * (reach + kPad) + 1;
+  s.boxDims = boxDimsFor(reach);
   // The box is held densely (LatticeSamples: every integer point, a float each, twice while prefiltered).
-  const double points = double(s.boxDims.x) * s.boxDims.y * s.boxDims.z;
+  const double points = boxPoints(s.boxDims);
   if (points > double(kMaxComparisonBoxPoints)) {
     // The largest budget whose box fits (the padding's share grows as budgets shrink), to two digits.
     double fits = double(budget) * double(kMaxComparisonBoxPoints) / points;
-    while (fits > 64 && boxPoints(boxDimsFor(lattice, int64_t(fits), halfExtent)) > double(kMaxComparisonBoxPoints))
+    while (fits > 64 && boxPoints(boxDimsFor(reachFor(worldPerIndexFor(lattice, int64_t(fits), halfExtent), halfExtent))) > double(kMaxComparisonBoxPoints))
       fits *= 0.97;
     const double unit = std::pow(10.0, std::floor(std::log10(fits)) - 1);
     fits = std::floor(fits / unit) * unit;
@@ -286,12 +288,16 @@ std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const
     throw ValueError("renders of " + std::to_string(options.width) + "x" + std::to_string(options.height) +
                      " pixels are too large for a comparison (at most " + std::to_string(kMaxComparisonPixels) + " pixels)");
   const std::vector<glm::dvec3> uniform = uniformPoints(options.points, options.seed, e);
+  // The truth at the measured points, once for every row.
+  std::vector<double> uniformValues(uniform.size());
+  std::vector<glm::dvec3> uniformGradients(uniform.size());
+  tbb::parallel_for(size_t(0), uniform.size(), [&](size_t i) {
+    uniformValues[i] = field.value(uniform[i]);
+    uniformGradients[i] = field.gradient(uniform[i]);
+  });
   // The isovalue must be one the field takes: its range at the uniform points, widened by a tenth.
-  double fMin = INFINITY, fMax = -INFINITY;
-  for (const auto& p : uniform) {
-    fMin = std::min(fMin, field.value(p));
-    fMax = std::max(fMax, field.value(p));
-  }
+  const auto [fMinAt, fMaxAt] = std::minmax_element(uniformValues.begin(), uniformValues.end());
+  const double fMin = *fMinAt, fMax = *fMaxAt;
   const double margin = 0.1 * (fMax - fMin);
   if (!(options.iso >= fMin - margin && options.iso <= fMax + margin)) {
     char msg[256];
@@ -300,10 +306,12 @@ std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const
     throw ValueError(msg);
   }
   const std::vector<glm::dvec3> surface = isosurfacePoints(field, options.iso, options.points, options.seed + 1);
+  std::vector<glm::dvec3> surfaceGradients(surface.size());
+  tbb::parallel_for(size_t(0), surface.size(), [&](size_t i) { surfaceGradients[i] = field.gradient(surface[i]); });
   // The truth's gradient direction is measured only where it has one: points where |grad f| is below
   // 1e-9 of its largest (constant air around a scan) are left out.
   double gradientMax = 0.0;
-  for (const auto& p : uniform) gradientMax = std::max(gradientMax, glm::length(field.gradient(p)));
+  for (const auto& g : uniformGradients) gradientMax = std::max(gradientMax, glm::length(g));
   const double gradientFloor = 1e-9 * gradientMax;
   const bool render = options.width > 0 && options.height > 0;
   TruthRender truth;
@@ -342,13 +350,13 @@ std::vector<CompareRow> compareReconstructions(const AnalyticField& field, const
         std::vector<double> valueErrors(uniform.size()), gradientAngles(uniform.size()), normalAngles(surface.size());
         tbb::parallel_for(size_t(0), uniform.size(), [&](size_t i) {
           const auto r = recon->evaluate(glm::vec3(uniform[i] / h), at);
-          valueErrors[i] = double(r.value) - field.value(uniform[i]);
-          const glm::dvec3 truthGradient = field.gradient(uniform[i]);
+          valueErrors[i] = double(r.value) - uniformValues[i];
+          const glm::dvec3& truthGradient = uniformGradients[i];
           gradientAngles[i] = glm::length(truthGradient) > gradientFloor ? angleDeg(glm::dvec3(r.gradient), truthGradient) : -1.0;
         });
         tbb::parallel_for(size_t(0), surface.size(), [&](size_t i) {
           const auto r = recon->evaluate(glm::vec3(surface[i] / h), at);
-          normalAngles[i] = angleDeg(glm::dvec3(r.gradient), field.gradient(surface[i]));
+          normalAngles[i] = angleDeg(glm::dvec3(r.gradient), surfaceGradients[i]);
         });
         double sum2 = 0.0;
         for (double e : valueErrors) {

@@ -42,19 +42,19 @@ bool isLatticeSite(Lattice lattice, const glm::ivec3& ijk) {
 
 const std::vector<ReconstructionInfo>& reconstructionInfos() {
   static const std::vector<ReconstructionInfo> infos = {
-      {"trilinear", Lattice::Cc, "trilinear interpolation of the 8 cell corners", 8, 3, 1, 0, false, Prefilter::None},
-      {"tricubic", Lattice::Cc, "cubic B-spline, interpolating prefilter", 64, 9, 3, 2, false, Prefilter::CubicBSpline},
+      {"trilinear", Lattice::Cc, "trilinear interpolation of the 8 cell corners", 8, 3, 1, 0, false, Prefilter::None, FCC_RECON_TRILINEAR},
+      {"tricubic", Lattice::Cc, "cubic B-spline, interpolating prefilter", 64, 9, 3, 2, false, Prefilter::CubicBSpline, FCC_RECON_TRICUBIC},
       {"tricubic-bspline", Lattice::Cc, "cubic B-spline on the samples (approximating, smoothing)", 64, 9, 1, 2, false,
-       Prefilter::None},
+       Prefilter::None, FCC_RECON_TRICUBIC},
       {"barycentric", Lattice::Bcc, "linear on the Delaunay tetrahedra (paper 002, 3.3)", 4, 1, 1, 0, false,
-       Prefilter::None},
+       Prefilter::None, FCC_RECON_BARYCENTRIC},
       {"sheared-trilinear", Lattice::Bcc, "trilinear in sheared cells (paper 002, 3.4)", 8, 3, 1, 0, true,
-       Prefilter::None},
+       Prefilter::None, FCC_RECON_SHEARED_TRILINEAR},
       {"bilinear-spatial", Lattice::Bcc, "bilinear in two planes, linear between (paper 002, 3.2)", 8, 3, 1, 0, true,
-       Prefilter::None},
-      {"bilinear", Lattice::Bcc, "bilinear in the nearest plane (paper 002, 3.1)", 4, 2, 0, -1, true, Prefilter::None},
+       Prefilter::None, FCC_RECON_BILINEAR_SPATIAL},
+      {"bilinear", Lattice::Bcc, "bilinear in the nearest plane (paper 002, 3.1)", 4, 2, 0, -1, true, Prefilter::None, FCC_RECON_BILINEAR},
       {"boxspline", Lattice::Fcc, "six-direction box spline M_fcc, quasi-interpolating prefilter q_fcc", 19, 3, 2, 1,
-       false, Prefilter::Fcc},
+       false, Prefilter::Fcc, FCC_RECON_BOXSPLINE},
   };
   return infos;
 }
@@ -186,28 +186,16 @@ class BoxSpline final : public Reconstruction {
 
 std::unique_ptr<Reconstruction> makeReconstruction(std::string_view name) {
   const ReconstructionInfo& info = findReconstruction(name);
-  if (name == "trilinear") return std::make_unique<Trilinear>(info);
-  if (name == "tricubic" || name == "tricubic-bspline") return std::make_unique<Tricubic>(info);
-  if (name == "barycentric") return std::make_unique<Barycentric>(info);
-  if (name == "sheared-trilinear") return std::make_unique<ShearedTrilinear>(info);
-  if (name == "bilinear-spatial") return std::make_unique<PlaneScheme>(info, 1);
-  if (name == "bilinear") return std::make_unique<PlaneScheme>(info, 0);
-  return std::make_unique<BoxSpline>(info);
+  switch (info.deviceId) {
+    case FCC_RECON_TRILINEAR: return std::make_unique<Trilinear>(info);
+    case FCC_RECON_TRICUBIC: return std::make_unique<Tricubic>(info);  // both B-splines: the prefilter differs
+    case FCC_RECON_BARYCENTRIC: return std::make_unique<Barycentric>(info);
+    case FCC_RECON_SHEARED_TRILINEAR: return std::make_unique<ShearedTrilinear>(info);
+    case FCC_RECON_BILINEAR_SPATIAL: return std::make_unique<PlaneScheme>(info, 1);
+    case FCC_RECON_BILINEAR: return std::make_unique<PlaneScheme>(info, 0);
+    default: return std::make_unique<BoxSpline>(info);
+  }
 }
 
 }  // namespace fcc
 
-namespace fcc {
-
-int reconstructionDeviceId(const ReconstructionInfo& info) {
-  const std::string_view n = info.name;
-  if (n == "trilinear") return FCC_RECON_TRILINEAR;
-  if (n == "tricubic" || n == "tricubic-bspline") return FCC_RECON_TRICUBIC;
-  if (n == "barycentric") return FCC_RECON_BARYCENTRIC;
-  if (n == "sheared-trilinear") return FCC_RECON_SHEARED_TRILINEAR;
-  if (n == "bilinear-spatial") return FCC_RECON_BILINEAR_SPATIAL;
-  if (n == "bilinear") return FCC_RECON_BILINEAR;
-  return FCC_RECON_BOXSPLINE;
-}
-
-}  // namespace fcc

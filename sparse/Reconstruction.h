@@ -47,6 +47,7 @@ struct ReconstructionInfo {
   int continuity;    // -1 discontinuous, 0 C0, 1 C1, 2 C2
   bool viewDependent;  // its pieces depend on the view direction (BCC's plane stacks)
   Prefilter prefilter;
+  int deviceId;  // the evaluation sparse/ReconDispatch.h knows it by (FCC_RECON_*); one per class below
 };
 
 // Every reconstruction, in the order `compare` reports them.
@@ -84,6 +85,6 @@ class Reconstruction {
 std::unique_ptr<Reconstruction> makeReconstruction(std::string_view name);
 
 // The id sparse/ReconDispatch.h's device dispatch knows it by (FCC_RECON_*).
-int reconstructionDeviceId(const ReconstructionInfo& info);
+inline int reconstructionDeviceId(const ReconstructionInfo& info) { return info.deviceId; }
 
 }  // namespace fcc

@@ -55,16 +55,6 @@ std::string machineLine() {
   return std::string(host) + ", " + cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " threads";
 }
 
-void writeText(const std::string& path, const std::string& text, bool overwrite) {
-  io::AtomicOutput out(path, overwrite);
-  {
-    std::ofstream f(out.tempPath(), std::ios::binary);
-    f << text;
-    if (!f.flush()) throw OutputError("cannot write " + path);
-  }
-  out.commit();
-}
-
 // The Markdown lines that show the image grids and say what their rows are.
 std::string gridNote(const std::vector<CompareRow>& rows, const std::vector<int64_t>& budgets, bool rendered) {
   if (!rendered) return "";
@@ -195,9 +185,9 @@ Command addCompareCommand(CLI::App& parent) {
             else std::printf("%s%s", header.c_str(), table.c_str());
             if (!args->outDir.empty()) {
               const std::string dir = args->outDir + "/";
-              writeText(dir + "compare.json", compareJson(rows), args->force);
-              writeText(dir + "compare.md", "# fccvdb compare\n\n```\n" + header + "\n" + table + "```\n\n![convergence](convergence.svg)\n" + gridNote(rows, options.budgets, width > 0), args->force);
-              writeText(dir + "convergence.svg",
+              io::writeTextFile(dir + "compare.json", compareJson(rows), args->force);
+              io::writeTextFile(dir + "compare.md", "# fccvdb compare\n\n```\n" + header + "\n" + table + "```\n\n![convergence](convergence.svg)\n" + gridNote(rows, options.budgets, width > 0), args->force);
+              io::writeTextFile(dir + "convergence.svg",
                         convergenceSvg(rows, truthName + ": value RMS error against samples"), args->force);
               if (width > 0) {
                 for (int64_t budget : options.budgets) {

@@ -136,13 +136,7 @@ Camera readCameraFile(const std::string& path) {
 }
 
 void writeCameraFile(const std::string& path, const Camera& camera) {
-  io::AtomicOutput out(path, /*overwrite=*/true);
-  {
-    std::ofstream file(out.tempPath(), std::ios::binary);
-    file << cameraJson(camera);
-    if (!file.flush()) throw OutputError("cannot write the camera file " + path);
-  }
-  out.commit();
+  io::writeTextFile(path, cameraJson(camera), /*overwrite=*/true);
 }
 
 }  // namespace fcc::render
