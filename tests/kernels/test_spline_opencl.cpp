@@ -46,39 +46,34 @@ class OpenCl : public test::ClSuite<ClRunner> {
     return results;
   }
 
-  static std::vector<glm::vec4> evaluateReconstruction(const DenseBlock& block, const std::vector<glm::vec4>& points,
-                                                       int id, const glm::ivec3& params) {
-    cl::Kernel kernel = device->kernel(std::string(embedded::kernels("kernels/recon_eval.cl")), "fcc_recon_eval");
+  // A kernel of kernels/recon_eval.cl (points, count, id, params, the block; one result per count).
+  static std::vector<glm::vec4> runReconKernel(const char* name, const DenseBlock& block,
+                                               const std::vector<glm::vec4>& points, size_t count, int id,
+                                               const glm::ivec3& params) {
+    cl::Kernel kernel = device->kernel(std::string(embedded::kernels("kernels/recon_eval.cl")), name);
     cl::Buffer pointBuffer = device->upload(points);
     cl::Buffer valueBuffer = device->upload(block.values);
-    cl::Buffer resultBuffer = device->allocate(points.size() * sizeof(glm::vec4), CL_MEM_WRITE_ONLY);
+    cl::Buffer resultBuffer = device->allocate(count * sizeof(glm::vec4), CL_MEM_WRITE_ONLY);
     const cl_int4 paramsCl = {{params.x, params.y, params.z, 0}};
     const cl_int4 origin = {{block.origin.x, block.origin.y, block.origin.z, 0}};
     const cl_int4 dims = {{block.dims.x, block.dims.y, block.dims.z, 0}};
-    device->launch("reconstruction evaluation", kernel, points.size(), pointBuffer, cl_uint(points.size()), cl_int(id),
-                   paramsCl, valueBuffer, origin, dims, cl_float(block.background), resultBuffer);
-    std::vector<glm::vec4> results(points.size());
+    device->launch(name, kernel, count, pointBuffer, cl_uint(count), cl_int(id), paramsCl, valueBuffer, origin, dims,
+                   cl_float(block.background), resultBuffer);
+    std::vector<glm::vec4> results(count);
     device->download(resultBuffer, results);
     return results;
+  }
+
+  static std::vector<glm::vec4> evaluateReconstruction(const DenseBlock& block, const std::vector<glm::vec4>& points,
+                                                       int id, const glm::ivec3& params) {
+    return runReconKernel("fcc_recon_eval", block, points, points.size(), id, params);
   }
 };
 
 TEST_F(OpenCl, EveryReconstructionsSegmentRootMatchesCpp) {
   test::expectSegmentRootsMatchCpp("OpenCL", [](const DenseBlock& block, const std::vector<glm::vec4>& endpoints, int id,
                                                 const glm::ivec3& params) {
-    cl::Kernel kernel = device->kernel(std::string(embedded::kernels("kernels/recon_eval.cl")), "fcc_recon_segment_roots");
-    const size_t count = endpoints.size() / 2;
-    cl::Buffer pointBuffer = device->upload(endpoints);
-    cl::Buffer valueBuffer = device->upload(block.values);
-    cl::Buffer resultBuffer = device->allocate(count * sizeof(glm::vec4), CL_MEM_WRITE_ONLY);
-    const cl_int4 paramsCl = {{params.x, params.y, params.z, 0}};
-    const cl_int4 origin = {{block.origin.x, block.origin.y, block.origin.z, 0}};
-    const cl_int4 dims = {{block.dims.x, block.dims.y, block.dims.z, 0}};
-    device->launch("segment roots", kernel, count, pointBuffer, cl_uint(count), cl_int(id), paramsCl, valueBuffer, origin,
-                   dims, cl_float(block.background), resultBuffer);
-    std::vector<glm::vec4> results(count);
-    device->download(resultBuffer, results);
-    return results;
+    return runReconKernel("fcc_recon_segment_roots", block, endpoints, endpoints.size() / 2, id, params);
   });
 }
 
