@@ -130,15 +130,7 @@ void BrickStore::worldBounds(glm::dvec3& lo, glm::dvec3& hi) const {
   if (packed.empty()) packed = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(0));
   const glm::dvec3 indexLo = glm::dvec3(packed.min().x(), packed.min().y(), packed.min().z()) * 2.0;
   const glm::dvec3 indexHi = glm::dvec3(packed.max().x(), packed.max().y(), packed.max().z()) * 2.0 + 1.0;
-  lo = glm::dvec3(std::numeric_limits<double>::max());
-  hi = -lo;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::dvec3 xyz((corner & 1) ? indexHi.x : indexLo.x, (corner & 2) ? indexHi.y : indexLo.y,
-                         (corner & 4) ? indexHi.z : indexLo.z);
-    const glm::dvec3 pWorld = glm::dvec3(worldFromIndex_ * glm::dvec4(xyz, 1.0));
-    lo = glm::min(lo, pWorld);
-    hi = glm::max(hi, pWorld);
-  }
+  worldBoxOfIndexBox(worldFromIndex_, indexLo, indexHi, lo, hi);
 }
 
 bool BrickStore::hasLeaf(const glm::ivec3& brick) const {

@@ -72,35 +72,51 @@ CartesianBrickStore::CartesianBrickStore(const std::string& path, const std::str
 
 CartesianBrickStore::~CartesianBrickStore() = default;
 
+void CartesianBrickStore::worldBounds(glm::dvec3& lo, glm::dvec3& hi) const {
+  openvdb::CoordBBox voxels = grid_->evalActiveVoxelBoundingBox();
+  if (voxels.empty()) voxels = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(0));
+  worldBoxOfIndexBox(worldFromIndex_, glm::dvec3(voxels.min().x(), voxels.min().y(), voxels.min().z()),
+                     glm::dvec3(voxels.max().x(), voxels.max().y(), voxels.max().z()), lo, hi);
+}
+
 float CartesianBrickStore::constantAt(const openvdb::Coord& origin) const {
   // Only where no leaf exists: getValue reads a tile or the background and loads nothing.
   return grid_->tree().getValue(origin);
 }
 
 void CartesianBrickStore::readBlock(const glm::ivec3& brick, float* out) const {
-  const glm::ivec3 blockMin = brick * kBrickSites - kBlockLo;
+  readBox(brick * kBrickSites - kBlockLo, glm::ivec3(kBlockDim), out);
+}
+
+void CartesianBrickStore::readBox(const glm::ivec3& boxMin, const glm::ivec3& dims, float* out) const {
   std::array<float, 512> leafValues;
-  forEachBlockLeaf(brick, [&](const glm::ivec3& leaf) {
-    const openvdb::Coord origin(leaf.x * kLeafDim, leaf.y * kLeafDim, leaf.z * kLeafDim);
-    // The part of this leaf inside the block, in block coordinates: [lo, hi).
-    const glm::ivec3 leafMin = leaf * kLeafDim - blockMin;
-    const glm::ivec3 lo = glm::max(leafMin, glm::ivec3(0)), hi = glm::min(leafMin + kLeafDim, glm::ivec3(kBlockDim));
-    if (glm::any(glm::greaterThanEqual(lo, hi))) return;
-    const std::optional<size_t> index = reader_->leafIndexAt(origin);
-    if (!index) {
-      const float v = constantAt(origin);
-      for (int z = lo.z; z < hi.z; ++z)
-        for (int y = lo.y; y < hi.y; ++y) std::fill(out + (z * kBlockDim + y) * kBlockDim + lo.x, out + (z * kBlockDim + y) * kBlockDim + hi.x, v);
-      return;
-    }
-    reader_->readLeaf(*index, leafValues.data());  // OpenVDB's order: x << 6 | y << 3 | z
-    for (int z = lo.z; z < hi.z; ++z)
-      for (int y = lo.y; y < hi.y; ++y)
-        for (int x = lo.x; x < hi.x; ++x) {
-          const glm::ivec3 l = glm::ivec3(x, y, z) - leafMin;
-          out[(z * kBlockDim + y) * kBlockDim + x] = leafValues[(l.x << 6) | (l.y << 3) | l.z];
+  const auto at = [&](int x, int y, int z) { return out + (std::ptrdiff_t(z) * dims.y + y) * dims.x + x; };
+  const glm::ivec3 firstLeaf = glm::ivec3(glm::floor(glm::vec3(boxMin) / float(kLeafDim)));
+  const glm::ivec3 lastLeaf = glm::ivec3(glm::floor(glm::vec3(boxMin + dims - 1) / float(kLeafDim)));
+  for (int lz = firstLeaf.z; lz <= lastLeaf.z; ++lz)
+    for (int ly = firstLeaf.y; ly <= lastLeaf.y; ++ly)
+      for (int lx = firstLeaf.x; lx <= lastLeaf.x; ++lx) {
+        const glm::ivec3 leaf(lx, ly, lz);
+        const openvdb::Coord origin(leaf.x * kLeafDim, leaf.y * kLeafDim, leaf.z * kLeafDim);
+        // The part of this leaf inside the box, in box coordinates: [lo, hi).
+        const glm::ivec3 leafMin = leaf * kLeafDim - boxMin;
+        const glm::ivec3 lo = glm::max(leafMin, glm::ivec3(0)), hi = glm::min(leafMin + kLeafDim, dims);
+        if (glm::any(glm::greaterThanEqual(lo, hi))) continue;
+        const std::optional<size_t> index = reader_->leafIndexAt(origin);
+        if (!index) {
+          const float v = constantAt(origin);
+          for (int z = lo.z; z < hi.z; ++z)
+            for (int y = lo.y; y < hi.y; ++y) std::fill(at(lo.x, y, z), at(hi.x, y, z), v);
+          continue;
         }
-  });
+        reader_->readLeaf(*index, leafValues.data());  // OpenVDB's order: x << 6 | y << 3 | z
+        for (int z = lo.z; z < hi.z; ++z)
+          for (int y = lo.y; y < hi.y; ++y)
+            for (int x = lo.x; x < hi.x; ++x) {
+              const glm::ivec3 l = glm::ivec3(x, y, z) - leafMin;
+              *at(x, y, z) = leafValues[(l.x << 6) | (l.y << 3) | l.z];
+            }
+      }
 }
 
 std::vector<CartesianBrickStore::BrickRange> CartesianBrickStore::computeBrickRanges() const {
@@ -140,7 +156,7 @@ std::vector<CartesianBrickStore::BrickRange> CartesianBrickStore::computeBrickRa
     for (int by = activeBrickBox_.min().y(); by <= activeBrickBox_.max().y(); ++by)
       for (int bx = activeBrickBox_.min().x(); bx <= activeBrickBox_.max().x(); ++bx) {
         const glm::ivec3 brick(bx, by, bz);
-        float lo = background_, hi = background_;
+        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
         bool varies = false;
         forEachBlockLeaf(brick, [&](const glm::ivec3& leaf) {
           const openvdb::Coord origin(leaf.x * kLeafDim, leaf.y * kLeafDim, leaf.z * kLeafDim);

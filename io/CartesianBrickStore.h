@@ -40,10 +40,15 @@ class CartesianBrickStore {
   // The bricks whose block is not all the background (they touch a leaf or a tile of another value),
   // as an inclusive box of brick coordinates; empty for a grid of the background alone.
   const openvdb::CoordBBox& activeBrickBox() const { return activeBrickBox_; }
+  // World-space bounding box of the active voxels (topology only: no leaf is read).
+  void worldBounds(glm::dvec3& lo, glm::dvec3& hi) const;
 
   // The block of brick b, x fastest: out[(z * 20 + y) * 20 + x] is the value at 16 b - 2 + (x, y, z).
   // Thread-safe. InputError naming the leaf if one of its leaves is damaged.
   void readBlock(const glm::ivec3& brick, float* out) const;
+  // The grid's values at the points [boxMin, boxMin + dims), x fastest (dims.x * dims.y * dims.z floats).
+  // Thread-safe; InputError naming the leaf if one is damaged.
+  void readBox(const glm::ivec3& boxMin, const glm::ivec3& dims, float* out) const;
 
   // Per-brick (min, max) of every value of its block, for the bricks of activeBrickBox() whose block is
   // not all the background: conservative bounds of every CC reconstruction without prefilter (each is a

@@ -9,8 +9,11 @@
 //                     slot (non-FCC sites unused), read at the site itself, no channel selection
 //   2 texture-vec4    RGBA32F 3D texture, a 10^3 block per slot, texelFetch, channel by parity
 //   3 texture-scalar  R32F 3D texture, a 20^3 block of sites per slot, texelFetch
-// Per slot and packed voxel, slotBounds holds the min and max BB-coefficient of the 8 unit cells of
-// that voxel (40 pieces), computed on upload by shaders/slot_bounds.comp.
+// A Cartesian grid's slot (viewer/CartesianBrickSource.h) holds its 20^3 grid points [16b - 2, 16b + 18)^3
+// in the same place, every one used: the scalar layouts only.
+// Per slot and packed voxel (2^3 unit cells), slotBounds holds bounds of the reconstruction on those 8
+// cells (for FCC the min and max BB-coefficient of their 40 pieces, or the hull of the coefficients
+// their stencils read), computed on upload by shaders/slot_bounds.comp.
 #ifndef FCC_POOL_LAYOUT
 #define FCC_POOL_LAYOUT 0
 #endif

@@ -1,16 +1,19 @@
 #version 450 core
-// The brick-paged FCC isosurface raycaster: one invocation per pixel, one pass per dispatch.
+// The brick-paged isosurface raycaster: one invocation per pixel, one pass per dispatch.
 //
 // Rays walk the bricks of the page table (skipping whole nodes and bricks whose bounds exclude the
-// isovalue), then the unit cells of a resident brick, then the tetrahedral pieces of each cell; in a
-// piece whose BB-coefficients straddle the isovalue the first root of the cubic along the ray is found
-// exactly (sparse/FccRay.h). A ray that reaches a brick not resident in the pool requests it (and a
+// isovalue), then the unit cells of a resident brick (march_fcc.glsl or march_cc.glsl, by the
+// reconstruction FCC_RECON: sparse/ReconDispatch.h's ids); in a piece whose Bernstein/BB-coefficients
+// straddle the isovalue the first root of its polynomial along the ray is found exactly. A ray that reaches a brick not resident in the pool requests it (and a
 // few bricks beyond it), saves where it stopped, and resumes there in the next pass, so a frame whose
 // working set exceeds the pool completes in several passes. Headers are inlined by fcc_embed.
 #define FCC_GLSL 1
-#include "FccSpline.h"
-#include "FccRay.h"
+#include "ReconDispatch.h"
 #include "pool.glsl"
+
+#ifndef FCC_RECON
+#define FCC_RECON FCC_RECON_BOXSPLINE
+#endif
 
 // The work group: pixels per group in x and y (RenderOptions::workGroup defines them).
 #ifndef FCC_GROUP_X
@@ -67,13 +70,12 @@ const uint kSkip = 0xFFFFFFFFu;
 const uint kMissing = 0xFFFFFFFEu;
 const float kBrickSites = 16.0;
 
-float valueAt(vec3 xyz) {
-  FccFrame frame = fcc_locate(xyz);
-  return fcc_value(gatherStencil(frame), frame);
-}
+// The reconstruction's value at xyz (index space) inside the brick whose slot is selected; defined by
+// the march file below.
+float valueAt(vec3 xyz);
 
-// Central differences of the spline's value, six evaluations; the points are kept inside the brick
-// (whose halo is what the pool holds).
+// Central differences of the reconstruction's value, six evaluations; the points are kept inside the
+// brick (whose halo is what the pool holds).
 vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick) {
   const float h = 0.125;
   vec3 lo = vec3(brick * 16) + h, hi = vec3(brick * 16 + 16) - h;
@@ -113,8 +115,17 @@ struct Hit {
   vec3 gradient;  // index space
 };
 
-// The first hit in the resident brick b between ta and tb, walking its unit cells. prevSign: the sign
-// of s - iso where the ray reaches ta (-1 negative, +1 not, 0 unknown), updated to where it leaves.
+// hitInCell(b, cell, o, d, t0, t1, prevSign, hit), the first hit inside one unit cell of a resident
+// brick, and valueAt: one per lattice, FCC_RECON says which.
+#if FCC_RECON == FCC_RECON_BOXSPLINE
+#include "march_fcc.glsl"
+#else
+#include "march_cc.glsl"
+#endif
+
+// The first hit in the resident brick b between ta and tb, walking its unit cells (those whose slot
+// bounds exclude the isovalue are passed over). prevSign: the sign of s - iso where the ray reaches
+// ta (-1 negative, +1 not, 0 unknown), updated to where it leaves.
 bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout int prevSign, inout Hit hit) {
   selectSlot(slot, b);
   uint boundsBase = slot * uint(kSlotVoxels);
@@ -135,39 +146,7 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     if (tExit > tCell && uSkipEmpty != 0 && !(cellBounds.x <= uIso && uIso <= cellBounds.y)) {
       prevSign = cellBounds.x > uIso ? 1 : -1;
     } else if (tExit > tCell) {
-      vec4 splits = fcc_cell_splits(cell, o, d, tCell, tExit);
-      float s0 = tCell;
-      // Up to five sub-segments, one per piece the ray passes (in practice at most three).
-      for (int k = 0; k < 5 && s0 < tExit; ++k) {
-        float s1 = k == 0 ? splits.x : (k == 1 ? splits.y : (k == 2 ? splits.z : (k == 3 ? splits.w : tExit)));
-        if (s1 <= s0) continue;
-        // Kept inside this cell, so the stencil stays inside the slot's halo whatever the rounding.
-        FccFrame frame = fcc_locate(clamp(o + (0.5 * (s0 + s1)) * d, vec3(cell), vec3(cell + 1)));
-        FccSamples samples = gatherStencil(frame);
-        FccCubic cubic = fcc_cubic(samples, frame.type);
-        FccRange range = fcc_cubic_range(cubic);
-        if (!(range.lo <= uIso && uIso <= range.hi)) {
-          prevSign = range.lo > uIso ? 1 : -1;
-        } else {
-          vec4 bz = fcc_segment_bernstein(cubic, frame, o, d, s0, s1, uIso);
-          float u = fcc_first_root_after(bz, prevSign);
-          prevSign = bz.w < 0.0 ? -1 : 1;
-          if (u >= 0.0) {
-            hit.t = s0 + u * (s1 - s0);
-            vec3 xyz = o + hit.t * d;
-            if (uFiniteDifferenceNormals != 0) {
-              hit.gradient = finiteDifferenceGradient(xyz, b);
-            } else {
-              // The gradient of this piece's polynomial at the hit, with the stencil already read:
-              // locating the rounded hit point anew could pick a cell outside the slot's halo.
-              frame.q = vec3(frame.axis) * (xyz - vec3(frame.origin));
-              hit.gradient = fcc_gradient(samples, frame);
-            }
-            return true;
-          }
-        }
-        s0 = s1;
-      }
+      if (hitInCell(b, cell, o, d, tCell, tExit, prevSign, hit)) return true;
     }
     if (tExit >= tb) break;
     // Never backwards: a start cell clamped into the brick can have a face behind the ray.

@@ -7,8 +7,12 @@
 // must stay cheap on a CPU rasteriser too. One invocation per packed voxel; work group y indexes
 // the uploaded slots.
 #define FCC_GLSL 1
-#include "FccSpline.h"
+#include "ReconDispatch.h"
 #include "pool.glsl"
+
+#ifndef FCC_RECON
+#define FCC_RECON FCC_RECON_BOXSPLINE
+#endif
 
 layout(local_size_x = 64) in;
 
@@ -23,7 +27,34 @@ void markUsed(uint slot) {
   if (gl_GlobalInvocationID.x == 0u) slotLastUse[slot] = uPass;
 }
 
-#if defined(FCC_SLOT_BOUNDS_BB)
+#if FCC_RECON == FCC_RECON_TRILINEAR || FCC_RECON == FCC_RECON_TRICUBIC
+// A Cartesian slot (20^3 grid points, viewer/CartesianBrickSource.h): both reconstructions are convex
+// combinations of the coefficients their stencils read, so the voxel's 8 cells (2v .. 2v + 1 from the
+// brick's corner) lie within the hull of the points [2v, 2v + 3)^3 (trilinear) or [2v - 1, 2v + 4)^3
+// (tricubic). The raycaster then checks each cell's own corners or Bezier coefficients.
+void main() {
+  uint voxel = gl_GlobalInvocationID.x;
+  if (voxel >= uint(kSlotVoxels)) return;
+  uint slot = uploadedSlots[gl_WorkGroupID.y];
+  markUsed(slot);
+  selectSlot(slot, ivec3(0));  // the brick taken at the origin: a slot's values do not depend on it
+  ivec3 v = ivec3(int(voxel) & 7, (int(voxel) >> 3) & 7, int(voxel) >> 6);
+#if FCC_RECON == FCC_RECON_TRILINEAR
+  ivec3 lo = 2 * v, hi = 2 * v + 3;
+#else
+  ivec3 lo = 2 * v - 1, hi = 2 * v + 4;
+#endif
+  float mn = 1.0 / 0.0, mx = -1.0 / 0.0;
+  for (int z = lo.z; z < hi.z; ++z)
+    for (int y = lo.y; y < hi.y; ++y)
+      for (int x = lo.x; x < hi.x; ++x) {
+        float c = coefficientAt(ivec3(x, y, z));
+        mn = min(mn, c);
+        mx = max(mx, c);
+      }
+  slotBounds[slot * uint(kSlotVoxels) + voxel] = vec2(mn, mx);
+}
+#elif defined(FCC_SLOT_BOUNDS_BB)
 // On a GPU the tighter bound costs nothing worth saving: min/max over the BB-coefficients of the 40
 // pieces of the voxel's 8 cells (what the raycaster would otherwise find piece by piece).
 void main() {

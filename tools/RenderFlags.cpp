@@ -41,7 +41,11 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
                  "FCC .vdb file (from fccvdb convert or synth), or anything convert takes (a Cartesian .vdb, NRRD, "
                  "NIfTI, raw with --dims/--type): converted once and cached (--no-cache: a temporary file)")
       ->required();
-  app.add_option("--grid", flags.grid, "The FCC grid to render (default: the first); for a Cartesian .vdb, the float grid to convert");
+  app.add_option("--grid", flags.grid, "The FCC grid to render (default: the first); for a Cartesian .vdb, the float grid to convert or render");
+  app.add_option("--reconstruction", flags.reconstruction,
+                 "How the data between samples is reconstructed: boxspline (FCC data; the default, converting a "
+                 "Cartesian FILE), or trilinear, tricubic (interpolating B-spline), tricubic-bspline (approximating) "
+                 "to render a Cartesian .vdb float grid as it is, without converting");
   addRawFlags(app, flags.source);
   app.add_flag("--no-cache", flags.noCache, "Convert a Cartesian FILE into a temporary file instead of the user cache ($XDG_CACHE_HOME/fccvdb)");
   app.add_option("--iso", flags.iso,
@@ -66,16 +70,24 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
       ->capture_default_str();
 }
 
-void warnIfIsoOutside(float iso, const io::BrickStore& store) {
-  if (iso >= store.valueMin() && iso <= store.valueMax()) return;
+void warnIfIsoOutside(float iso, const std::string& path, float valueMin, float valueMax) {
+  if (iso >= valueMin && iso <= valueMax) return;
   std::fprintf(stderr,
-               "fccvdb: warning: isovalue %g is outside the values the spline takes in %s (%g .. %g): no surface "
-               "will show; pick --iso in that range\n",
-               double(iso), store.path().c_str(), double(store.valueMin()), double(store.valueMax()));
+               "fccvdb: warning: isovalue %g is outside the values the reconstruction takes in %s (%g .. %g): no "
+               "surface will show; pick --iso in that range\n",
+               double(iso), path.c_str(), double(valueMin), double(valueMax));
+}
+
+void warnIfIsoOutside(float iso, const io::BrickStore& store) {
+  warnIfIsoOutside(iso, store.path(), store.valueMin(), store.valueMax());
 }
 
 io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::BrickStore& store) {
-  if (flags.iso.empty()) return io::defaultIsovalue(store);
+  return flags.iso.empty() ? io::defaultIsovalue(store) : isoFromFlags(flags, io::IsoChoice{});
+}
+
+io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::IsoChoice& fallback) {
+  if (flags.iso.empty()) return fallback;
   char* end = nullptr;
   const double v = std::strtod(flags.iso.c_str(), &end);
   if (end == flags.iso.c_str() || *end != '\0' || !std::isfinite(v) || !std::isfinite(float(v)))
@@ -107,6 +119,12 @@ std::string cameraFlags(const render::Camera& camera) {
 }
 
 render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect) {
+  glm::dvec3 lo, hi;
+  store.worldBounds(lo, hi);
+  return cameraFromFlags(flags, lo, hi, aspect);
+}
+
+render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& worldLo, const glm::dvec3& worldHi, double aspect) {
   double fov = 40.0;
   if (!flags.fov.empty()) {
     char* end = nullptr;
@@ -120,9 +138,7 @@ render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& s
     if (!flags.fov.empty()) camera.fovYDegrees = fov;
     if (!flags.lookat.empty()) camera.lookat = tripleOrThrow(flags.lookat, "--lookat");
   } else {
-    glm::dvec3 lo, hi;
-    store.worldBounds(lo, hi);
-    camera = render::frameBox(lo, hi, fov, aspect);
+    camera = render::frameBox(worldLo, worldHi, fov, aspect);
     if (!flags.lookat.empty()) {  // the framing distance kept: the eye moves with the look-at point
       const glm::dvec3 lookat = tripleOrThrow(flags.lookat, "--lookat");
       camera.eye += lookat - camera.lookat;

@@ -23,10 +23,11 @@ struct RenderFlags {
   std::string layout = "auto";                   // a render::BrickLayout by name, or auto (chooseBrickLayout)
   SourceFlags source;                            // how to read a Cartesian FILE (raw layout)
   bool noCache = false;                          // convert a Cartesian FILE into a temporary file
+  std::string reconstruction;                    // empty: FCC (converting a Cartesian FILE); else by name
 };
 
 // Registers FILE, --grid, --iso, --res, --camera, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache, --layout,
-// the raw input flags (--dims, --type, ...) and --no-cache.
+// --reconstruction, the raw input flags (--dims, --type, ...) and --no-cache.
 void addRenderFlags(CLI::App& app, RenderFlags& flags);
 
 // FILE as an FCC .vdb: itself, or its conversion (io/ConversionCache.h: cached, or temporary with
@@ -34,9 +35,12 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags);
 std::unique_ptr<io::FccInput> openFccInput(const RenderFlags& flags, bool quiet);
 
 // --iso, or the default (io/DefaultIsovalue.h, with its basis); ValueError if not a finite number.
+io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::IsoChoice& fallback);
 io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::BrickStore& store);
-// One line on stderr if `iso` lies outside the range the spline takes (the hull of the bounds): the
-// image would show no surface. Not an error: the user may want exactly that.
+// One line on stderr if `iso` lies outside [valueMin, valueMax], the range the reconstruction of
+// `path` takes (the hull of the bounds): the image would show no surface. Not an error: the user may
+// want exactly that.
+void warnIfIsoOutside(float iso, const std::string& path, float valueMin, float valueMax);
 void warnIfIsoOutside(float iso, const io::BrickStore& store);
 // --res (or `flag`) "WxH"; ValueError naming the flag for anything else or a zero size.
 void resolutionFromFlags(const std::string& res, int& width, int& height, const char* flag = "--res");
@@ -45,6 +49,7 @@ void resolutionFromFlags(const std::string& res, int& width, int& height, const 
 // The flags that give `camera` again, ready to paste: "--eye X,Y,Z --lookat X,Y,Z --up X,Y,Z --fov F",
 // every number with all the digits a double needs to come back the same.
 std::string cameraFlags(const render::Camera& camera);
+render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& worldLo, const glm::dvec3& worldHi, double aspect);
 render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect);
 render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags);
 

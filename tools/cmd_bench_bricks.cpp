@@ -22,6 +22,7 @@
 #include "io/BrickCache.h"
 #include "io/BrickStore.h"
 #include "viewer/BrickLoader.h"
+#include "viewer/FccBrickSource.h"
 #include "viewer/BrickPool.h"
 #include "viewer/EglContext.h"
 
@@ -56,7 +57,8 @@ Stage loadBlocks(const std::string& name, const io::BrickStore& store, io::Brick
   constexpr std::size_t kBatch = 256;
   const uint64_t decodedBefore = cache.decodedCount();
   const auto start = Clock::now();
-  render::BrickLoader loader(store, cache, 4 * kBatch);  // as the renderer makes it
+  const render::FccBrickSource source(store, cache);
+  render::BrickLoader loader(source, 4 * kBatch);  // as the renderer makes it
   loader.request(bricks);
   std::size_t taken = 0;
   for (;;) {

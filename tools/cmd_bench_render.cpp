@@ -13,6 +13,7 @@
 #include "Command.h"
 #include "JsonText.h"
 #include "ProgressBar.h"
+#include "RenderData.h"
 #include "RenderFlags.h"
 #include "sparse/Error.h"
 #include "viewer/EglContext.h"
@@ -125,10 +126,9 @@ Command addBenchRenderCommand(CLI::App& bench) {
             }
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
-            const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);
-            const io::BrickStore store(input->path(), args->flags.grid);
-            const float iso = isoFromFlags(args->flags, store).value;
-            const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
+            const RenderData data(args->flags, renderOptionsFromFlags(args->flags).hostCacheBytes, false);
+            const float iso = data.iso(args->flags).value;
+            const render::Camera camera = data.camera(args->flags, double(width) / height);
             // --layout all: every layout in turn, each with fresh caches; auto: the renderer's choice.
             std::vector<std::optional<render::BrickLayout>> layouts;
             RenderFlags flags = args->flags;
@@ -158,7 +158,10 @@ Command addBenchRenderCommand(CLI::App& bench) {
             for (const std::optional<render::BrickLayout>& layout : layouts) {
               options.layout = layout;
               // Cold: a fresh pool and host cache, one complete frame (reported for the first layout).
-              render::Raycaster raycaster(store, options);
+              // FCC data gets a fresh host cache per layout; a Cartesian grid has none.
+              std::unique_ptr<render::Raycaster> made = data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), options)
+                                                                        : std::make_unique<render::Raycaster>(data.source(), options);
+              render::Raycaster& raycaster = *made;
               const render::FrameStats c = raycaster.render(camera, width, height);
               tick();
               const std::string layoutName = render::brickLayoutName(*raycaster.options().layout);

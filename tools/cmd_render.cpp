@@ -1,5 +1,6 @@
 // fccvdb render FILE OUT.(exr|png) (or -o OUT): one headless frame of the isosurface (FILE: an FCC
-// .vdb, or any input convert takes, converted once into the cache).
+// .vdb, or any input convert takes, converted once into the cache; or with --reconstruction trilinear,
+// tricubic or tricubic-bspline a Cartesian .vdb rendered as it is).
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "Command.h"
+#include "RenderData.h"
 #include "RenderFlags.h"
 #include "io/ImageOutput.h"
 #include "sparse/Error.h"
@@ -48,19 +50,17 @@ Command addRenderCommand(CLI::App& parent) {
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
             checkOutputWritable(args->output, args->force);
-            const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, args->quiet);
-            mark("input");
-            const io::BrickStore store(input->path(), args->flags.grid);
+            render::RenderOptions options = renderOptionsFromFlags(args->flags);
+            const RenderData data(args->flags, options.hostCacheBytes, args->quiet);
             mark("open");
-            const io::IsoChoice isoChoice = isoFromFlags(args->flags, store);
+            const io::IsoChoice isoChoice = data.iso(args->flags);
             const float iso = isoChoice.value;
-            warnIfIsoOutside(iso, store);
-            const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
+            data.warnIfIsoOutside(iso);
+            const render::Camera camera = data.camera(args->flags, double(width) / height);
             const EglContext gl;
             mark("egl");
-            render::RenderOptions options = renderOptionsFromFlags(args->flags);
             options.iso = iso;
-            render::Raycaster raycaster(store, options);
+            render::Raycaster raycaster(data.source(), options);
             mark("renderer");
             const render::FrameStats stats = raycaster.render(camera, width, height);
             mark("frame");
@@ -91,7 +91,7 @@ Command addRenderCommand(CLI::App& parent) {
                            stats.passes, (unsigned long long)stats.bricksUploaded,
                            (unsigned long long)stats.bricksNeeded, stats.seconds, gl.renderer().c_str());
             if (!args->quiet) std::fprintf(stderr, "camera: %s\n", cameraFlags(camera).c_str());
-            const io::BrickStore::Damage damage = store.damage();
+            const io::BrickStore::Damage damage = data.damage();
             if (damage.bricks > 0) {
               std::fprintf(stderr, "fccvdb: %llu damaged brick%s rendered as holes in %s (first: %s)%s\n",
                            (unsigned long long)damage.bricks, damage.bricks == 1 ? "" : "s", args->output.c_str(),

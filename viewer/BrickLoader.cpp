@@ -9,8 +9,8 @@ namespace {
 constexpr std::size_t kChunk = 8;  // most bricks a loader thread takes at once (128 KB of blocks)
 }  // namespace
 
-BrickLoader::BrickLoader(const io::BrickStore& store, io::BrickCache& cache, std::size_t maxReady)
-    : store_(store), cache_(cache), maxReady_(std::max<std::size_t>(maxReady, 1)) {
+BrickLoader::BrickLoader(const BrickSource& source, std::size_t maxReady)
+    : source_(source), maxReady_(std::max<std::size_t>(maxReady, 1)) {
   // As many as TBB may use (all cores, or what a tbb::global_control allows).
   const int threads = std::max<int>(1, int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { work(); });
@@ -119,11 +119,7 @@ void BrickLoader::work() {
 void BrickLoader::decodeChunk(std::vector<LoadedBrick>& chunk) {
   std::exception_ptr error;
   try {
-    io::BrickValuesMemo memo(cache_);  // the chunk's bricks are mostly neighbours: one cache lookup each
-    for (LoadedBrick& b : chunk) {
-      b.halo.resize(std::size_t(io::kHaloBlockVoxels) * 4);  // no-op for a recycled block
-      io::assembleHaloBlock(store_, memo, b.brick, b.halo.data());
-    }
+    source_.decode(chunk);
   } catch (...) {
     error = std::current_exception();
   }

@@ -1,5 +1,5 @@
-// The renderer's loader thread: decodes requested bricks into pool-slot halo blocks (through the
-// host cache) away from the frame loop, so neither the viewer's UI nor a frame's GPU work waits on
+// The renderer's loader thread: decodes requested bricks into pool-slot blocks (BrickSource::decode:
+// for FCC data through the host cache) away from the frame loop, so neither the viewer's UI nor a frame's GPU work waits on
 // the file. The frame loop queues bricks with request() and collects finished ones with take();
 // bricks already queued, being decoded or waiting to be taken are not queued twice. At most
 // `maxReady` finished blocks wait to be taken (the thread pauses meanwhile), which bounds the host
@@ -22,18 +22,13 @@
 #include <unordered_set>
 #include <vector>
 
-#include "io/BrickCache.h"
+#include "BrickSource.h"
 
 namespace fcc::render {
 
-struct LoadedBrick {
-  glm::ivec3 brick;
-  std::vector<float> halo;  // io::kHaloBlockVoxels packed voxels, four floats each: one pool slot
-};
-
 class BrickLoader {
  public:
-  BrickLoader(const io::BrickStore& store, io::BrickCache& cache, std::size_t maxReady);
+  BrickLoader(const BrickSource& source, std::size_t maxReady);
   ~BrickLoader();  // waits for the chunks in progress; queued requests are dropped
   BrickLoader(const BrickLoader&) = delete;
   BrickLoader& operator=(const BrickLoader&) = delete;
@@ -56,8 +51,7 @@ class BrickLoader {
   void decodeChunk(std::vector<LoadedBrick>& chunk);
   static uint64_t key(const glm::ivec3& b);
 
-  const io::BrickStore& store_;
-  io::BrickCache& cache_;
+  const BrickSource& source_;
   const std::size_t maxReady_;
   mutable std::mutex mutex_;
   std::condition_variable work_;   // requests queued, room in ready_, or stopping

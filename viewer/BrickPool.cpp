@@ -94,7 +94,14 @@ std::size_t BrickPool::maxSlots(BrickLayout layout) {
   return std::size_t(maxBlock) / slotBytes(layout);
 }
 
-BrickPool::BrickPool(BrickLayout layout, std::size_t slots) : layout_(layout), slots_(std::max<std::size_t>(slots, 1)) {
+BrickPool::BrickPool(BrickLayout layout, std::size_t slots, SlotBlock block)
+    : layout_(layout), slots_(std::max<std::size_t>(slots, 1)), block_(block) {
+  if (block == SlotBlock::Sites && !isScalar(layout)) {
+    std::string scalar;
+    for (BrickLayout l : allBrickLayouts())
+      if (isScalar(l)) scalar += (scalar.empty() ? "" : ", ") + brickLayoutName(l);
+    throw ValueError("brick layout '" + brickLayoutName(layout) + "' packs the FCC lattice's four channels; this lattice's bricks need a one-channel layout: " + scalar);
+  }
   // Three segments of 256 slots (4 or 8 MB each): the renderer's upload batch, with room for the GPU
   // to still copy two earlier batches.
   stagingSlots_ = std::min<std::size_t>(slots_, 256);
@@ -138,7 +145,8 @@ void BrickPool::upload(const std::vector<uint32_t>& slots, const std::vector<con
     char* segment = static_cast<char*>(staging_->begin(segmentOffset));
     tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) {
       float* out = reinterpret_cast<float*>(segment + i * bytes);
-      if (isScalar(layout_)) spreadOverSites(blocks[first + i], out);
+      if (block_ == SlotBlock::Sites) std::memcpy(out, blocks[first + i], bytes);
+      else if (isScalar(layout_)) spreadOverSites(blocks[first + i], out);
       else std::memcpy(out, blocks[first + i], bytes);
     });
     batchSlots_->write(slots.data() + first, count * sizeof(uint32_t));

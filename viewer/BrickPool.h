@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "BrickSource.h"
 #include "GlProgram.h"
 
 namespace fcc::render {
@@ -30,7 +31,9 @@ class BrickPool {
   // The most slots this GL implementation can hold in `layout` (SSBO size or 3D texture limits).
   static std::size_t maxSlots(BrickLayout layout);
 
-  BrickPool(BrickLayout layout, std::size_t slots);  // needs a current OpenGL 4.5 context
+  // Slots filled from `block`s (BrickSource.h); SlotBlock::Sites needs a scalar layout (ValueError
+  // naming them otherwise). Needs a current OpenGL 4.5 context.
+  BrickPool(BrickLayout layout, std::size_t slots, SlotBlock block = SlotBlock::FccPacked);
   ~BrickPool();
   BrickPool(const BrickPool&) = delete;
   BrickPool& operator=(const BrickPool&) = delete;
@@ -41,8 +44,8 @@ class BrickPool {
   // (the texture layouts' uPoolGrid).
   std::string glslDefines() const;
   void setUniforms(const GlProgram& program) const;
-  // Fills slots[i] from blocks[i], halo blocks of io::kHaloBlockVoxels packed voxels (4 floats each, x
-  // fastest), for every i. The blocks are staged side by side in a mapped buffer by all cores (the
+  // Fills slots[i] from blocks[i] for every i: halo blocks of io::kHaloBlockVoxels packed voxels (4
+  // floats each, x fastest), or blocks of 20^3 sites (SlotBlock::Sites). The blocks are staged side by side in a mapped buffer by all cores (the
   // scalar layouts spread over their sites on the way), then copied into their slots on the GPU by one
   // compute dispatch a batch: no GL call a slot, no copy through the driver.
   void upload(const std::vector<uint32_t>& slots, const std::vector<const float*>& blocks);
@@ -52,6 +55,7 @@ class BrickPool {
  private:
   BrickLayout layout_;
   std::size_t slots_;
+  SlotBlock block_;
   glm::ivec3 grid_{1};                 // texture layouts: slots per axis
   std::unique_ptr<GlBuffer> buffer_;   // SSBO layouts
   GLuint texture_ = 0;                 // texture layouts

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "FccBrickSource.h"
 #include "embedded_shaders.h"
 #include "sparse/Error.h"
 
@@ -19,36 +20,46 @@ constexpr std::size_t kUploadBatch = 256; // bricks the loader holds ready, and 
 constexpr std::size_t kStepUploadBatch = 32;  // step()'s upload batch, checked against its time budget
 constexpr int kMaxPasses = 1 << 20;       // a frame that needs more has a bug, not a small pool
 
-glm::ivec3 toGlm(const openvdb::Coord& c) { return {c.x(), c.y(), c.z()}; }
-
 }  // namespace
 
-BrickLayout chooseBrickLayout(const io::BrickStore& store, std::size_t gpuCacheBytes) {
-  const std::size_t varying = std::size_t(store.bounds().activeVoxelCount());
+BrickLayout chooseBrickLayout(const BrickSource& source, std::size_t gpuCacheBytes) {
+  if (source.slotBlock() == SlotBlock::Sites) return BrickLayout::TextureScalar;
+  const std::size_t varying = source.varyingBrickCount();
   const std::size_t scalarBytes = varying * (BrickPool::slotBytes(BrickLayout::TextureScalar) + kSlotBoundsBytes);
   return scalarBytes <= gpuCacheBytes ? BrickLayout::TextureScalar : BrickLayout::TextureVec4;
 }
 
-Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested)
-    : store_(store), options_(requested) {
-  if (!options_.layout) options_.layout = chooseBrickLayout(store, options_.gpuCacheBytes);
+Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options)
+    : Raycaster(std::make_unique<FccBrickSource>(store, options.hostCacheBytes), options) {}
+
+Raycaster::Raycaster(std::unique_ptr<BrickSource> owned, const RenderOptions& options)
+    : Raycaster(*owned, options) {
+  ownSource_ = std::move(owned);
+}
+
+Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
+    : source_(source), options_(requested) {
+  if (!options_.layout) options_.layout = chooseBrickLayout(source, options_.gpuCacheBytes);
   const RenderOptions& options = options_;
   const BrickLayout layout = *options.layout;
-  const openvdb::CoordBBox box = store.activeBrickBox();
-  const glm::ivec3 brickMin = box.empty() ? glm::ivec3(0) : toGlm(box.min());
-  const glm::ivec3 brickDims = box.empty() ? glm::ivec3(1) : toGlm(box.dim());
+  glm::ivec3 boxLo, boxHi;
+  source.brickBox(boxLo, boxHi);
+  const bool empty = glm::any(glm::greaterThan(boxLo, boxHi));
+  const glm::ivec3 brickMin = empty ? glm::ivec3(0) : boxLo;
+  const glm::ivec3 brickDims = empty ? glm::ivec3(1) : boxHi - boxLo + 1;
   const std::size_t bricksInBox = std::size_t(brickDims.x) * brickDims.y * brickDims.z;
 
   // The GPU budget pays for a slot's data and its cell bounds.
   std::size_t slots = options.gpuCacheBytes / (BrickPool::slotBytes(layout) + kSlotBoundsBytes);
   slots = std::min({slots, BrickPool::maxSlots(layout), bricksInBox});
   slots = std::max<std::size_t>(slots, 1);
-  pool_ = std::make_unique<BrickPool>(layout, slots);
+  pool_ = std::make_unique<BrickPool>(layout, slots, source.slotBlock());
 
   if (options.workGroup.x < 1 || options.workGroup.y < 1 || options.workGroup.x * options.workGroup.y > 1024)
     throw ValueError("work group " + std::to_string(options.workGroup.x) + "x" + std::to_string(options.workGroup.y) +
                      ": valid are 1 to 1024 invocations");
-  std::string defines = pool_->glslDefines();
+  // The reconstruction the shaders evaluate (sparse/ReconDispatch.h's FCC_RECON_* ids).
+  std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source.reconstruction().deviceId) + "\n";
   const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
                                    "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
   program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines + groupDefines),
@@ -72,7 +83,6 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   pool_->setUniforms(slotBoundsProgram_);
 
   residency_ = std::make_unique<Residency>(brickMin, brickDims, uint32_t(slots));
-  hostCache_ = std::make_unique<io::BrickCache>(store, options.hostCacheBytes);
 
   requestCapacity_ = uint32_t(std::min<std::size_t>(bricksInBox, 1 << 16));
   slotBounds_ = std::make_unique<GlBuffer>(slots * kSlotBoundsBytes);
@@ -89,8 +99,8 @@ Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& requested
   slotUse_->clear();
   // Four batches ready, so decoding goes on while render() uploads one (16 MB of blocks); no more than
   // the pool has slots: a pass cannot use more, and the blocks count against the process's memory.
-  loader_ = std::make_unique<BrickLoader>(store, *hostCache_, std::min<std::size_t>(4 * kUploadBatch, std::max<std::size_t>(slots, kStepUploadBatch)));
-  setIso(std::isnan(options.iso) ? 0.5f * (store.valueMin() + store.valueMax()) : options.iso);
+  loader_ = std::make_unique<BrickLoader>(source, std::min<std::size_t>(4 * kUploadBatch, std::max<std::size_t>(slots, kStepUploadBatch)));
+  setIso(std::isnan(options.iso) ? 0.5f * (source.valueMin() + source.valueMax()) : options.iso);
 }
 
 Raycaster::~Raycaster() = default;
@@ -104,11 +114,9 @@ void Raycaster::setIso(float iso) {
   options_.iso = iso;
   ++settings_;
   std::vector<glm::ivec3> needed;
-  for (auto it = store_.bounds().cbeginValueOn(); it; ++it) {
-    const openvdb::Vec2f range = *it;
-    if (options_.skipEmpty && !(range[0] <= iso && iso <= range[1])) continue;
-    needed.push_back(toGlm(it.getCoord()));
-  }
+  source_.forEachVaryingBrick([&](const glm::ivec3& brick, float lo, float hi) {
+    if (!options_.skipEmpty || (lo <= iso && iso <= hi)) needed.push_back(brick);
+  });
   residency_->setNeeded(needed);
   uploadPageTable();
 }
@@ -205,7 +213,7 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
 
   const GLuint p = program_.id();
   const Uniforms& u = uniforms_;
-  const glm::dmat4 indexFromWorld = glm::inverse(store_.worldFromIndex());
+  const glm::dmat4 indexFromWorld = glm::inverse(source_.worldFromIndex());
   const glm::mat4 indexFromWorldF(indexFromWorld);
   const glm::mat3 normalFromIndex = glm::transpose(glm::mat3(indexFromWorldF));
   const glm::vec3 l = options_.lightInCamera;

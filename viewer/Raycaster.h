@@ -1,5 +1,6 @@
-// The brick-paged FCC isosurface raycaster (shaders/raycast.comp) and its streaming: bricks the rays
-// request are decoded through the host cache on the loader thread (viewer/BrickLoader.h), uploaded
+// The brick-paged isosurface raycaster (shaders/raycast.comp) over any lattice's brick source
+// (viewer/BrickSource.h: an FCC .vdb, or a Cartesian grid rendered as it is with a CC reconstruction),
+// and its streaming: bricks the rays request are decoded on the loader thread (viewer/BrickLoader.h), uploaded
 // into pool slots (least recently used ones are evicted), and the frame continues where each ray
 // stopped. A frame completes in as many passes as the pool size requires, so the image does not
 // depend on the cache budgets. Two ways to drive it: render() completes a frame before it returns
@@ -19,12 +20,12 @@
 
 #include "BrickLoader.h"
 #include "BrickPool.h"
+#include "BrickSource.h"
 #include "Camera.h"
 #include "GlProgram.h"
 #include "GpuTimer.h"
 #include "PixelRect.h"
 #include "Residency.h"
-#include "io/BrickCache.h"
 #include "io/BrickStore.h"
 
 namespace fcc::render {
@@ -53,8 +54,9 @@ struct RenderOptions {
 // embedding is 10-15% faster than the four-channel packing, but a brick costs twice the GPU bytes,
 // and when the data outgrows the pool that halves what stays resident (10x slower while
 // streaming). So: texture-scalar when every brick whose bounds vary fits the budget, else
-// texture-vec4 (3D textures measured 2-3% ahead of SSBOs in long runs).
-BrickLayout chooseBrickLayout(const io::BrickStore& store, std::size_t gpuCacheBytes);
+// texture-vec4 (3D textures measured 2-3% ahead of SSBOs in long runs). A source of site blocks
+// (SlotBlock::Sites) has one channel: texture-scalar.
+BrickLayout chooseBrickLayout(const BrickSource& source, std::size_t gpuCacheBytes);
 
 // The output of a frame, row 0 at the top.
 struct FrameImages {
@@ -84,6 +86,9 @@ struct StepStats {
 
 class Raycaster {
  public:
+  // `source` outlives the raycaster.
+  Raycaster(const BrickSource& source, const RenderOptions& options);
+  // An FCC .vdb through a host cache of options.hostCacheBytes (an FccBrickSource of its own).
   Raycaster(const io::BrickStore& store, const RenderOptions& options);
   ~Raycaster();
 
@@ -122,7 +127,8 @@ class Raycaster {
   static constexpr std::size_t kPassResultsHeaderBytes = 5 * sizeof(uint32_t);
 
   uint32_t slotCount() const { return residency_->slotCount(); }
-  const io::BrickCache& hostCache() const { return *hostCache_; }
+  HostCacheUse hostCacheUse() const { return source_.hostCacheUse(); }
+  const BrickSource& source() const { return source_; }
   uint32_t residentCount() const { return residency_->residentCount(); }
   std::size_t neededCount() const { return residency_->neededCount(); }
   std::size_t missingCount() const { return residency_->missingCount(); }
@@ -140,6 +146,7 @@ class Raycaster {
   void setLightInCamera(const glm::vec3& direction);
 
  private:
+  Raycaster(std::unique_ptr<BrickSource> owned, const RenderOptions& options);  // keeps `owned`
   void restartRays(int width, int height);
   struct PassResult {
     uint32_t requested = 0;  // bricks the pass's rays asked for
@@ -156,7 +163,8 @@ class Raycaster {
   void updatePageTable();  // the page entries changed since (uploads), scattered on the GPU
   void computeSlotBounds(const std::vector<uint32_t>& slots);
 
-  const io::BrickStore& store_;
+  std::unique_ptr<BrickSource> ownSource_;  // the BrickStore constructor's
+  const BrickSource& source_;
   RenderOptions options_;
   uint32_t pass_ = 0;
   bool firstPass_ = true;          // the next pass starts every ray at the eye (no resume image read)
@@ -165,7 +173,6 @@ class Raycaster {
   uint32_t requestCapacity_ = 0;
   uint64_t bricksUploaded_ = 0;
   std::unique_ptr<Residency> residency_;
-  std::unique_ptr<io::BrickCache> hostCache_;
   std::unique_ptr<BrickLoader> loader_;
   // What the progressive frame was started for; a difference restarts it.
   struct StepKey {

@@ -153,7 +153,8 @@ void ViewerSession::drawPanel(int windowHeight) {
     row("requested", count(stats_.requested) + " (last pass)");
     row("streaming", count(stats_.streaming) + " bricks");
     usageBar("GPU cache", double(stats_.resident) * double(raycaster_.slotBytes()), double(raycaster_.poolBytes()));
-    usageBar("host cache", double(raycaster_.hostCache().bytesUsed()), double(raycaster_.hostCache().budgetBytes()));
+    const HostCacheUse hostCache = raycaster_.hostCacheUse();
+    if (hostCache.budgetBytes > 0) usageBar("host cache", double(hostCache.bytesUsed), double(hostCache.budgetBytes));
     char rate[32];
     std::snprintf(rate, sizeof rate, "%.1f MiB/s", stats_.uploadMiBPerSecond);
     row("uploads", rate);

@@ -16,6 +16,7 @@
 #include "sparse/SynthFields.h"
 #include "tests/tools/RunCommand.h"
 #include "viewer/Camera.h"
+#include "viewer/FccBrickSource.h"
 
 namespace fcc {
 namespace {
@@ -417,10 +418,11 @@ TEST_F(Render, EveryBrickLayoutGivesTheSameImage) {
 
   // Without a layout asked for: one channel while every varying brick fits the budget, else four.
   const io::BrickStore store(blobs);
+  const render::FccBrickSource source(store, std::size_t(1) << 20);
   const std::size_t varying = std::size_t(store.bounds().activeVoxelCount());
   const std::size_t scalarSlot = render::BrickPool::slotBytes(render::BrickLayout::TextureScalar) + 4096;
-  EXPECT_EQ(render::chooseBrickLayout(store, varying * scalarSlot), render::BrickLayout::TextureScalar);
-  EXPECT_EQ(render::chooseBrickLayout(store, varying * scalarSlot - 1), render::BrickLayout::TextureVec4);
+  EXPECT_EQ(render::chooseBrickLayout(source, varying * scalarSlot), render::BrickLayout::TextureScalar);
+  EXPECT_EQ(render::chooseBrickLayout(source, varying * scalarSlot - 1), render::BrickLayout::TextureVec4);
 }
 
 }  // namespace

@@ -1,0 +1,249 @@
+// The brick-paged raycaster on Cartesian grids rendered as they are (viewer/CartesianBrickSource.h):
+// every CC reconstruction against the exact CPU reference raycaster (sparse/ReferenceRaycast.h) pixel
+// by pixel, the exact sphere of a quadratic field from the interpolating tricubic (it reproduces
+// cubics), and the image independent of the cache budgets.
+#include <gtest/gtest.h>
+
+#include <openvdb/openvdb.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "RenderTestSupport.h"
+#include "io/CartesianBrickStore.h"
+#include "io/VdbFile.h"
+#include "sparse/CubicBSpline.h"
+#include "sparse/LatticeSamples.h"
+#include "sparse/ReferenceRaycast.h"
+#include "viewer/CartesianBrickSource.h"
+
+namespace fcc {
+namespace {
+
+using test::GlSuite;
+using test::TempDir;
+
+// Depth (voxels) and normal (degrees) agreement of the device and the CPU raycaster: both find the
+// roots of the same polynomials in float; they differ by rounding only.
+constexpr double kDepthTolVoxels = 2e-3;
+constexpr double kNormalTolDegrees = 0.1;
+// Pixels where one of them hits and the other misses, or they find different roots: only rays that
+// graze the surface (a matter of the last float bits), at most this fraction of the image.
+constexpr double kMaxDisagreeingFraction = 0.005;
+
+constexpr int kDim = 48;  // grid points per axis, [0, 48)^3
+constexpr float kBackground = 2.0f;
+
+// A smooth field with detail at several scales and orientations (values about -1 .. 1).
+float wavy(const glm::ivec3& ijk) {
+  const glm::dvec3 p = glm::dvec3(ijk) / double(kDim);
+  return float(std::sin(7.0 * p.x + 1.0) * std::cos(5.0 * p.y - 0.5) + 0.6 * std::sin(9.0 * p.z + 4.0 * p.x) +
+               0.3 * std::cos(13.0 * p.y + 11.0 * p.z));
+}
+
+// Writes the grid values(ijk) on [0, kDim)^3 with worldFromIndex = translate(origin) * scale(scale).
+void writeCartesianFile(const std::string& path, const std::function<float(const glm::ivec3&)>& values, double scale,
+                        const openvdb::Vec3d& origin, float background = kBackground) {
+  initializeVdb();
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(background);
+  auto accessor = grid->getAccessor();
+  for (int z = 0; z < kDim; ++z)
+    for (int y = 0; y < kDim; ++y)
+      for (int x = 0; x < kDim; ++x) accessor.setValue(openvdb::Coord(x, y, z), values(glm::ivec3(x, y, z)));
+  auto xform = openvdb::math::Transform::createLinearTransform(scale);
+  xform->postTranslate(origin);
+  grid->setTransform(xform);
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  grid->setName("density");
+  io::writeVdbAtomically(path, openvdb::GridCPtrVec{grid}, /*overwrite=*/true);
+}
+
+render::FrameImages renderCartesian(const std::string& path, const std::string& reconstruction, const render::Camera& camera,
+                                    int width, int height, float iso, render::RenderOptions options = {},
+                                    render::FrameStats* stats = nullptr) {
+  const io::CartesianBrickStore store(path);
+  const render::CartesianBrickSource source(store, findReconstruction(reconstruction));
+  options.iso = iso;
+  render::Raycaster raycaster(source, options);
+  const render::FrameStats s = raycaster.render(camera, width, height);
+  if (stats) *stats = s;
+  return raycaster.readImages();
+}
+
+class RenderCartesian : public GlSuite {};
+
+TEST_F(RenderCartesian, EveryReconstructionMatchesTheCpuReference) {
+  TempDir dir;
+  const std::string path = dir / "wavy.vdb";
+  const double scale = 0.5;
+  const openvdb::Vec3d origin(-3.0, 1.0, 2.0);
+  writeCartesianFile(path, wavy, scale, origin);
+  // The renderer's map (the sphere test below checks it against world space).
+  const glm::dmat4 worldFromIndex = io::CartesianBrickStore(path).worldFromIndex();
+  const glm::dmat4 indexFromWorld = glm::inverse(worldFromIndex);
+
+  render::Camera camera;
+  camera.lookat = glm::dvec3(worldFromIndex * glm::dvec4(24.0, 24.0, 24.0, 1.0));
+  camera.eye = camera.lookat + glm::dvec3(30.0, 22.0, 36.0);
+  camera.fovYDegrees = 35.0;
+  const int w = 64, h = 56;
+  const float iso = 0.35f;
+  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+
+  for (const char* name : {"trilinear", "tricubic-bspline", "tricubic"}) {
+    SCOPED_TRACE(name);
+    const ReconstructionInfo& info = findReconstruction(name);
+    const render::FrameImages gpu = renderCartesian(path, name, camera, w, h, iso);
+    // The CPU's coefficients: the grid in a box padded with the background by more than the
+    // prefilter's reach, as the bricks see it, prefiltered where the reconstruction asks for it.
+    const int pad = kBSplinePrefilterReach + 4;
+    LatticeSamples samples(Lattice::Cc, glm::ivec3(-pad), glm::ivec3(kDim + 2 * pad), kBackground);
+    samples.fill([](const glm::ivec3& ijk) {
+      return glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) && glm::all(glm::lessThan(ijk, glm::ivec3(kDim))) ? wavy(ijk)
+                                                                                                               : kBackground;
+    });
+    samples.prefilter(info.prefilter);
+    const CellBounds bounds(samples);
+    const std::unique_ptr<Reconstruction> recon = makeReconstruction(name);
+    const glm::vec3 o(indexFromWorld * glm::dvec4(camera.eye, 1.0));
+
+    int hits = 0, disagree = 0;
+    double worstDepth = 0.0, worstAngle = 0.0;
+    for (int py = 0; py < h; ++py)
+      for (int px = 0; px < w; ++px) {
+        const glm::dvec3 dWorld = render::pixelRay(frame, px, py, w, h);
+        const glm::vec3 d(glm::dmat3(indexFromWorld) * dWorld);
+        const RayHit ref = firstHit(*recon, samples.accessor(), bounds, o, d, 0.0f, 400.0f, iso);
+        const std::size_t i = std::size_t(py) * w + px;
+        const bool hit = gpu.rgba[4 * i + 3] > 0.5f;
+        const double depthVoxels = ref.hit && hit ? std::abs(double(gpu.normalDepth[4 * i + 3]) - ref.t) / scale : 0.0;
+        if (hit != ref.hit || depthVoxels > kDepthTolVoxels) {
+          ++disagree;
+          std::printf("%s: pixel (%d, %d) device %s t %.6g, reference %s t %.6g\n", name, px, py, hit ? "hit" : "miss",
+                      double(gpu.normalDepth[4 * i + 3]), ref.hit ? "hit" : "miss", double(ref.t));
+          continue;
+        }
+        if (!hit) continue;
+        ++hits;
+        const glm::dvec3 nRef = glm::normalize(glm::transpose(glm::dmat3(indexFromWorld)) * glm::dvec3(ref.gradient));
+        const glm::dvec3 n(gpu.normalDepth[4 * i], gpu.normalDepth[4 * i + 1], gpu.normalDepth[4 * i + 2]);
+        const double angle = glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(n), nRef), -1.0, 1.0)));
+        worstDepth = std::max(worstDepth, depthVoxels);
+        worstAngle = std::max(worstAngle, angle);
+        EXPECT_LT(angle, kNormalTolDegrees) << "pixel (" << px << ", " << py << ")";
+      }
+    std::printf("%s: %d hits agree (worst depth %.3g voxels, normal %.3g degrees), %d pixels disagree\n", name, hits,
+                worstDepth, worstAngle, disagree);
+    EXPECT_GT(hits, w * h / 4) << "the surface should cover a good part of the image";
+    EXPECT_LE(disagree, int(kMaxDisagreeingFraction * w * h));
+  }
+}
+
+// f = |x - c|^2 is quadratic, so the interpolating tricubic B-spline reproduces it and the isosurface
+// f = r^2 is the sphere of radius r about c: coverage, depth and normals against the analytic sphere.
+// The background (beyond the grid) is near the values at its faces (576 .. 1700), so the prefilter's
+// ringing at the jump stays far above the isovalue and dies out (0.27 per voxel) before the sphere.
+TEST_F(RenderCartesian, TricubicGivesTheExactSphereOfAQuadraticField) {
+  TempDir dir;
+  const std::string path = dir / "quadratic.vdb";
+  const glm::dvec3 centerIndex(23.3, 24.1, 24.6);
+  const double scale = 0.25, radiusIndex = 9.5;
+  const openvdb::Vec3d origin(1.0, -2.0, 0.5);
+  writeCartesianFile(path, [&](const glm::ivec3& ijk) {
+    const glm::dvec3 r = glm::dvec3(ijk) - centerIndex;
+    return float(glm::dot(r, r));
+  }, scale, origin, /*background=*/800.0f);
+  const glm::dvec3 center = glm::dvec3(origin.x(), origin.y(), origin.z()) + scale * centerIndex;
+  const double radius = scale * radiusIndex;
+
+  render::Camera camera;
+  camera.lookat = center + glm::dvec3(0.3, -0.2, 0.1);
+  camera.eye = center + glm::dvec3(9.0, 5.0, 7.0);
+  camera.fovYDegrees = 30.0;
+  const int w = 64, h = 56;
+  const render::FrameImages img =
+      renderCartesian(path, "tricubic", camera, w, h, float(radiusIndex * radiusIndex));
+  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+  int hits = 0;
+  double worstDepth = 0.0, worstAngle = 0.0;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const glm::dvec3 d = render::pixelRay(frame, px, py, w, h);
+      const glm::dvec3 oc = camera.eye - center;
+      const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - radius * radius;
+      const double closest = std::sqrt(std::max(glm::dot(oc, oc) - b * b, 0.0));
+      if (std::abs(closest - radius) < 0.01 * radius) continue;  // grazing rays
+      const std::size_t i = std::size_t(py) * w + px;
+      const bool hit = img.rgba[4 * i + 3] > 0.5f;
+      ASSERT_EQ(hit, b * b - c >= 0.0) << "pixel (" << px << ", " << py << ")";
+      if (!hit) continue;
+      ++hits;
+      const double t = -b - std::sqrt(b * b - c);
+      const double depthVoxels = std::abs(img.normalDepth[4 * i + 3] - t) / scale;
+      const glm::dvec3 nExpected = glm::normalize(camera.eye + t * d - center);
+      const glm::dvec3 n(img.normalDepth[4 * i], img.normalDepth[4 * i + 1], img.normalDepth[4 * i + 2]);
+      const double angle = glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(n), nExpected), -1.0, 1.0)));
+      worstDepth = std::max(worstDepth, depthVoxels);
+      worstAngle = std::max(worstAngle, angle);
+      EXPECT_LT(depthVoxels, 1e-3) << "pixel (" << px << ", " << py << ") t " << t;
+      EXPECT_LT(angle, 0.05) << "pixel (" << px << ", " << py << ")";
+    }
+  EXPECT_GT(hits, w * h / 10);
+  std::printf("tricubic sphere: %d hits, worst depth error %.3g voxels, worst normal %.3g degrees\n", hits, worstDepth,
+              worstAngle);
+}
+
+// Out of core: a pool of a few slots gives the image of an unbounded one, bit for bit.
+TEST_F(RenderCartesian, SmallPoolGivesTheSameImage) {
+  TempDir dir;
+  const std::string path = dir / "wavy.vdb";
+  writeCartesianFile(path, wavy, 1.0, openvdb::Vec3d(0.0));
+  render::Camera camera;
+  camera.lookat = glm::dvec3(24.0);
+  camera.eye = glm::dvec3(90.0, 70.0, 80.0);
+  const int w = 48, h = 48;
+  render::RenderOptions small;
+  small.gpuCacheBytes = 6 * (8000 * 4 + 4096);  // six slots of 20^3 floats and their cell bounds
+  for (const char* name : {"trilinear", "tricubic"}) {
+    SCOPED_TRACE(name);
+    render::FrameStats bigStats, smallStats;
+    const render::FrameImages reference = renderCartesian(path, name, camera, w, h, 0.35f, {}, &bigStats);
+    const render::FrameImages limited = renderCartesian(path, name, camera, w, h, 0.35f, small, &smallStats);
+    std::printf("%s: unbounded %d passes, %llu uploads; six slots %d passes, %llu uploads\n", name, bigStats.passes,
+                (unsigned long long)bigStats.bricksUploaded, smallStats.passes, (unsigned long long)smallStats.bricksUploaded);
+    EXPECT_GT(smallStats.bricksUploaded, bigStats.bricksUploaded) << "the small pool must have evicted bricks";
+    ASSERT_EQ(reference.rgba.size(), limited.rgba.size());
+    int hits = 0;
+    for (std::size_t i = 0; i < reference.rgba.size(); ++i) {
+      ASSERT_EQ(reference.rgba[i], limited.rgba[i]) << "component " << i;
+      ASSERT_EQ(reference.normalDepth[i], limited.normalDepth[i]) << "component " << i;
+      hits += i % 4 == 3 && reference.rgba[i] > 0.5f;
+    }
+    EXPECT_GT(hits, w * h / 10);
+  }
+}
+
+// A vec4 layout packs FCC's channels: a Cartesian grid asks for a one-channel layout, in one line.
+TEST_F(RenderCartesian, FourChannelLayoutIsRefusedByName) {
+  TempDir dir;
+  const std::string path = dir / "wavy.vdb";
+  writeCartesianFile(path, wavy, 1.0, openvdb::Vec3d(0.0));
+  const io::CartesianBrickStore store(path);
+  const render::CartesianBrickSource source(store, findReconstruction("trilinear"));
+  render::RenderOptions options;
+  options.layout = render::BrickLayout::TextureVec4;
+  try {
+    render::Raycaster raycaster(source, options);
+    FAIL() << "texture-vec4 accepted for a Cartesian grid";
+  } catch (const ValueError& e) {
+    EXPECT_NE(std::string(e.what()).find("texture-scalar"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(render::CartesianBrickSource(store, findReconstruction("boxspline")), ValueError);
+}
+
+}  // namespace
+}  // namespace fcc

@@ -1,0 +1,48 @@
+#include "RenderData.h"
+
+#include "sparse/Error.h"
+#include "viewer/CartesianBrickSource.h"
+#include "viewer/FccBrickSource.h"
+
+namespace fcc::cli {
+
+RenderData::RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, bool quiet) {
+  const ReconstructionInfo& info = findReconstruction(flags.reconstruction.empty() ? "boxspline" : flags.reconstruction);
+  if (info.lattice == Lattice::Fcc) {
+    input_ = openFccInput(flags, quiet);
+    fccStore_ = std::make_unique<io::BrickStore>(input_->path(), flags.grid);
+    source_ = std::make_unique<render::FccBrickSource>(*fccStore_, hostCacheBytes);
+    return;
+  }
+  if (info.lattice != Lattice::Cc) {
+    const Lattice cc = Lattice::Cc;
+    throw ValueError("--reconstruction " + std::string(info.name) + ": the renderer stores FCC and Cartesian grids only so far (valid: boxspline, " +
+                     reconstructionNames(&cc) + "; `fccvdb compare` evaluates the BCC ones)");
+  }
+  ccStore_ = std::make_unique<io::CartesianBrickStore>(flags.file, flags.grid);
+  source_ = std::make_unique<render::CartesianBrickSource>(*ccStore_, info);
+}
+
+RenderData::~RenderData() = default;
+
+io::IsoChoice RenderData::iso(const RenderFlags& flags) const {
+  if (fccStore_) return isoFromFlags(flags, *fccStore_);
+  if (ccStore_->levelSet()) return isoFromFlags(flags, io::IsoChoice{0.0f, "a level set's zero crossing"});
+  return isoFromFlags(flags, io::IsoChoice{0.5f * (source_->valueMin() + source_->valueMax()),
+                                           "the middle of the range the surface can take"});
+}
+
+void RenderData::warnIfIsoOutside(float iso) const {
+  cli::warnIfIsoOutside(iso, source_->path(), source_->valueMin(), source_->valueMax());
+}
+
+render::Camera RenderData::camera(const RenderFlags& flags, double aspect) const {
+  if (fccStore_) return cameraFromFlags(flags, *fccStore_, aspect);
+  glm::dvec3 lo, hi;
+  source_->worldBounds(lo, hi);
+  return cameraFromFlags(flags, lo, hi, aspect);
+}
+
+io::BrickStore::Damage RenderData::damage() const { return fccStore_ ? fccStore_->damage() : io::BrickStore::Damage{}; }
+
+}  // namespace fcc::cli

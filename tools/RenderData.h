@@ -1,0 +1,40 @@
+// The data `render` and `bench render` draw, opened by the flags: an FCC .vdb (a Cartesian input is
+// converted first, io/ConversionCache.h), or with --reconstruction naming a Cartesian reconstruction, a
+// Cartesian .vdb float grid as it is (io/CartesianBrickStore.h). Either way one render::BrickSource for
+// the raycaster, the default isovalue and the file's damage report.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "RenderFlags.h"
+#include "io/CartesianBrickStore.h"
+#include "viewer/BrickSource.h"
+
+namespace fcc::cli {
+
+class RenderData {
+ public:
+  // ValueError for an unknown --reconstruction (naming the valid ones) or one whose lattice the
+  // renderer cannot store yet; InputError (one line) for a file that does not open.
+  RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, bool quiet);
+  ~RenderData();
+
+  const render::BrickSource& source() const { return *source_; }
+  const io::BrickStore* fccStore() const { return fccStore_.get(); }  // null for a Cartesian grid
+  // --iso, or the default: the FCC rules of io/DefaultIsovalue.h; for a Cartesian grid 0 for a level
+  // set, else the middle of the range the reconstruction takes.
+  io::IsoChoice iso(const RenderFlags& flags) const;
+  void warnIfIsoOutside(float iso) const;
+  render::Camera camera(const RenderFlags& flags, double aspect) const;
+  // Damaged bricks met so far (FCC files: rendered as holes; a damaged Cartesian leaf fails the frame).
+  io::BrickStore::Damage damage() const;
+
+ private:
+  std::unique_ptr<io::FccInput> input_;
+  std::unique_ptr<io::BrickStore> fccStore_;
+  std::unique_ptr<io::CartesianBrickStore> ccStore_;
+  std::unique_ptr<render::BrickSource> source_;
+};
+
+}  // namespace fcc::cli

@@ -1,0 +1,65 @@
+// What the brick-paged raycaster renders, whatever the lattice: the reconstruction layer's storage
+// side (docs/RECONSTRUCTION.md). Every lattice is cut into bricks of 16^3 index units, so the page
+// table, residency, requests and node skipping are the same for all; a source says which bricks may
+// vary and over which values, fills a pool slot's block for a brick, and names the reconstruction the
+// shader evaluates (FCC_RECON_* of sparse/ReconDispatch.h). Two sources exist: an FCC .vdb through the
+// host cache (FccBrickSource.h) and a Cartesian float grid read directly (CartesianBrickSource.h).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sparse/Reconstruction.h"
+
+namespace fcc::render {
+
+// What one pool slot is filled from (viewer/BrickPool.h spreads or copies it into the slot's layout).
+enum class SlotBlock {
+  FccPacked,  // io::kHaloBlockVoxels packed FCC voxels [8b - 1, 8b + 9)^3, four floats each, x fastest
+  Sites,      // the 20^3 lattice points [16b - 2, 16b + 18)^3, one float each, x fastest (scalar layouts only)
+};
+inline std::size_t slotBlockFloats(SlotBlock block) {
+  return block == SlotBlock::FccPacked ? std::size_t(10 * 10 * 10 * 4) : std::size_t(20 * 20 * 20);
+}
+
+struct LoadedBrick {
+  glm::ivec3 brick;
+  std::vector<float> halo;  // slotBlockFloats(source.slotBlock()) floats: one pool slot
+};
+
+// Memory a source keeps decoded on the host (the viewer's panel shows it).
+struct HostCacheUse {
+  std::size_t bytesUsed = 0, budgetBytes = 0;
+};
+
+class BrickSource {
+ public:
+  virtual ~BrickSource() = default;
+
+  virtual const std::string& path() const = 0;
+  virtual const ReconstructionInfo& reconstruction() const = 0;
+  virtual SlotBlock slotBlock() const = 0;
+  // worldFromIndex of the lattice's index space (an affine map), column-vector convention.
+  virtual const glm::dmat4& worldFromIndex() const = 0;
+  // The bricks that may vary, as an inclusive box of brick coordinates (lo > hi: none).
+  virtual void brickBox(glm::ivec3& lo, glm::ivec3& hi) const = 0;
+  // World-space bounding box of the data (for framing a camera).
+  virtual void worldBounds(glm::dvec3& lo, glm::dvec3& hi) const = 0;
+  // The range the reconstruction can take (the hull of the bricks' ranges).
+  virtual float valueMin() const = 0;
+  virtual float valueMax() const = 0;
+  // Each brick whose reconstruction may vary, with a conservative range of its values on the brick's
+  // cells; bricks not visited hold one value and are skipped by rays.
+  virtual void forEachVaryingBrick(const std::function<void(const glm::ivec3&, float lo, float hi)>& visit) const = 0;
+  virtual std::size_t varyingBrickCount() const = 0;
+  // Fills each brick's block (LoadedBrick::halo, resized here). The bricks of one call are mostly
+  // neighbours. Called on several loader threads at once. A failure throws (io::InputError: one line).
+  virtual void decode(std::vector<LoadedBrick>& chunk) const = 0;
+  virtual HostCacheUse hostCacheUse() const { return {}; }
+};
+
+}  // namespace fcc::render
