@@ -51,7 +51,10 @@ struct Accumulator {
   DvrPixel pixel;
   double transmittance = 1.0;
 
-  bool done() const { return 1.0 - transmittance >= options.terminationOpacity; }
+  // Nothing further can show once the transmittance is 0; otherwise the termination opacity (>= 1: never).
+  bool done() const {
+    return transmittance <= 0.0 || (options.terminationOpacity < 1.0 && 1.0 - transmittance >= options.terminationOpacity);
+  }
 
   void add(const glm::dvec4& e, double t, double h) {
     const double sigma = e.a;

@@ -54,7 +54,8 @@ DvrRay dvrRayFromWorld(const glm::dmat4& indexFromWorld, const glm::dvec3& oWorl
 
 struct DvrOptions {
   double step = 1e-3;                 // world units: the longest sub-step
-  double terminationOpacity = 0.995;  // stop once the accumulated opacity reaches it (>= 1: never)
+  double terminationOpacity = 0.995;  // stop once the accumulated opacity reaches it (>= 1: only when the
+                                      // transmittance is exactly 0)
 };
 
 struct DvrPixel {

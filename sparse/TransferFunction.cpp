@@ -254,7 +254,7 @@ glm::vec4 TransferTable::lookup(double v) const {
   const double p = position(v);
   const int i = std::min(int(std::floor(p)), size() - 2);
   const float u = float(p - double(i));
-  return glm::mix(entries_[size_t(i)], entries_[size_t(i) + 1], u);
+  return entries_[size_t(i)] * (1.0f - u) + entries_[size_t(i) + 1] * u;
 }
 
 void TransferTable::entriesOn(double lo, double hi, int& first, int& last) const {
