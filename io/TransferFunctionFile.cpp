@@ -200,6 +200,13 @@ TransferFunction parseTransferFunctionText(const std::string& text, const std::s
       fail(path, "line " + std::to_string(lineNumber) + ": expected five finite numbers 'value r g b alpha', found '" + shown + "'",
            kTextValid);
     }
+    const std::string at = "line " + std::to_string(lineNumber) + ": ";
+    if (!colors.empty() && v[0] < colors.back().x)
+      fail(path, at + "value " + number(v[0]) + " is below the previous point's " + number(colors.back().x) +
+                     " (values must not decrease)", kTextValid);
+    for (int k = 1; k <= 4; ++k)
+      if (v[k] < 0.0 || v[k] > 1.0)
+        fail(path, at + (k < 4 ? "colour component " : "opacity ") + number(v[k]) + " is outside [0, 1]", kTextValid);
     colors.push_back({v[0], glm::dvec3(v[1], v[2], v[3])});
     opacities.push_back({v[0], v[4]});
   }
