@@ -55,6 +55,8 @@ class RangeQueries {
   // Over the indices [first, last] (clamped to the array; empty when last < first: 0).
   double maxOn(int first, int last) const;
   int nonZeroOn(int first, int last) const;
+  // prefix[i] = the count of non-zero values among [0, i), size() + 1 of them.
+  const std::vector<int>& nonZeroPrefix() const { return nonZeroPrefix_; }
 
  private:
   std::vector<double> values_;
@@ -145,6 +147,9 @@ class TransferTable {
   bool zeroOn(double lo, double hi) const;
   // The largest extinction of a lookup in [lo, hi] (an upper bound: the largest entry involved), O(1).
   double maxExtinctionOn(double lo, double hi) const;
+  // For a shader that answers zeroOn itself: size() + 1 counts, prefix[i] = non-zero entries among
+  // [0, i); entries [first, last] are all zero iff prefix[last + 1] == prefix[first].
+  const std::vector<int>& nonZeroPrefix() const { return extinctionQueries_.nonZeroPrefix(); }
 
  private:
   double position(double v) const;  // in entries, clamped to [0, size - 1]

@@ -265,6 +265,8 @@ TEST(TransferTable, RangeQueriesAgreeWithBruteForceOverLookups) {
       double entries = 0.0;
       for (int i = first; i <= last; ++i) entries = std::max(entries, double(table.entries()[size_t(i)].a));
       ASSERT_EQ(table.maxExtinctionOn(lo, hi), entries);
+      const std::vector<int>& prefix = table.nonZeroPrefix();
+      ASSERT_EQ(prefix[size_t(last) + 1] == prefix[size_t(first)], table.zeroOn(lo, hi));
       ASSERT_GE(table.maxExtinctionOn(lo, hi), brute * (1.0 - 1e-6));  // float interpolation rounds
       (brute == 0.0 ? zeros : nonZeros)++;
     }
