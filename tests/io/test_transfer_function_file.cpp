@@ -1,0 +1,185 @@
+// Transfer functions from files (io/TransferFunctionFile.h): ParaView's colour-map JSON (written here
+// in its exported shape) and the plain text format load; every bad file is one InputError line naming
+// the file, what is wrong and what is valid; `--tf SPEC` resolves presets before files.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "io/TransferFunctionFile.h"
+#include "sparse/Error.h"
+#include "tests/tools/RunCommand.h"
+
+namespace fcc {
+namespace {
+
+using test::TempDir;
+
+std::string write(const TempDir& dir, const std::string& name, const std::string& text) {
+  const std::string path = dir / name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+// As ParaView's "Export" writes a colour map (a list, one object per map, keys it has besides ours).
+const char* const kParaView = R"([
+  {
+    "ColorSpace" : "Diverging",
+    "Creator" : "Test",
+    "Name" : "Two Tone",
+    "NanColor" : [ 1, 1, 0 ],
+    "Points" : [ -1.0, 0.0, 0.5, 0.0, 0.5, 0.25, 0.5, 0.0, 2.0, 0.75, 0.5, 0.0 ],
+    "RGBPoints" : [ -1.0, 0.0, 0.0, 1.0, 0.5, 1.0, 1.0, 1.0, 2.0, 1.0, 0.0, 0.0 ]
+  },
+  {
+    "ColorSpace" : "RGB",
+    "Name" : "No Opacity",
+    "RGBPoints" : [ 10, 0, 0, 0, 20, 1, 1, 1 ]
+  }
+])";
+
+TEST(TransferFunctionFile, ParaViewJsonLoadsTheFirstMapOrTheNamedOne) {
+  TempDir dir;
+  const std::string path = write(dir, "maps.json", kParaView);
+  const TransferFunction first = io::readTransferFunctionFile(path);
+  EXPECT_EQ(first.name(), "Two Tone");
+  EXPECT_FALSE(first.normalized());  // data values as written
+  ASSERT_EQ(first.colors().size(), 3u);
+  ASSERT_EQ(first.opacities().size(), 3u);
+  EXPECT_EQ(first.color(-1.0), glm::dvec3(0.0, 0.0, 1.0));
+  EXPECT_EQ(first.color(2.0), glm::dvec3(1.0, 0.0, 0.0));
+  EXPECT_NEAR(first.color(1.25).g, 0.5, 1e-12);  // interpolated in RGB
+  EXPECT_DOUBLE_EQ(first.opacity(0.5), 0.25);
+  EXPECT_DOUBLE_EQ(first.opacity(1.25), 0.5);
+  EXPECT_EQ(first.domainMin(), -1.0);
+  EXPECT_EQ(first.domainMax(), 2.0);
+
+  // By name; without "Points", ParaView's default opacity: a ramp 0 to 1 over the colours' range.
+  const TransferFunction second = io::readTransferFunctionFile(path, "No Opacity");
+  EXPECT_EQ(second.name(), "No Opacity");
+  EXPECT_DOUBLE_EQ(second.opacity(10.0), 0.0);
+  EXPECT_DOUBLE_EQ(second.opacity(15.0), 0.5);
+  EXPECT_DOUBLE_EQ(second.opacity(20.0), 1.0);
+  try {
+    io::readTransferFunctionFile(path, "Jet");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'Jet'"), std::string::npos) << what;
+    EXPECT_NE(what.find("'Two Tone', 'No Opacity'"), std::string::npos) << what;
+  }
+  // One map alone (an object, not a list) is taken too.
+  const TransferFunction alone =
+      io::readTransferFunctionFile(write(dir, "one.JSON", R"({"Name": "x", "RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1]})"));
+  EXPECT_EQ(alone.name(), "x");
+}
+
+// Each bad file: an InputError of one line that names the file, says what is wrong (`expected`) and
+// what is valid.
+void expectBadFile(const std::string& path, const std::string& expected) {
+  try {
+    io::readTransferFunctionFile(path);
+    FAIL() << path << ": no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    std::printf("[   INFO   ] %s\n", what.c_str());
+    EXPECT_EQ(what.rfind("transfer function file " + path + ": ", 0), 0u) << what;
+    EXPECT_NE(what.find(expected), std::string::npos) << "expected '" << expected << "' in: " << what;
+    EXPECT_NE(what.find("valid:"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+TEST(TransferFunctionFile, BadJsonFilesAreOneClearLine) {
+  TempDir dir;
+  const auto map = [](const std::string& body) { return "[{\"Name\": \"m\", " + body + "}]"; };
+  expectBadFile(write(dir, "empty.json", ""), "is empty");
+  expectBadFile(write(dir, "blank.json", "  \n\t\n"), "is empty");
+  expectBadFile(write(dir, "text.json", "value r g b alpha\n"), "not JSON");
+  expectBadFile(write(dir, "cut.json", "[{\"Name\": \"m\", \"RGBPoints\": [0, 0, 0"), "not JSON");
+  expectBadFile(write(dir, "list.json", "[]"), "no colour map");
+  expectBadFile(write(dir, "number.json", "42"), "not a list of colour maps");
+  expectBadFile(write(dir, "entry.json", "[3]"), "entry 1 is not an object");
+  expectBadFile(write(dir, "nopoints.json", map("\"ColorSpace\": \"RGB\"")), "has no \"RGBPoints\"");
+  expectBadFile(write(dir, "odd.json", map("\"RGBPoints\": [0, 0, 0, 0, 1, 1, 1]")),
+                "holds 7 numbers, not a positive multiple of 4");
+  expectBadFile(write(dir, "oddopacity.json", map("\"RGBPoints\": [0, 0, 0, 0], \"Points\": [0, 1, 0.5]")),
+                "\"Points\" holds 3 numbers");
+  expectBadFile(write(dir, "order.json", map("\"RGBPoints\": [0, 0, 0, 0, 2, 1, 1, 1, 1, 0, 0, 0]")), "sorted by value");
+  expectBadFile(write(dir, "orderopacity.json", map("\"RGBPoints\": [0, 0, 0, 0], \"Points\": [1, 0, 0.5, 0, 0, 1, 0.5, 0]")),
+                "sorted by value");
+  expectBadFile(write(dir, "string.json", map("\"RGBPoints\": [0, \"red\", 0, 0]")), "entry 2 is not a number");
+  expectBadFile(write(dir, "range.json", map("\"RGBPoints\": [0, 0, 0, 255]")), "outside [0, 1]");
+  expectBadFile(write(dir, "alpha.json", map("\"RGBPoints\": [0, 0, 0, 0], \"Points\": [0, 2, 0.5, 0]")), "outside [0, 1]");
+  expectBadFile(write(dir, "midpoint.json", map("\"RGBPoints\": [0, 0, 0, 0], \"Points\": [0, 1, 0.3, 0]")),
+                "only 0.5 and 0.0 (linear) are supported");
+  expectBadFile(write(dir, "space.json", map("\"ColorSpace\": \"CMYK\", \"RGBPoints\": [0, 0, 0, 0]")),
+                "unknown \"ColorSpace\" \"CMYK\"");
+  expectBadFile(write(dir, "notlist.json", map("\"RGBPoints\": 3")), "\"RGBPoints\" is not a list of numbers");
+}
+
+TEST(TransferFunctionFile, TextFormatLoads) {
+  TempDir dir;
+  const std::string path = write(dir, "ramp.txt",
+                                 "# value r g b alpha\n"
+                                 "\n"
+                                 "0    0 0 0   0\n"
+                                 "100  1 0.5 0 0.2   # warm\n"
+                                 "100  1 1 1 0.0\n"  // a step
+                                 "250  1 1 1 1\n");
+  const TransferFunction tf = io::readTransferFunctionFile(path);
+  EXPECT_FALSE(tf.normalized());
+  EXPECT_EQ(tf.colors().size(), 4u);
+  EXPECT_DOUBLE_EQ(tf.opacity(50.0), 0.1);
+  EXPECT_DOUBLE_EQ(tf.opacity(100.0), 0.0);  // the step's last point
+  EXPECT_DOUBLE_EQ(tf.opacity(175.0), 0.5);
+  EXPECT_NEAR(tf.color(50.0).g, 0.25, 1e-12);
+  EXPECT_FALSE(tf.zeroOpacityOn(90.0, 100.0));
+  EXPECT_TRUE(tf.zeroOpacityOn(-5.0, 0.0));
+}
+
+TEST(TransferFunctionFile, BadTextFilesAreOneClearLine) {
+  TempDir dir;
+  expectBadFile(write(dir, "empty.txt", ""), "is empty");
+  expectBadFile(write(dir, "comments.txt", "# nothing\n\n"), "holds no control point");
+  expectBadFile(write(dir, "four.txt", "0 0 0 0 0\n1 1 1 1\n"), "line 2: expected five finite numbers 'value r g b alpha', found '1 1 1 1'");
+  expectBadFile(write(dir, "six.txt", "0 0 0 0 0 0\n"), "line 1: expected five");
+  expectBadFile(write(dir, "word.txt", "0 0 0 0 0\n1 red 0 0 1\n"), "line 2");
+  expectBadFile(write(dir, "nan.txt", "nan 0 0 0 0\n"), "line 1");
+  expectBadFile(write(dir, "order.txt", "# a comment\n1 0 0 0 0\n0 1 1 1 1\n"),
+                "line 3: value 0 is below the previous point's 1 (values must not decrease)");
+  expectBadFile(write(dir, "range.txt", "0 0 0 0 1.5\n"), "line 1: opacity 1.5 is outside [0, 1]");
+  expectBadFile(write(dir, "colour.txt", "\n0 0 -1 0 1\n"), "line 2: colour component -1 is outside [0, 1]");
+  expectBadFile(write(dir, "json.txt", "[{\"RGBPoints\": [0, 0, 0, 0]}]\n"), "line 1");
+}
+
+TEST(TransferFunctionFile, UnreadableFilesAreInputErrors) {
+  TempDir dir;
+  EXPECT_THROW(io::readTransferFunctionFile(dir / "missing.json"), InputError);
+  try {
+    io::readTransferFunctionFile(dir.path.string());
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("directory"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TransferFunctionFile, SpecsArePresetsThenFiles) {
+  TempDir dir;
+  const TransferFunction preset = io::transferFunctionFromSpec("inferno");
+  EXPECT_EQ(preset.name(), "inferno");
+  EXPECT_TRUE(preset.normalized());
+  const TransferFunction file = io::transferFunctionFromSpec(write(dir, "maps.json", kParaView));
+  EXPECT_EQ(file.name(), "Two Tone");
+  try {
+    io::transferFunctionFromSpec("infern");
+    FAIL() << "no error";
+  } catch (const ValueError& e) {
+    const std::string what = e.what();
+    for (const std::string& name : transferFunctionPresetNames()) EXPECT_NE(what.find(name), std::string::npos) << what;
+    EXPECT_NE(what.find(".json"), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace fcc
