@@ -34,7 +34,8 @@ void writeExr(const std::string& path, const RenderedImage& image) {
   Imf::Header header(w, h);
   header.compression() = Imf::ZIP_COMPRESSION;
   const char* names[8] = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z"};
-  for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
+  const int channels = image.normals ? 8 : 5;
+  for (int c = 0; c < channels; ++c) header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
   Imf::FrameBuffer fb;
   const std::size_t stride = 4 * sizeof(float);
   auto slice = [&](const std::vector<float>& data, int component) {
@@ -42,7 +43,8 @@ void writeExr(const std::string& path, const RenderedImage& image) {
   };
   for (int c = 0; c < 4; ++c) fb.insert(names[c], slice(*image.rgba, c));
   fb.insert("Z", slice(*image.normalDepth, 3));
-  for (int c = 0; c < 3; ++c) fb.insert(names[5 + c], slice(*image.normalDepth, c));
+  if (image.normals)
+    for (int c = 0; c < 3; ++c) fb.insert(names[5 + c], slice(*image.normalDepth, c));
   Imf::OutputFile file(path.c_str(), header);
   file.setFrameBuffer(fb);
   file.writePixels(h);

@@ -14,6 +14,7 @@ struct RenderedImage {
   int width = 0, height = 0;
   const std::vector<float>* rgba = nullptr;         // 4 per pixel, row 0 at the top
   const std::vector<float>* normalDepth = nullptr;  // 4 per pixel: N.X, N.Y, N.Z, Z
+  bool normals = true;  // false: the EXR gets R, G, B, A and Z only (direct volume rendering)
 };
 
 // True for the outputs that store depth and normals (EXR), false for colour only (PNG).

@@ -44,3 +44,23 @@ bool hitInCell(ivec3 b, ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout in
   }
   return false;
 }
+
+#if FCC_MODE_DVR
+// Emission-absorption through unit cell `cell` between t0 and t1 (dvr.glsl), piece by piece; true
+// once the ray is opaque enough to stop.
+bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
+  vec4 splits = fcc_cell_splits(cell, o, d, t0, t1);
+  float s0 = t0;
+  for (int k = 0; k < 5 && s0 < t1; ++k) {
+    float s1 = k == 0 ? splits.x : (k == 1 ? splits.y : (k == 2 ? splits.z : (k == 3 ? splits.w : t1)));
+    if (s1 <= s0) continue;
+    FccFrame frame = fcc_locate(clamp(o + (0.5 * (s0 + s1)) * d, vec3(cell), vec3(cell + 1)));
+    FccCubic cubic = fcc_cubic(gatherStencil(frame), frame.type);
+    FccRange range = fcc_cubic_range(cubic);
+    if (!tfZeroOn(range.lo, range.hi) && dvrSegment3(fcc_segment_bernstein(cubic, frame, o, d, s0, s1, 0.0), s0, s1, st))
+      return true;
+    s0 = s1;
+  }
+  return false;
+}
+#endif

@@ -14,6 +14,10 @@
 #ifndef FCC_RECON
 #define FCC_RECON FCC_RECON_BOXSPLINE
 #endif
+// 1: direct volume rendering (dvr.glsl) instead of the isosurface.
+#ifndef FCC_MODE_DVR
+#define FCC_MODE_DVR 0
+#endif
 
 // The work group: pixels per group in x and y (RenderOptions::workGroup defines them).
 #ifndef FCC_GROUP_X
@@ -40,8 +44,14 @@ layout(std430, binding = 4) buffer RequestBits { uint requestBits[]; };
 layout(std430, binding = 5) buffer SlotUse { uint slotLastUse[]; };
 layout(std430, binding = 6) readonly buffer SlotBounds { vec2 slotBounds[]; };  // see pool.glsl
 
+#if FCC_MODE_DVR
+// Read back where a ray resumes: the colour so far, and in the normal's x the transmittance so far.
+layout(binding = 0, rgba32f) uniform image2D uColor;        // premultiplied colour, alpha the opacity
+layout(binding = 1, rgba32f) uniform image2D uNormalDepth;  // 0 (transmittance while waiting), depth at opacity 0.5
+#else
 layout(binding = 0, rgba32f) uniform writeonly image2D uColor;        // premultiplied shaded colour
 layout(binding = 1, rgba32f) uniform writeonly image2D uNormalDepth;  // unit gradient (world), depth
+#endif
 layout(binding = 2, r32f) uniform image2D uResume;                    // t to resume from; < 0: done
 
 uniform ivec2 uResolution;
@@ -115,8 +125,13 @@ struct Hit {
   vec3 gradient;  // index space
 };
 
+#if FCC_MODE_DVR
+#include "dvr.glsl"
+#endif
+
 // hitInCell(b, cell, o, d, t0, t1, prevSign, hit), the first hit inside one unit cell of a resident
-// brick, and valueAt: one per lattice, FCC_RECON says which.
+// brick, valueAt, and for DVR integrateCell(cell, o, d, t0, t1, state): one per lattice, FCC_RECON
+// says which.
 #if FCC_RECON == FCC_RECON_BOXSPLINE
 #include "march_fcc.glsl"
 #else
@@ -125,8 +140,14 @@ struct Hit {
 
 // The first hit in the resident brick b between ta and tb, walking its unit cells (those whose slot
 // bounds exclude the isovalue are passed over). prevSign: the sign of s - iso where the ray reaches
-// ta (-1 negative, +1 not, 0 unknown), updated to where it leaves.
+// ta (-1 negative, +1 not, 0 unknown), updated to where it leaves. For DVR: the emission and
+// absorption of the cells whose bounds the transfer function does not map to zero; true once the ray
+// is opaque enough to stop (st: what the ray has accumulated).
+#if FCC_MODE_DVR
+bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout DvrState st) {
+#else
 bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout int prevSign, inout Hit hit) {
+#endif
   selectSlot(slot, b);
   uint boundsBase = slot * uint(kSlotVoxels);
   ivec3 cellLo = b * 16, cellHi = cellLo + 15;
@@ -143,11 +164,17 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     float tExit = min(min(min(tMax.x, tMax.y), tMax.z), tb);
     ivec3 voxel = (cell - cellLo) >> 1;
     vec2 cellBounds = slotBounds[boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
+#if FCC_MODE_DVR
+    if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) {
+      if (integrateCell(cell, o, d, tCell, tExit, st)) return true;
+    }
+#else
     if (tExit > tCell && uSkipEmpty != 0 && !(cellBounds.x <= uIso && uIso <= cellBounds.y)) {
       prevSign = cellBounds.x > uIso ? 1 : -1;
     } else if (tExit > tCell) {
       if (hitInCell(b, cell, o, d, tCell, tExit, prevSign, hit)) return true;
     }
+#endif
     if (tExit >= tb) break;
     // Never backwards: a start cell clamped into the brick can have a face behind the ray.
     tCell = max(tCell, tExit);
@@ -195,6 +222,19 @@ void main() {
   Hit hit;
   hit.t = 0.0;
   hit.gradient = vec3(0.0);
+#if FCC_MODE_DVR
+  DvrState st;
+  if (uFirstPass != 0) {
+    st.color = vec3(0.0);
+    st.transmittance = 1.0;
+    st.depthHalf = 1.0 / 0.0;
+  } else {  // what the ray had when it stopped for a brick: kept exactly, so the image is the same
+    st.color = imageLoad(uColor, pixel).rgb;
+    vec4 nd = imageLoad(uNormalDepth, pixel);
+    st.transmittance = nd.x;
+    st.depthHalf = nd.w;
+  }
+#endif
 
   // Brick DDA (re-seeded after every node skip).
   int guard = 0;
@@ -233,13 +273,32 @@ void main() {
       prevSign = 0;
     } else if (!stopped) {
       slotLastUse[entry] = uPass;
+#if FCC_MODE_DVR
+      if (marchBrick(b, entry, o, d, invD, t, tExitBrick, st)) {
+        found = true;  // opaque enough: nothing behind is integrated or requested
+        break;
+      }
+#else
       if (marchBrick(b, entry, o, d, invD, t, tExitBrick, prevSign, hit)) {
         found = true;
         break;
       }
+#endif
     }
     t = tExitBrick > t ? tExitBrick : t + 1e-5 * abs(t) + 1e-6;
   }
+#if FCC_MODE_DVR
+  if (stopped && !found) {  // resumes next pass; meanwhile the pixel shows what it has so far
+    imageStore(uColor, pixel, vec4(st.color, 1.0 - st.transmittance));
+    imageStore(uNormalDepth, pixel, vec4(st.transmittance, 0.0, 0.0, st.depthHalf));
+    return;
+  }
+  imageStore(uResume, pixel, vec4(-1.0));
+  imageStore(uColor, pixel, vec4(st.color, 1.0 - st.transmittance));
+  imageStore(uNormalDepth, pixel, vec4(0.0, 0.0, 0.0, st.depthHalf));
+  if (st.transmittance < 1.0) noteSurfacePixel(pixel);
+  return;
+#endif
   if (stopped && !found) {  // resumes next pass; meanwhile the pixel shows the background
     imageStore(uColor, pixel, vec4(0.0));
     imageStore(uNormalDepth, pixel, vec4(0.0, 0.0, 0.0, 1.0 / 0.0));

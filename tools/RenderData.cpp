@@ -1,10 +1,20 @@
 #include "RenderData.h"
 
+#include <cmath>
+#include <cstdio>
+
+#include "io/TransferFunctionFile.h"
 #include "sparse/Error.h"
 #include "viewer/CartesianBrickSource.h"
 #include "viewer/FccBrickSource.h"
 
 namespace fcc::cli {
+namespace {
+
+// Entries of the GPU's transfer table: dvr.glsl steps about one entry of value change at a time.
+constexpr int kTransferTableSize = 256;
+
+}  // namespace
 
 RenderData::RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, bool quiet) {
   const ReconstructionInfo& info = findReconstruction(flags.reconstruction.empty() ? "boxspline" : flags.reconstruction);
@@ -41,6 +51,35 @@ render::Camera RenderData::camera(const RenderFlags& flags, double aspect) const
   glm::dvec3 lo, hi;
   source_->worldBounds(lo, hi);
   return cameraFromFlags(flags, lo, hi, aspect);
+}
+
+void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& options) const {
+  options.mode = render::parseRenderMode(flags.mode);
+  if (options.mode != render::RenderMode::Dvr) return;
+  TransferFunction tf = io::transferFunctionFromSpec(flags.tf);
+  if (tf.normalized()) {
+    // From empty space (transparent under every preset's opacity ramp) to the largest value, when the
+    // background lies below the data; else (a level set's outside, for one) the whole range.
+    const float lo = source_->valueMin(), hi = source_->valueMax(), background = source_->background();
+    const bool fromBackground = background > lo && background < hi && background - lo < 0.1f * (hi - lo);
+    tf = tf.stretchedTo(fromBackground ? background : lo, hi);
+  }
+  const double indexUnit = std::cbrt(std::abs(glm::determinant(glm::dmat3(source_->worldFromIndex()))));
+  const OpticalScale scale{flags.unitDistance > 0.0 ? flags.unitDistance : indexUnit, flags.densityScale};
+  // The table spans the function's points (outside them it keeps its end values, as the lookups do).
+  double lo = tf.domainMin(), hi = tf.domainMax();
+  if (!(hi > lo)) {
+    lo -= 0.5;
+    hi += 0.5;
+  }
+  options.transfer = std::make_shared<const TransferTable>(tf, lo, hi, kTransferTableSize, scale);
+  const float background = source_->background();
+  if (!options.transfer->zeroOn(background, background))
+    std::fprintf(stderr,
+                 "fccvdb: warning: --tf %s gives the background value %g of %s an opacity: only bricks with data are "
+                 "drawn, not the empty space around them\n",
+                 flags.tf.c_str(), double(background), source_->path().c_str());
+  options.terminationOpacity = float(flags.terminationOpacity);
 }
 
 io::BrickStore::Damage RenderData::damage() const { return fccStore_ ? fccStore_->damage() : io::BrickStore::Damage{}; }

@@ -26,6 +26,12 @@ class RenderData {
   // set, else the middle of the range the reconstruction takes.
   io::IsoChoice iso(const RenderFlags& flags) const;
   void warnIfIsoOutside(float iso) const;
+  // --mode and, for DVR, the transfer function (--tf: a preset stretched onto the range the
+  // reconstruction takes, from the background when that lies at its low end; or a file's values as
+  // they are; a warning when the background gets an opacity: bricks without data are not drawn) sampled for the GPU with --unit-distance
+  // (default: the world length of one index unit, the cube root of worldFromIndex's determinant),
+  // --density-scale and --stop-opacity. ValueError / InputError (one line) for a bad --tf.
+  void applyMode(const RenderFlags& flags, render::RenderOptions& options) const;
   render::Camera camera(const RenderFlags& flags, double aspect) const;
   // Damaged bricks met so far (FCC files: rendered as holes; a damaged Cartesian leaf fails the frame).
   io::BrickStore::Damage damage() const;

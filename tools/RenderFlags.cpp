@@ -46,6 +46,22 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
                  "How the data between samples is reconstructed: boxspline (FCC data; the default, converting a "
                  "Cartesian FILE), or trilinear, tricubic (interpolating B-spline), tricubic-bspline (approximating) "
                  "to render a Cartesian .vdb float grid as it is, without converting");
+  app.add_option("--mode", flags.mode, "iso: the isosurface; dvr: direct volume rendering (emission and absorption through the reconstructed field, with --tf)")
+      ->capture_default_str()->check(CLI::IsMember({"iso", "dvr"}));
+  std::string presets;
+  for (const std::string& name : transferFunctionPresetNames()) presets += (presets.empty() ? "" : ", ") + name;
+  app.add_option("--tf", flags.tf,
+                 "DVR transfer function: a preset (" + presets + "; stretched onto the data's value range) or a file: "
+                 "ParaView's colour-map JSON (RGBPoints, Points) or text lines `value r g b alpha` (docs/DVR.md)")
+      ->capture_default_str();
+  app.add_option("--unit-distance", flags.unitDistance,
+                 "DVR: the world length over which an opacity alpha of the transfer function applies (ParaView's "
+                 "scalar-opacity unit distance; default: the grid's voxel size)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--density-scale", flags.densityScale, "DVR: multiplies every extinction")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  app.add_option("--stop-opacity", flags.terminationOpacity, "DVR: a ray stops once this opaque (and reads no brick behind)")
+      ->capture_default_str()->check(CLI::Range(0.5, 1.0));
   addRawFlags(app, flags.source);
   app.add_flag("--no-cache", flags.noCache, "Convert a Cartesian FILE into a temporary file instead of the user cache ($XDG_CACHE_HOME/fccvdb)");
   app.add_option("--iso", flags.iso,

@@ -24,10 +24,16 @@ struct RenderFlags {
   SourceFlags source;                            // how to read a Cartesian FILE (raw layout)
   bool noCache = false;                          // convert a Cartesian FILE into a temporary file
   std::string reconstruction;                    // empty: FCC (converting a Cartesian FILE); else by name
+  std::string mode = "iso";                      // iso | dvr (render::parseRenderMode)
+  std::string tf = "grayscale";                  // DVR: a preset or a file (io/TransferFunctionFile.h)
+  double unitDistance = 0.0;                     // DVR: world units; 0: one index unit of the grid
+  double densityScale = 1.0;                     // DVR: multiplies every extinction
+  double terminationOpacity = 0.995;             // DVR: a ray stops once this opaque
 };
 
 // Registers FILE, --grid, --iso, --res, --camera, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache, --layout,
-// --reconstruction, the raw input flags (--dims, --type, ...) and --no-cache.
+// --reconstruction, --mode, --tf, --unit-distance, --density-scale, --stop-opacity, the raw input flags
+// (--dims, --type, ...) and --no-cache.
 void addRenderFlags(CLI::App& app, RenderFlags& flags);
 
 // FILE as an FCC .vdb: itself, or its conversion (io/ConversionCache.h: cached, or temporary with

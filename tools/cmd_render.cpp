@@ -53,9 +53,11 @@ Command addRenderCommand(CLI::App& parent) {
             render::RenderOptions options = renderOptionsFromFlags(args->flags);
             const RenderData data(args->flags, options.hostCacheBytes, args->quiet);
             mark("open");
+            data.applyMode(args->flags, options);
+            const bool dvr = options.mode == render::RenderMode::Dvr;
             const io::IsoChoice isoChoice = data.iso(args->flags);
             const float iso = isoChoice.value;
-            data.warnIfIsoOutside(iso);
+            if (!dvr) data.warnIfIsoOutside(iso);
             const render::Camera camera = data.camera(args->flags, double(width) / height);
             const EglContext gl;
             mark("egl");
@@ -65,7 +67,7 @@ Command addRenderCommand(CLI::App& parent) {
             const render::FrameStats stats = raycaster.render(camera, width, height);
             mark("frame");
             const render::FrameImages images = raycaster.readImages(/*withNormalDepth=*/io::imageHoldsNormalDepth(args->output));
-            io::RenderedImage image{images.width, images.height, &images.rgba, &images.normalDepth};
+            io::RenderedImage image{images.width, images.height, &images.rgba, &images.normalDepth, /*normals=*/!dvr};
             io::writeRenderedImage(args->output, image, glm::vec3(0.08f, 0.09f, 0.11f));
             mark("image");
             if (args->timings) {
@@ -82,7 +84,14 @@ Command addRenderCommand(CLI::App& parent) {
             // Rays load only the bricks they reach: of those whose bounds hold the isovalue, the ones
             // hidden behind the surface or outside the view are never needed, so "N of M" read as stuck.
             const std::string isoBasis = isoChoice.basis == "--iso" ? "" : " (default: " + isoChoice.basis + ")";
-            if (!args->quiet)
+            if (!args->quiet && dvr)
+              std::fprintf(stderr,
+                           "wrote %s: %dx%d, dvr (--tf %s over %g .. %g), %d passes, %llu bricks loaded (the rays reached "
+                           "them; %llu bricks hold non-zero opacity), %.3f s on %s\n",
+                           args->output.c_str(), width, height, args->flags.tf.c_str(), options.transfer->vmin(),
+                           options.transfer->vmax(), stats.passes, (unsigned long long)stats.bricksUploaded,
+                           (unsigned long long)stats.bricksNeeded, stats.seconds, gl.renderer().c_str());
+            else if (!args->quiet)
               std::fprintf(stderr,
                            "wrote %s: %dx%d, iso %g%s, %d passes, %llu bricks loaded (the rays reached them; %llu "
                            "bricks hold the isovalue), %.3f s on %s\n",

@@ -49,6 +49,8 @@ class BrickSource {
   virtual void brickBox(glm::ivec3& lo, glm::ivec3& hi) const = 0;
   // World-space bounding box of the data (for framing a camera).
   virtual void worldBounds(glm::dvec3& lo, glm::dvec3& hi) const = 0;
+  // The value of empty space (bricks not listed by forEachVaryingBrick hold it or another constant).
+  virtual float background() const = 0;
   // The range the reconstruction can take (the hull of the bricks' ranges).
   virtual float valueMin() const = 0;
   virtual float valueMax() const = 0;

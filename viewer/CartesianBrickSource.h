@@ -25,6 +25,7 @@ class CartesianBrickSource : public BrickSource {
   const glm::dmat4& worldFromIndex() const override { return store_.worldFromIndex(); }
   void brickBox(glm::ivec3& lo, glm::ivec3& hi) const override;
   void worldBounds(glm::dvec3& lo, glm::dvec3& hi) const override { store_.worldBounds(lo, hi); }
+  float background() const override { return store_.background(); }
   float valueMin() const override { return valueMin_; }
   float valueMax() const override { return valueMax_; }
   void forEachVaryingBrick(const std::function<void(const glm::ivec3&, float, float)>& visit) const override;

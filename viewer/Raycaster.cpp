@@ -22,6 +22,14 @@ constexpr int kMaxPasses = 1 << 20;       // a frame that needs more has a bug, 
 
 }  // namespace
 
+std::string renderModeName(RenderMode mode) { return mode == RenderMode::Dvr ? "dvr" : "iso"; }
+
+RenderMode parseRenderMode(const std::string& name) {
+  if (name == "iso") return RenderMode::Iso;
+  if (name == "dvr") return RenderMode::Dvr;
+  throw ValueError("mode '" + name + "': valid modes are iso (the isosurface), dvr (direct volume rendering)");
+}
+
 BrickLayout chooseBrickLayout(const BrickSource& source, std::size_t gpuCacheBytes) {
   if (source.slotBlock() == SlotBlock::Sites) return BrickLayout::TextureScalar;
   const std::size_t varying = source.varyingBrickCount();
@@ -60,15 +68,24 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
                      ": valid are 1 to 1024 invocations");
   // The reconstruction the shaders evaluate (sparse/ReconDispatch.h's FCC_RECON_* ids).
   std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source.reconstruction().deviceId) + "\n";
+  const bool dvr = options.mode == RenderMode::Dvr;
+  if (dvr && !options.transfer) throw ValueError("direct volume rendering needs a transfer function");
+  const std::string modeDefines = dvr ? "#define FCC_MODE_DVR 1\n" : "";
   const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
                                    "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
-  program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines + groupDefines),
+  program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines + modeDefines + groupDefines),
                                 "shaders/raycast.comp");
   // A CPU rasteriser gets the cheap coefficient-hull cell bounds, a GPU the BB-coefficient ones
   // (both conservative; the image is the same, only the work skipped differs).
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   if (!(renderer && std::string(renderer).find("llvmpipe") != std::string::npos)) defines += "#define FCC_SLOT_BOUNDS_BB 1\n";
-  const auto at = [this](const char* name) { return program_.uniformLocation(name); };
+  // Uniforms one mode does not read are inactive there (-1: setting them is a no-op).
+  const auto at = [this, dvr](const char* name) {
+    static const char* const isoOnly[] = {"uNormalFromIndex", "uIso", "uFiniteDifferenceNormals", "uSurfaceColor", "uLightDir"};
+    if (dvr && std::find_if(std::begin(isoOnly), std::end(isoOnly), [&](const char* n) { return std::strcmp(n, name) == 0; }) != std::end(isoOnly))
+      return glGetUniformLocation(program_.id(), name);
+    return program_.uniformLocation(name);
+  };
   uniforms_ = Uniforms{at("uResolution"), at("uEye"), at("uForward"), at("uRight"), at("uUp"), at("uIndexFromWorld"),
                        at("uNormalFromIndex"), at("uIso"), at("uBrickMin"), at("uBrickDims"), at("uNodeDims"),
                        at("uPass"), at("uFirstPass"), at("uFirstColumn"), at("uColumnOffset"),
@@ -100,7 +117,48 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   // Four batches ready, so decoding goes on while render() uploads one (16 MB of blocks); no more than
   // the pool has slots: a pass cannot use more, and the blocks count against the process's memory.
   loader_ = std::make_unique<BrickLoader>(source, std::min<std::size_t>(4 * kUploadBatch, std::max<std::size_t>(slots, kStepUploadBatch)));
+  if (dvr) {
+    tfEntries_ = std::make_unique<GlBuffer>(std::size_t(options.transfer->size()) * sizeof(glm::vec4));
+    tfPrefix_ = std::make_unique<GlBuffer>(std::size_t(options.transfer->size() + 1) * sizeof(int32_t));
+    uploadTransfer();
+  }
   setIso(std::isnan(options.iso) ? 0.5f * (source.valueMin() + source.valueMax()) : options.iso);
+}
+
+void Raycaster::uploadTransfer() {
+  const TransferTable& table = *options_.transfer;
+  if (std::size_t(table.size()) * sizeof(glm::vec4) > tfEntries_->size()) {
+    tfEntries_ = std::make_unique<GlBuffer>(std::size_t(table.size()) * sizeof(glm::vec4));
+    tfPrefix_ = std::make_unique<GlBuffer>(std::size_t(table.size() + 1) * sizeof(int32_t));
+  }
+  tfEntries_->write(table.entries().data(), std::size_t(table.size()) * sizeof(glm::vec4));
+  const std::vector<int>& prefix = table.nonZeroPrefix();
+  const std::vector<int32_t> prefix32(prefix.begin(), prefix.end());
+  tfPrefix_->write(prefix32.data(), prefix32.size() * sizeof(int32_t));
+  // shaders/dvr.glsl's bins: the largest extinction of each run of entries, ends shared.
+  constexpr int kBins = 16;
+  const int size = table.size();
+  const int binEntries = std::max(1, (size - 1 + kBins - 1) / kBins);
+  float binMax[kBins] = {};
+  for (int k = 0; k < kBins; ++k)
+    for (int i = k * binEntries; i <= std::min((k + 1) * binEntries, size - 1); ++i)
+      binMax[k] = std::max(binMax[k], table.entries()[std::size_t(i)].a);
+  const GLuint p = program_.id();
+  glProgramUniform1f(p, program_.uniformLocation("uTfMin"), float(table.vmin()));
+  glProgramUniform1f(p, program_.uniformLocation("uTfScale"), float((size - 1) / (table.vmax() - table.vmin())));
+  glProgramUniform1i(p, program_.uniformLocation("uTfSize"), size);
+  glProgramUniform1fv(p, program_.uniformLocation("uTfBinMax"), kBins, binMax);
+  glProgramUniform1i(p, program_.uniformLocation("uTfBinEntries"), binEntries);
+  glProgramUniform1f(p, program_.uniformLocation("uStopTransmittance"), 1.0f - options_.terminationOpacity);
+}
+
+void Raycaster::setTransfer(std::shared_ptr<const TransferTable> transfer) {
+  if (options_.mode != RenderMode::Dvr) throw Error("renderer: a transfer function outside DVR mode");
+  if (!transfer) throw ValueError("direct volume rendering needs a transfer function");
+  options_.transfer = std::move(transfer);
+  uploadTransfer();
+  ++settings_;
+  updateNeeded();
 }
 
 Raycaster::~Raycaster() = default;
@@ -113,9 +171,16 @@ void Raycaster::setIso(float iso) {
   if (!std::isfinite(iso)) throw ValueError("isovalue " + std::to_string(iso) + " is not finite");
   options_.iso = iso;
   ++settings_;
+  updateNeeded();
+}
+
+void Raycaster::updateNeeded() {
   std::vector<glm::ivec3> needed;
+  const float iso = options_.iso;
+  const TransferTable* transfer = options_.mode == RenderMode::Dvr ? options_.transfer.get() : nullptr;
   source_.forEachVaryingBrick([&](const glm::ivec3& brick, float lo, float hi) {
-    if (!options_.skipEmpty || (lo <= iso && iso <= hi)) needed.push_back(brick);
+    const bool holds = transfer ? !transfer->zeroOn(lo, hi) : (lo <= iso && iso <= hi);
+    if (!options_.skipEmpty || holds) needed.push_back(brick);
   });
   residency_->setNeeded(needed);
   uploadPageTable();
@@ -252,8 +317,14 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   requestBits_->bindBase(GL_SHADER_STORAGE_BUFFER, 4);
   slotUse_->bindBase(GL_SHADER_STORAGE_BUFFER, 5);
   slotBounds_->bindBase(GL_SHADER_STORAGE_BUFFER, 6);
-  color_.bindImage(0, GL_WRITE_ONLY);
-  normalDepth_.bindImage(1, GL_WRITE_ONLY);
+  if (tfEntries_) {
+    tfEntries_->bindBase(GL_SHADER_STORAGE_BUFFER, 12);
+    tfPrefix_->bindBase(GL_SHADER_STORAGE_BUFFER, 13);
+  }
+  // DVR rays read what they accumulated before they stopped for a brick.
+  const GLenum imageAccess = options_.mode == RenderMode::Dvr ? GL_READ_WRITE : GL_WRITE_ONLY;
+  color_.bindImage(0, imageAccess);
+  normalDepth_.bindImage(1, imageAccess);
   resume_.bindImage(2, GL_READ_WRITE);
 
   program_.use();

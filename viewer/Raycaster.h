@@ -27,11 +27,22 @@
 #include "PixelRect.h"
 #include "Residency.h"
 #include "io/BrickStore.h"
+#include "sparse/TransferFunction.h"
 
 namespace fcc::render {
 
+// What a ray shows: the first isosurface crossing, or emission and absorption through the volume.
+enum class RenderMode { Iso, Dvr };
+std::string renderModeName(RenderMode mode);  // "iso", "dvr"
+RenderMode parseRenderMode(const std::string& name);  // ValueError naming the valid ones
+
 struct RenderOptions {
+  RenderMode mode = RenderMode::Iso;
   float iso = std::numeric_limits<float>::quiet_NaN();  // NaN: midway through the data's value range
+  // RenderMode::Dvr: the transfer function as the GPU reads it (sparse/TransferFunction.h; its optical
+  // scale applied); bricks and cells whose values it maps to zero extinction are skipped.
+  std::shared_ptr<const TransferTable> transfer;
+  float terminationOpacity = 0.995f;  // DVR: a ray stops once this opaque (and asks for no brick behind)
   std::size_t gpuCacheBytes = std::size_t(512) << 20;   // the brick pool
   std::size_t hostCacheBytes = std::size_t(512) << 20;  // decoded bricks in host memory
   // How the pool stores bricks (viewer/BrickPool.h); unset: chooseBrickLayout below.
@@ -94,6 +105,8 @@ class Raycaster {
 
   // Bricks needed change; resident ones stay (no preprocessing, no reload for a revisited isovalue).
   void setIso(float iso);
+  // DVR: another transfer function (the same: bricks needed change, resident ones stay).
+  void setTransfer(std::shared_ptr<const TransferTable> transfer);
   float iso() const { return options_.iso; }
 
   // Renders a complete frame, passes and uploads until no ray waits for a brick.
@@ -148,6 +161,8 @@ class Raycaster {
  private:
   Raycaster(std::unique_ptr<BrickSource> owned, const RenderOptions& options);  // keeps `owned`
   void restartRays(int width, int height);
+  void updateNeeded();  // the bricks the isovalue or the transfer function needs, and the page table
+  void uploadTransfer();  // DVR: the table, its zero-prefix and bin maxima
   struct PassResult {
     uint32_t requested = 0;  // bricks the pass's rays asked for
     double gpuSeconds = 0.0;
@@ -200,6 +215,7 @@ class Raycaster {
   std::unique_ptr<BrickPool> pool_;
   std::unique_ptr<GlBuffer> slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;
   std::unique_ptr<GlBuffer> pageChanges_;  // (index, value) pairs for updatePageTable
+  std::unique_ptr<GlBuffer> tfEntries_, tfPrefix_;  // DVR: shaders/dvr.glsl's TfEntries and TfPrefix
   GlTexture2D color_, normalDepth_, resume_;
 };
 

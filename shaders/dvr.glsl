@@ -1,0 +1,105 @@
+// Direct volume rendering for raycast.comp (FCC_MODE_DVR): emission-absorption front to back through
+// the reconstructed field, with the transfer function sampled as sparse/TransferFunction.h's
+// TransferTable (entries (sigma r, sigma g, sigma b, sigma) per world unit, linear between entries).
+//
+// Along a ray the field is a known polynomial on each piece (a cubic for the box spline and trilinear,
+// degree 9 for tricubic), given here in Bernstein form on the piece's segment. Its range lies within
+// its Bernstein coefficients, so a segment whose range the table maps to zero extinction is passed
+// over exactly, and the others are cut into sub-steps by what the segment can do: at most
+// kDvrStepDepth of optical depth (from the largest extinction over its range) and about one table
+// entry of value change each (from the entries its range spans). Each sub-step takes the medium at its
+// midpoint, the polynomial evaluated there, and composites exactly (docs/DVR.md gives the error bound).
+
+layout(std430, binding = 12) readonly buffer TfEntries { vec4 tfEntries[]; };
+// tfPrefix[i]: entries among [0, i) with non-zero extinction (TransferTable::nonZeroPrefix).
+layout(std430, binding = 13) readonly buffer TfPrefix { int tfPrefix[]; };
+uniform float uTfMin;          // the value of entry 0
+uniform float uTfScale;        // entries per unit of value: (size - 1) / (vmax - vmin)
+uniform int uTfSize;
+// The largest extinction of each of kTfBins runs of entries (bin k: entries [k * uTfBinEntries,
+// (k + 1) * uTfBinEntries], ends shared), for the sub-step count.
+const int kTfBins = 16;
+uniform float uTfBinMax[kTfBins];
+uniform int uTfBinEntries;
+uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
+
+// At most this optical depth per sub-step, and at most this many sub-steps per piece segment.
+const float kDvrStepDepth = 0.0625;
+const int kDvrMaxSteps = 64;
+
+struct DvrState {
+  vec3 color;          // premultiplied, accumulated front to back
+  float transmittance;
+  float depthHalf;     // where the opacity first reached 0.5 (+inf: not yet)
+};
+
+float tfPosition(float v) { return clamp((v - uTfMin) * uTfScale, 0.0, float(uTfSize - 1)); }
+
+vec4 tfLookup(float v) {
+  float p = tfPosition(v);
+  int i = min(int(p), uTfSize - 2);
+  return mix(tfEntries[i], tfEntries[i + 1], p - float(i));
+}
+
+// Whether every lookup in [lo, hi] has zero extinction (TransferTable::zeroOn).
+bool tfZeroOn(float lo, float hi) {
+  int first = int(floor(tfPosition(lo))), last = int(ceil(tfPosition(hi)));
+  return tfPrefix[last + 1] == tfPrefix[first];
+}
+
+float tfMaxExtinctionOn(float lo, float hi) {
+  int first = int(floor(tfPosition(lo))) / uTfBinEntries, last = min(int(ceil(tfPosition(hi))) / uTfBinEntries, kTfBins - 1);
+  float m = 0.0;
+  for (int k = 0; k < kTfBins; ++k)
+    if (k >= first && k <= last) m = max(m, uTfBinMax[k]);
+  return m;
+}
+
+// Sub-steps for a segment of `len` world units whose values lie in [lo, hi].
+int dvrSteps(float lo, float hi, float len) {
+  float depth = tfMaxExtinctionOn(lo, hi) * len / kDvrStepDepth;
+  float entries = (hi - lo) * uTfScale;
+  return clamp(int(ceil(max(depth, entries))), 1, kDvrMaxSteps);
+}
+
+// One sub-step [ta, ta + h] at value v: composited exactly for the medium held constant.
+void dvrComposite(float v, float ta, float h, inout DvrState st) {
+  vec4 e = tfLookup(v);
+  if (e.a <= 0.0) return;  // zero extinction emits nothing either (premultiplied entries)
+  float a = 1.0 - exp(-e.a * h);
+  st.color += st.transmittance * (e.rgb / e.a) * a;
+  float before = st.transmittance;
+  st.transmittance *= 1.0 - a;
+  if (isinf(st.depthHalf) && st.transmittance <= 0.5) st.depthHalf = ta + log(2.0 * before) / e.a;
+}
+
+// The segment [s0, s1] of the ray, where the field is the cubic with Bernstein coefficients bz.
+// Returns true once the ray is opaque enough to stop.
+bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) {
+  float lo = min(min(bz.x, bz.y), min(bz.z, bz.w)), hi = max(max(bz.x, bz.y), max(bz.z, bz.w));
+  if (tfZeroOn(lo, hi)) return false;
+  int n = dvrSteps(lo, hi, s1 - s0);
+  float h = (s1 - s0) / float(n);
+  for (int i = 0; i < n; ++i) {
+    dvrComposite(fcc_bernstein3(bz, (float(i) + 0.5) / float(n)), s0 + float(i) * h, h, st);
+    if (st.transmittance <= uStopTransmittance) return true;
+  }
+  return false;
+}
+
+// The same for a polynomial of degree 9 (tricubic).
+bool dvrSegment9(FccBernstein9 p, float s0, float s1, inout DvrState st) {
+  float lo = p.b[0], hi = p.b[0];
+  for (int i = 1; i <= p.n; ++i) {
+    lo = min(lo, p.b[i]);
+    hi = max(hi, p.b[i]);
+  }
+  if (tfZeroOn(lo, hi)) return false;
+  int n = dvrSteps(lo, hi, s1 - s0);
+  float h = (s1 - s0) / float(n);
+  for (int i = 0; i < n; ++i) {
+    dvrComposite(fcc_bernstein9_at(p, (float(i) + 0.5) / float(n)), s0 + float(i) * h, h, st);
+    if (st.transmittance <= uStopTransmittance) return true;
+  }
+  return false;
+}
