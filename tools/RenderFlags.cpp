@@ -10,6 +10,7 @@
 #include "Triple.h"
 #include "io/AtomicOutput.h"
 #include "io/ImageOutput.h"
+#include "io/PatientMetadata.h"
 #include "sparse/Error.h"
 #include "viewer/CameraFile.h"
 
@@ -51,9 +52,12 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
   app.add_option("--camera", flags.camera,
                  "Camera file FILE.json, as the viewer's C key saves it: {\"eye\": [X,Y,Z], \"lookat\": [X,Y,Z], "
                  "\"up\": [X,Y,Z], \"fov\": DEGREES} (--eye/--lookat/--up/--fov replace its fields)");
-  app.add_option("--eye", flags.eye, "Camera position X,Y,Z in world space (default: frames the data)");
+  app.add_option("--eye", flags.eye,
+                 "Camera position X,Y,Z in world space (default: frames the data; medical data from its anterior side)");
   app.add_option("--lookat", flags.lookat, "Point looked at X,Y,Z (default: the data's centre)");
-  app.add_option("--up", flags.up, "Up vector X,Y,Z (default: 0,1,0)");
+  app.add_option("--up", flags.up,
+                 "Up vector X,Y,Z (default: 0,1,0; for medical data (NIfTI, DICOM, NRRD with an anatomical space) "
+                 "the patient's superior direction, or anterior when --eye looks along it)");
   app.add_option("--fov", flags.fov, "Vertical field of view in degrees (default: 40)");
   app.add_option("--gpu-cache", flags.gpuCacheMiB, "GPU brick pool in MiB (default: 1024, or what the driver allows)")
       ->check(CLI::PositiveNumber);
@@ -114,6 +118,8 @@ render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& s
     if (end == flags.fov.c_str() || *end != '\0' || !(fov > 0.0 && fov < 180.0))
       throw ValueError("--fov '" + flags.fov + "': valid is a number of degrees in (0, 180)");
   }
+  // A medical volume's patient axes (io/PatientMetadata.h): its default camera is upright.
+  const std::optional<io::PatientAxes> patient = io::patientAxesOf(store.index(), store.path());
   render::Camera camera;
   if (!flags.camera.empty()) {
     camera = render::readCameraFile(flags.camera);
@@ -123,6 +129,11 @@ render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& s
     glm::dvec3 lo, hi;
     store.worldBounds(lo, hi);
     camera = render::frameBox(lo, hi, fov, aspect);
+    if (patient) {  // upright: superior up, the eye on the anterior side (the face towards the viewer)
+      const double distance = glm::length(camera.eye - camera.lookat);
+      camera.up = patient->superior;
+      camera.eye = camera.lookat + glm::normalize(patient->anterior - glm::dot(patient->anterior, patient->superior) * patient->superior) * distance;
+    }
     if (!flags.lookat.empty()) {  // the framing distance kept: the eye moves with the look-at point
       const glm::dvec3 lookat = tripleOrThrow(flags.lookat, "--lookat");
       camera.eye += lookat - camera.lookat;
@@ -130,7 +141,13 @@ render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& s
     }
   }
   if (!flags.eye.empty()) camera.eye = tripleOrThrow(flags.eye, "--eye");
-  if (!flags.up.empty()) camera.up = tripleOrThrow(flags.up, "--up");
+  if (!flags.up.empty()) {
+    camera.up = tripleOrThrow(flags.up, "--up");
+  } else if (patient && flags.camera.empty() &&
+             glm::length(glm::cross(glm::normalize(camera.lookat - camera.eye), camera.up)) < 1e-6) {
+    // An --eye above or below the patient: superior cannot be up, anterior is (the axial convention).
+    camera.up = patient->anterior;
+  }
   render::cameraFrame(camera, aspect);  // validates: throws for a degenerate camera
   return camera;
 }

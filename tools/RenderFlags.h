@@ -40,11 +40,13 @@ io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::BrickStore& store
 void warnIfIsoOutside(float iso, const io::BrickStore& store);
 // --res (or `flag`) "WxH"; ValueError naming the flag for anything else or a zero size.
 void resolutionFromFlags(const std::string& res, int& width, int& height, const char* flag = "--res");
-// The camera: --camera FILE.json, else one that frames the data; --eye/--lookat/--up/--fov replace
-// what they name.
 // The flags that give `camera` again, ready to paste: "--eye X,Y,Z --lookat X,Y,Z --up X,Y,Z --fov F",
 // every number with all the digits a double needs to come back the same.
 std::string cameraFlags(const render::Camera& camera);
+// The camera: --camera FILE.json, else one that frames the data (render::frameBox; for medical data,
+// whose file records the patient's axes (io/PatientMetadata.h), upright: up is superior and the eye
+// lies on the anterior side); --eye/--lookat/--up/--fov replace what they name. Without --up the data's
+// superior stays up (anterior, where --eye looks along superior). InputError for damaged patient axes.
 render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect);
 render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags);
 
