@@ -17,6 +17,8 @@
 
 #include "ExrRead.h"
 #include "RunCommand.h"
+#include "io/PatientMetadata.h"
+#include "sparse/FccGrid.h"
 
 namespace fcc::test {
 namespace {
@@ -278,6 +280,41 @@ TEST_F(CliCamera, FlagsWinOverTheUprightDefault) {
   ASSERT_TRUE(parsePrintedCamera(both.err, c)) << both.err;
   EXPECT_EQ(c.up, glm::dvec3(0, 1, 0));
   EXPECT_EQ(c.eye, glm::dvec3(100, 0, 0));
+}
+
+// A file whose patient axes are damaged (one without the other, parallel ones) is one line, exit 1, no image.
+TEST_F(CliCamera, DamagedPatientAxesAreOneLine) {
+  const std::string synth = dir_ / "s.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + synth + " --dims 16,16,16 --quiet").status, 0);
+  initializeVdb();
+  auto rewrite = [&](const std::string& out, const std::function<void(openvdb::GridBase&)>& edit) {
+    openvdb::io::File in(synth);
+    in.open();
+    openvdb::GridPtrVecPtr grids = in.getGrids();
+    in.close();
+    for (const openvdb::GridBase::Ptr& g : *grids)
+      if (isFccGrid(*g)) edit(*g);
+    openvdb::io::File(out).write(*grids);
+  };
+  rewrite(dir_ / "one.vdb", [](openvdb::GridBase& g) { g.insertMeta(meta::kPatientSuperior, openvdb::Vec3DMetadata({0, 0, 1})); });
+  rewrite(dir_ / "parallel.vdb", [](openvdb::GridBase& g) { io::recordPatientAxes(g, io::PatientAxes{{0, 0, 1}, {0, 0, 2}}); });
+  rewrite(dir_ / "fine.vdb", [](openvdb::GridBase& g) { io::recordPatientAxes(g, io::PatientAxes{{0, 1, 0}, {0, 0, 1}}); });
+  const CommandResult fine = render(dir_ / "fine.vdb", "fine.png", " --iso 0.25");
+  if (failedForLackOfGl(fine)) GTEST_SKIP() << fine.err;
+  ASSERT_EQ(fine.status, 0) << fine.err;
+  PrintedCamera c;
+  ASSERT_TRUE(parsePrintedCamera(fine.err, c)) << fine.err;
+  EXPECT_EQ(c.up, glm::dvec3(0, 1, 0)) << "the recorded superior, whatever the data";
+  EXPECT_GT((c.eye - c.lookat).z, 0.0) << c.flags;
+  for (const char* name : {"one", "parallel"}) {
+    SCOPED_TRACE(name);
+    const CommandResult r = render(dir_ / (std::string(name) + ".vdb"), std::string(name) + ".png", " --iso 0.25");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_THAT(r.err, ::testing::HasSubstr(name == std::string("one") ? "fcc_patient_superior without fcc_patient_anterior"
+                                                                        : "must be finite, nonzero and not parallel"));
+    EXPECT_FALSE(std::filesystem::exists(dir_ / (std::string(name) + ".png")));
+  }
 }
 
 // The shared Colin27 head (NIfTI, stored RAS), rendered directly: the default camera looks at its face
