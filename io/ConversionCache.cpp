@@ -22,7 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // Bumped when a conversion of the same source and flags would give another file.
-constexpr const char* kCacheFormat = "fccvdb-cache-1";
+constexpr const char* kCacheFormat = "fccvdb-cache-2";
 
 uint64_t fnv1a(const std::string& s) {
   uint64_t h = 1469598103934665603ull;

@@ -8,6 +8,7 @@
 #include "AtomicOutput.h"
 #include "DenseSlabField.h"
 #include "DenseSource.h"
+#include "PatientMetadata.h"
 #include "VdbFile.h"
 #include "VdbLeafReader.h"
 #include "VdbResampleField.h"
@@ -181,6 +182,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   DenseVolume dense;                            // a dense input, whole (the in-memory reference)
   std::unique_ptr<DenseSource> source;          // or read on demand
   openvdb::math::Transform::Ptr xform;
+  std::optional<PatientAxes> patient;  // a medical dense input's: recorded for the default camera
   float background = options.background.value_or(0.0f);
   glm::ivec3 extent(0);  // the source's voxels per axis (its active box for a .vdb): resampling's extent
   if (format == Format::Vdb && (resample || !options.inMemory)) {
@@ -208,6 +210,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     summary.gridName = "density";
     summary.inputVoxels = dense.values.size();
     xform = transformOf(dense, 1.0);
+    patient = dense.patient;
     extent = dense.dims;
   } else {
     // Read when the field is made, below: into a scratch file of x-slabs (SlabScratch.h).
@@ -215,6 +218,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     summary.gridName = "density";
     summary.inputVoxels = source->voxelCount();
     xform = transformOf(source->geometry(), 1.0);
+    patient = source->geometry().patient;
     extent = source->geometry().dims;
   }
 
@@ -247,6 +251,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     provenance.sampleMin = samples.min;
     provenance.sampleMax = samples.max;
     setFccMetadata(grid, provenance);
+    if (patient) recordPatientAxes(grid, *patient);
     recordSampleHistogram(grid, samples);
     grid.setSaveFloatAsHalf(options.half);
     summary.activeSamples = grid.activeVoxelCount() * 4;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 
 #include "MessageText.h"
@@ -61,6 +62,22 @@ ScalarType parseScalarType(const std::string& name) {
 const char* scalarTypeName(ScalarType type) { return infoOf(type).name; }
 
 size_t scalarTypeSize(ScalarType type) { return infoOf(type).bytes; }
+
+std::optional<PatientAxes> patientAxesFrom(const glm::dmat3& patientFromWorld, const glm::dvec3& superiorInPatient,
+                                           const glm::dvec3& anteriorInPatient) {
+  const glm::dmat3& m = patientFromWorld;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r)
+      if (!std::isfinite(m[c][r])) return std::nullopt;
+  // Singular, relative to the columns' lengths (a zero pixdim, a degenerate sform).
+  const double scale = glm::length(m[0]) * glm::length(m[1]) * glm::length(m[2]);
+  if (!(std::abs(glm::determinant(m)) > 1e-9 * scale)) return std::nullopt;
+  const glm::dmat3 worldFromPatient = glm::inverse(m);
+  PatientAxes axes;
+  axes.superior = glm::normalize(worldFromPatient * superiorInPatient);
+  axes.anterior = glm::normalize(worldFromPatient * anteriorInPatient);
+  return axes;
+}
 
 uint64_t checkedVoxelCount(const glm::ivec3& dims, const std::string& path) {
   if (dims.x < 1 || dims.y < 1 || dims.z < 1)

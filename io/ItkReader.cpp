@@ -46,9 +46,14 @@ DenseVolume geometryOf(const Image& image, const std::string& path) {
   return v;
 }
 
+// A DICOM series' world is the patient's LPS frame (ITK's physical space: the slices' positions and
+// orientation as DICOM gives them).
+PatientAxes lpsPatientAxes() { return {kSuperiorInPatient, kAnteriorInLps}; }
+
 // The image's samples and geometry.
-DenseVolume toDense(const Image& image, const std::string& path) {
+DenseVolume toDense(const Image& image, const std::string& path, std::optional<PatientAxes> patient = std::nullopt) {
   DenseVolume v = geometryOf(image, path);
+  v.patient = patient;
   const float* data = image.GetBufferPointer();
   v.values.assign(data, data + checkedVoxelCount(v.dims, path));  // ITK's buffer is x fastest, as ours
   return v;
@@ -120,10 +125,13 @@ class ItkSource final : public DenseSource {
  public:
   // `whole`: the reader cannot read part of the file (compressed MetaImage data is inflated whole for
   // any region), so the first read takes every slice, once, rather than inflating it again per range.
-  ItkSource(typename Reader::Pointer reader, std::string path, std::string what, bool whole = false)
+  // `patient`: where the patient's axes lie in the image's world (DICOM's LPS), if it is a patient's.
+  ItkSource(typename Reader::Pointer reader, std::string path, std::string what, bool whole = false,
+            std::optional<PatientAxes> patient = std::nullopt)
       : reader_(reader), path_(std::move(path)), what_(std::move(what)), whole_(whole) {
     guarded([&] { reader_->UpdateOutputInformation(); });
     geometry_ = geometryOf(*reader_->GetOutput(), path_);
+    geometry_.patient = patient;
   }
 
   void read(uint64_t first, uint64_t count, float* out) override {
@@ -187,7 +195,7 @@ DenseVolume readDicom(const std::string& path) {
     reader->SetImageIO(itk::GDCMImageIO::New());  // applies Rescale Slope/Intercept into float
     reader->SetFileNames(files);
     reader->Update();
-    return toDense(*reader->GetOutput(), path);
+    return toDense(*reader->GetOutput(), path, lpsPatientAxes());
   } catch (const itk::ExceptionObject& e) {
     throw InputError(path + ": not a DICOM series ITK/GDCM can read: " + e.GetDescription());
   }
@@ -231,7 +239,8 @@ std::unique_ptr<DenseSource> openDicom(const std::string& path) {
     reader->SetFileNames(seriesFiles(path));
     // Else every slice's header is parsed again for each range of slices read.
     reader->MetaDataDictionaryArrayUpdateOff();
-    return std::make_unique<ItkSource<itk::ImageSeriesReader<Image>>>(reader, path, "not a DICOM series ITK/GDCM can read");
+    return std::make_unique<ItkSource<itk::ImageSeriesReader<Image>>>(reader, path, "not a DICOM series ITK/GDCM can read",
+                                                                          /*whole=*/false, lpsPatientAxes());
   } catch (const itk::ExceptionObject& e) {
     throw InputError(path + ": not a DICOM series ITK/GDCM can read: " + e.GetDescription());
   }

@@ -1,6 +1,7 @@
 // NIfTI-1 single-file volumes (.nii, .nii.gz): a 348-byte binary header, optional extensions, then the
 // voxels from vox_offset on. The header's own byte order (told by sizeof_hdr reading 348 one way or the
 // other) is the data's byte order too.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -19,7 +20,7 @@ constexpr size_t kHeaderBytes = 348;
 // Byte offsets of the header fields this reader uses (NIfTI-1, nifti1.h).
 namespace field {
 constexpr size_t sizeofHdr = 0, dim = 40, datatype = 70, pixdim = 76, voxOffset = 108, sclSlope = 112,
-                 sclInter = 116, qformCode = 252, sformCode = 254, qoffset = 268, srowX = 280, srowY = 296,
+                 sclInter = 116, qformCode = 252, sformCode = 254, quatern = 256, qoffset = 268, srowX = 280, srowY = 296,
                  srowZ = 312, magic = 344;
 }  // namespace field
 
@@ -76,6 +77,38 @@ glm::dvec3 originFrom(const Header& header) {
   if (header.i16(field::qformCode) > 0)
     return {header.f32(field::qoffset), header.f32(field::qoffset + 4), header.f32(field::qoffset + 8)};
   return glm::dvec3(0.0);
+}
+
+// The patient's axes in this reader's world frame (world = origin + spacing * ijk: the index axes,
+// scaled): the sform's (else the qform's) map from index to RAS, taken from that world frame.
+std::optional<PatientAxes> patientFrom(const Header& header, const glm::dvec3& spacing) {
+  glm::dmat3 rasFromIndex(1.0);  // glm: [column][row]
+  if (header.i16(field::sformCode) > 0) {
+    for (int row = 0; row < 3; ++row)
+      for (int column = 0; column < 3; ++column)
+        rasFromIndex[column][row] = header.f32(field::srowX + 16 * size_t(row) + 4 * size_t(column));
+  } else if (header.i16(field::qformCode) > 0) {
+    // nifti1.h: the rotation of the unit quaternion (a, b, c, d), a = sqrt(1 - b^2 - c^2 - d^2), times
+    // the pixdims, the third one negated where qfac (pixdim[0]) is negative.
+    const double b = header.f32(field::quatern), c = header.f32(field::quatern + 4), d = header.f32(field::quatern + 8);
+    const double a = std::sqrt(std::max(0.0, 1.0 - (b * b + c * c + d * d)));
+    const double rows[3][3] = {{a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)},
+                               {2 * (b * c + a * d), a * a + c * c - b * b - d * d, 2 * (c * d - a * b)},
+                               {2 * (b * d - a * c), 2 * (c * d + a * b), a * a + d * d - c * c - b * b}};
+    const double qfac = header.f32(field::pixdim) < 0.0f ? -1.0 : 1.0;
+    for (int column = 0; column < 3; ++column) {
+      const float pixdim = header.f32(field::pixdim + 4 * size_t(column + 1));
+      // As spacingFrom: an unknown pixdim is 1.
+      const double scale = (std::isfinite(pixdim) && pixdim != 0.0f ? double(pixdim) : 1.0) * (column == 2 ? qfac : 1.0);
+      for (int row = 0; row < 3; ++row) rasFromIndex[column][row] = rows[row][column] * scale;
+    }
+  } else {
+    return std::nullopt;  // "method 1": no orientation
+  }
+  // index = (world - origin) / spacing
+  const glm::dmat3 indexFromWorld(glm::dvec3(1.0 / spacing.x, 0, 0), glm::dvec3(0, 1.0 / spacing.y, 0),
+                                  glm::dvec3(0, 0, 1.0 / spacing.z));
+  return patientAxesFrom(rasFromIndex * indexFromWorld, kSuperiorInPatient, kAnteriorInRas);
 }
 
 }  // namespace
@@ -138,6 +171,7 @@ std::unique_ptr<DenseSource> openNifti(const std::string& path) {
   volume.spacing = {spacingFrom(header.f32(field::pixdim + 4)), spacingFrom(header.f32(field::pixdim + 8)),
                     spacingFrom(header.f32(field::pixdim + 12))};
   volume.origin = originFrom(header);
+  volume.patient = patientFrom(header, volume.spacing);
 
   StoredVoxels stored;
   stored.path = path;

@@ -216,10 +216,11 @@ glm::ivec3 parseSizes(const Field& field, const HeaderParser& parser) {
   return dims;
 }
 
-// From "space directions" when present (the magnitude of each axis-aligned vector), else "spacings";
-// unknown spacings ("nan", "none") are 1.
-glm::dvec3 parseSpacing(const NrrdHeader& header, const HeaderParser& parser) {
+// From "space directions" when present (the magnitude of each axis-aligned vector, its sign into
+// `signs`), else "spacings"; unknown spacings ("nan", "none") are 1.
+glm::dvec3 parseSpacing(const NrrdHeader& header, const HeaderParser& parser, glm::dvec3& signs) {
   glm::dvec3 spacing(1.0);
+  signs = glm::dvec3(1.0);
   if (auto directions = header.fields.find("space directions"); directions != header.fields.end()) {
     const Field& field = directions->second;
     const std::vector<SpaceVector> vectors = parseSpaceVectors(field, parser);
@@ -236,6 +237,7 @@ glm::dvec3 parseSpacing(const NrrdHeader& header, const HeaderParser& parser) {
                                  ")); only diagonal directions are supported");
       if (v[axis] == 0.0) parser.fail(field, "space direction of axis " + std::to_string(axis) + " is zero");
       spacing[axis] = std::abs(v[axis]);
+      signs[axis] = v[axis] < 0.0 ? -1.0 : 1.0;
     }
   } else if (auto spacings = header.fields.find("spacings"); spacings != header.fields.end()) {
     const Field& field = spacings->second;
@@ -259,6 +261,24 @@ glm::dvec3 parseOrigin(const NrrdHeader& header, const HeaderParser& parser) {
   const std::vector<SpaceVector> vectors = parseSpaceVectors(origin->second, parser);
   if (vectors.size() != 1 || !vectors[0]) parser.fail(origin->second, "space origin must be one vector like \"(0,0,0)\"");
   return glm::dvec3((*vectors[0])[0], (*vectors[0])[1], (*vectors[0])[2]);
+}
+
+// An anatomical "space" (NRRD's three, long or short names) gives the patient's axes: index axis i runs
+// along space axis i, the way `signs` says, while the world keeps it running forward (spacing is the
+// magnitude). Other spaces ("scanner-xyz", "3D-right-handed", ...) and none give none.
+std::optional<PatientAxes> parsePatient(const NrrdHeader& header, const glm::dvec3& signs) {
+  const auto space = header.fields.find("space");
+  if (space == header.fields.end()) return std::nullopt;
+  const std::string name = normalized(space->second.value);
+  glm::dvec3 anterior;
+  if (name == "right-anterior-superior" || name == "ras" || name == "left-anterior-superior" || name == "las")
+    anterior = kAnteriorInRas;
+  else if (name == "left-posterior-superior" || name == "lps")
+    anterior = kAnteriorInLps;
+  else
+    return std::nullopt;
+  const glm::dmat3 spaceFromWorld(glm::dvec3(signs.x, 0, 0), glm::dvec3(0, signs.y, 0), glm::dvec3(0, 0, signs.z));
+  return patientAxesFrom(spaceFromWorld, kSuperiorInPatient, anterior);
 }
 
 const Field* findField(const NrrdHeader& header, std::initializer_list<const char*> names) {
@@ -328,8 +348,10 @@ std::unique_ptr<DenseSource> openNrrd(const std::string& path) {
 
   DenseVolume volume;
   volume.dims = dims;
-  volume.spacing = parseSpacing(header, parser);
+  glm::dvec3 signs;
+  volume.spacing = parseSpacing(header, parser, signs);
   volume.origin = parseOrigin(header, parser);
+  volume.patient = parsePatient(header, signs);
   const uint64_t voxels = checkedVoxelCount(dims, path);
   const uint64_t payload = voxels * scalarTypeSize(type);
 

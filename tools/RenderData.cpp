@@ -50,7 +50,7 @@ render::Camera RenderData::camera(const RenderFlags& flags, double aspect) const
   if (fccStore_) return cameraFromFlags(flags, *fccStore_, aspect);
   glm::dvec3 lo, hi;
   source_->worldBounds(lo, hi);
-  return cameraFromFlags(flags, lo, hi, aspect);
+  return cameraFromFlags(flags, lo, hi, std::nullopt, aspect);  // Cartesian .vdb files carry no patient axes
 }
 
 void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& options) const {

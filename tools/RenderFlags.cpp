@@ -10,6 +10,7 @@
 #include "Triple.h"
 #include "io/AtomicOutput.h"
 #include "io/ImageOutput.h"
+#include "io/PatientMetadata.h"
 #include "sparse/Error.h"
 #include "viewer/CameraFile.h"
 
@@ -71,9 +72,12 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
   app.add_option("--camera", flags.camera,
                  "Camera file FILE.json, as the viewer's C key saves it: {\"eye\": [X,Y,Z], \"lookat\": [X,Y,Z], "
                  "\"up\": [X,Y,Z], \"fov\": DEGREES} (--eye/--lookat/--up/--fov replace its fields)");
-  app.add_option("--eye", flags.eye, "Camera position X,Y,Z in world space (default: frames the data)");
+  app.add_option("--eye", flags.eye,
+                 "Camera position X,Y,Z in world space (default: frames the data; medical data from its anterior side)");
   app.add_option("--lookat", flags.lookat, "Point looked at X,Y,Z (default: the data's centre)");
-  app.add_option("--up", flags.up, "Up vector X,Y,Z (default: 0,1,0)");
+  app.add_option("--up", flags.up,
+                 "Up vector X,Y,Z (default: 0,1,0; for medical data (NIfTI, DICOM, NRRD with an anatomical space) "
+                 "the patient's superior direction, or anterior when --eye looks along it)");
   app.add_option("--fov", flags.fov, "Vertical field of view in degrees (default: 40)");
   app.add_option("--gpu-cache", flags.gpuCacheMiB, "GPU brick pool in MiB (default: 1024, or what the driver allows)")
       ->check(CLI::PositiveNumber);
@@ -137,10 +141,12 @@ std::string cameraFlags(const render::Camera& camera) {
 render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect) {
   glm::dvec3 lo, hi;
   store.worldBounds(lo, hi);
-  return cameraFromFlags(flags, lo, hi, aspect);
+  // A medical volume's patient axes (io/PatientMetadata.h): its default camera is upright.
+  return cameraFromFlags(flags, lo, hi, io::patientAxesOf(store.index(), store.path()), aspect);
 }
 
-render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& worldLo, const glm::dvec3& worldHi, double aspect) {
+render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& worldLo, const glm::dvec3& worldHi,
+                               const std::optional<io::PatientAxes>& patient, double aspect) {
   double fov = 40.0;
   if (!flags.fov.empty()) {
     char* end = nullptr;
@@ -155,6 +161,11 @@ render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& world
     if (!flags.lookat.empty()) camera.lookat = tripleOrThrow(flags.lookat, "--lookat");
   } else {
     camera = render::frameBox(worldLo, worldHi, fov, aspect);
+    if (patient) {  // upright: superior up, the eye on the anterior side (the face towards the viewer)
+      const double distance = glm::length(camera.eye - camera.lookat);
+      camera.up = patient->superior;
+      camera.eye = camera.lookat + glm::normalize(patient->anterior - glm::dot(patient->anterior, patient->superior) * patient->superior) * distance;
+    }
     if (!flags.lookat.empty()) {  // the framing distance kept: the eye moves with the look-at point
       const glm::dvec3 lookat = tripleOrThrow(flags.lookat, "--lookat");
       camera.eye += lookat - camera.lookat;
@@ -162,7 +173,13 @@ render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& world
     }
   }
   if (!flags.eye.empty()) camera.eye = tripleOrThrow(flags.eye, "--eye");
-  if (!flags.up.empty()) camera.up = tripleOrThrow(flags.up, "--up");
+  if (!flags.up.empty()) {
+    camera.up = tripleOrThrow(flags.up, "--up");
+  } else if (patient && flags.camera.empty() &&
+             glm::length(glm::cross(glm::normalize(camera.lookat - camera.eye), camera.up)) < 1e-6) {
+    // An --eye above or below the patient: superior cannot be up, anterior is (the axial convention).
+    camera.up = patient->anterior;
+  }
   render::cameraFrame(camera, aspect);  // validates: throws for a degenerate camera
   return camera;
 }

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "SourceFlags.h"
@@ -50,13 +51,17 @@ void warnIfIsoOutside(float iso, const std::string& path, float valueMin, float 
 void warnIfIsoOutside(float iso, const io::BrickStore& store);
 // --res (or `flag`) "WxH"; ValueError naming the flag for anything else or a zero size.
 void resolutionFromFlags(const std::string& res, int& width, int& height, const char* flag = "--res");
-// The camera: --camera FILE.json, else one that frames the data; --eye/--lookat/--up/--fov replace
-// what they name.
 // The flags that give `camera` again, ready to paste: "--eye X,Y,Z --lookat X,Y,Z --up X,Y,Z --fov F",
 // every number with all the digits a double needs to come back the same.
 std::string cameraFlags(const render::Camera& camera);
-render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& worldLo, const glm::dvec3& worldHi, double aspect);
+// The camera: --camera FILE.json, else one that frames the data (render::frameBox; for medical data,
+// whose file records the patient's axes (io/PatientMetadata.h), upright: up is superior and the eye
+// lies on the anterior side); --eye/--lookat/--up/--fov replace what they name. Without --up the data's
+// superior stays up (anterior, where --eye looks along superior). InputError for damaged patient axes.
 render::Camera cameraFromFlags(const RenderFlags& flags, const io::BrickStore& store, double aspect);
+// The same for data in the world box [worldLo, worldHi] with the patient's axes if known.
+render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& worldLo, const glm::dvec3& worldHi,
+                               const std::optional<io::PatientAxes>& patient, double aspect);
 render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags);
 
 // Fails before any rendering if `path` cannot be written: not .exr/.png (ValueError), an existing

@@ -8,6 +8,7 @@
 #include "Command.h"
 #include "RenderFlags.h"
 #include "io/Convert.h"
+#include "io/PatientMetadata.h"
 #include "sparse/Error.h"
 #include "viewer/CameraFile.h"
 #include "viewer/DatasetSummary.h"
@@ -29,6 +30,9 @@ Dataset openDataset(const RenderFlags& flags) {
   d.store = std::make_unique<io::BrickStore>(d.input->path(), flags.grid);
   d.iso = isoFromFlags(flags, *d.store).value;
   warnIfIsoOutside(d.iso, *d.store);
+  // Damaged patient axes refuse the file here, while a file opened from the window can still be
+  // refused in a notice (the camera reads them).
+  io::patientAxesOf(d.store->index(), d.store->path());
   return d;
 }
 

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "io/Convert.h"
+#include "io/PatientMetadata.h"
 #include "io/VdbFile.h"
 #include "sparse/Error.h"
 #include "sparse/FccSampler.h"
@@ -201,6 +202,13 @@ TEST(Convert, RealFiles) {
   EXPECT_EQ(s.inputVoxels, 301u * 370u * 316u);
   const FccGrid::Ptr colin = readFccGrid(dir / "colin.vdb");
   EXPECT_NEAR(colin->voxelSize().x(), 0.5, 1e-9);
+  // A NIfTI's patient axes ride along for the default camera; the raw files and the level set have none.
+  const std::optional<PatientAxes> colinAxes = patientAxesOf(*colin, "colin.vdb");
+  ASSERT_TRUE(colinAxes.has_value());
+  EXPECT_EQ(colinAxes->superior, glm::dvec3(0, 0, 1));
+  EXPECT_EQ(colinAxes->anterior, glm::dvec3(0, 1, 0));
+  EXPECT_FALSE(patientAxesOf(*readFccGrid(dir / "engine.vdb"), "engine.vdb").has_value());
+  EXPECT_FALSE(patientAxesOf(*brainGrid, "brain.vdb").has_value());
 
   // The OpenVDB level set keeps its name, class and the values at its even-parity voxels.
   ConvertOptions ls;
@@ -209,6 +217,7 @@ TEST(Convert, RealFiles) {
   EXPECT_EQ(s.gridName, "ls_sphere");
   const FccGrid::Ptr sphere = readFccGrid(dir / "sphere_fcc.vdb", "ls_sphere");
   EXPECT_EQ(sphere->getGridClass(), openvdb::GRID_LEVEL_SET);
+  EXPECT_FALSE(patientAxesOf(*sphere, "sphere_fcc.vdb").has_value());
   const openvdb::FloatGrid::Ptr source = readFloatGrid(data + "/sphere.vdb");
   const FccSampler sphereSampler(*sphere, true);
   int compared = 0;
@@ -219,6 +228,48 @@ TEST(Convert, RealFiles) {
     ++compared;
   }
   EXPECT_EQ(compared, 5000);
+}
+
+// An NRRD in LPS space: streamed and in memory, subsampled and resampled, the file records the patient's
+// axes in its world frame; damaged axes are one line naming the file.
+TEST(Convert, RecordsThePatientAxesOfAnAnatomicalSpace) {
+  TempDir dir;
+  const std::string nrrd = dir / "lps.nrrd";
+  {
+    std::ofstream out(nrrd, std::ios::binary);
+    out << "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 9 9 9\nencoding: raw\nspace: left-posterior-superior\n"
+           "space directions: (-1,0,0) (0,1,0) (0,0,2)\nspace origin: (4,0,0)\n\n";
+    for (int i = 0; i < 9 * 9 * 9; ++i) out.put(char(i % 7 == 0 ? 100 : 0));
+  }
+  for (const bool inMemory : {false, true})
+    for (const char* mode : {"subsample", "resample"}) {
+      ConvertOptions o;
+      o.inMemory = inMemory;
+      o.mode = mode;
+      o.scale = 1.5;
+      const std::string out = dir / (std::string(mode) + (inMemory ? "_mem.vdb" : ".vdb"));
+      convertToFcc(nrrd, out, o);
+      const std::optional<PatientAxes> axes = patientAxesOf(*readFccGrid(out), out);
+      ASSERT_TRUE(axes.has_value()) << out;
+      EXPECT_EQ(axes->superior, glm::dvec3(0, 0, 1)) << out;
+      EXPECT_EQ(axes->anterior, glm::dvec3(0, -1, 0)) << out << ": LPS's anterior is -y (the x flip leaves y)";
+    }
+
+  FccGrid grid;
+  recordPatientAxes(grid, PatientAxes{{0, 0, 2}, {0, -3, 0}});
+  const std::optional<PatientAxes> scaled = patientAxesOf(grid, "g.vdb");
+  ASSERT_TRUE(scaled.has_value());
+  EXPECT_EQ(scaled->superior, glm::dvec3(0, 0, 1)) << "normalised when read";
+  EXPECT_EQ(scaled->anterior, glm::dvec3(0, -1, 0));
+  recordPatientAxes(grid, PatientAxes{{0, 0, 1}, {0, 0, -1}});
+  try {
+    patientAxesOf(grid, "g.vdb");
+    ADD_FAILURE() << "parallel axes were accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("g.vdb: metadata fcc_patient_superior (0,0,1) and fcc_patient_anterior (0,0,-1)"));
+  }
+  grid.removeMeta(meta::kPatientAnterior);
+  EXPECT_THROW(patientAxesOf(grid, "g.vdb"), InputError);
 }
 
 TEST(Convert, BadInputsLeaveNothingBehind) {

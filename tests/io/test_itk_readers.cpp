@@ -23,6 +23,7 @@
 #include "io/Convert.h"
 #include "io/DenseSource.h"
 #include "io/DenseVolume.h"
+#include "io/PatientMetadata.h"
 #include "SameVdbFiles.h"
 #include "io/VdbFile.h"
 #include "sparse/Error.h"
@@ -142,6 +143,14 @@ TEST(ItkReaders, DicomSeriesInAnyFileOrderGivesTheVolumeWithRescaleAndGeometry) 
   const glm::dvec3 expected = kOrigin + rowDirection() * (kSpacing.x * 2.0) + columnDirection() * (kSpacing.y * 3.0) +
                               glm::cross(rowDirection(), columnDirection()) * (kSpacing.z * 4.0);
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(world[a], expected[a], 1e-6) << "axis " << a;
+  // The world is the patient's LPS frame: superior +z, anterior -y, read and recorded for the camera.
+  ASSERT_TRUE(sorted.patient.has_value());
+  EXPECT_EQ(sorted.patient->superior, glm::dvec3(0, 0, 1));
+  EXPECT_EQ(sorted.patient->anterior, glm::dvec3(0, -1, 0));
+  const std::optional<PatientAxes> recorded = patientAxesOf(*grid, "ct.vdb");
+  ASSERT_TRUE(recorded.has_value());
+  EXPECT_EQ(recorded->superior, glm::dvec3(0, 0, 1));
+  EXPECT_EQ(recorded->anterior, glm::dvec3(0, -1, 0));
 }
 
 // A DICOM folder renders through the conversion cache like any input; a changed slice is a changed
@@ -252,6 +261,8 @@ TEST(ItkReaders, SourcesReadBySlicesEqualTheWholeReadAndConvertTheSame) {
     EXPECT_EQ(source->geometry().direction, whole.direction);
     EXPECT_EQ(source->geometry().spacing, whole.spacing);
     EXPECT_EQ(source->geometry().origin, whole.origin);
+    ASSERT_TRUE(source->geometry().patient.has_value());
+    EXPECT_EQ(source->geometry().patient->anterior, glm::dvec3(0, -1, 0));
     expectRunsGiveTheVolume(*source, whole);
   }
   for (const char* name : {"v.mha", "z.mha"}) {
@@ -259,6 +270,7 @@ TEST(ItkReaders, SourcesReadBySlicesEqualTheWholeReadAndConvertTheSame) {
     const auto source = openMetaImage(dir / name);
     const DenseVolume whole = readMetaImage(dir / name);
     EXPECT_EQ(source->geometry().direction, whole.direction);
+    EXPECT_FALSE(whole.patient.has_value()) << "a MetaImage need not be a patient's";
     EXPECT_EQ(whole.at(4, 5, 6), float(rawValue(4, 5, 6)));
     expectRunsGiveTheVolume(*source, whole);
   }

@@ -7,6 +7,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -84,6 +85,9 @@ struct NiftiSpec {
   glm::vec3 pixdim{1.0f};
   int16_t qformCode = 0, sformCode = 0;
   glm::vec3 qoffset{0.0f}, sformTranslation{0.0f};
+  glm::vec3 srow[3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};  // the sform's rotation, by rows
+  glm::vec3 quatern{0.0f};  // quatern_b, c, d
+  float qfac = 1.0f;        // pixdim[0]
   int16_t rank = 3, dim4 = 1;
   float voxOffset = 352.0f;
   int32_t sizeofHdr = 348;
@@ -98,16 +102,17 @@ Bytes niftiFile(const NiftiSpec& s, const Bytes& data) {
   for (int i = 0; i < 8; ++i) store<int16_t>(h, 40 + 2 * i, dim[i], be);
   store<int16_t>(h, 70, s.datatype, be);
   store<int16_t>(h, 72, 32, be);  // bitpix: deliberately not trusted by the reader
-  const float pixdim[4] = {1.0f, s.pixdim.x, s.pixdim.y, s.pixdim.z};
+  const float pixdim[4] = {s.qfac, s.pixdim.x, s.pixdim.y, s.pixdim.z};
   for (int i = 0; i < 4; ++i) store<float>(h, 76 + 4 * i, pixdim[i], be);
   store<float>(h, 108, s.voxOffset, be);
   store<float>(h, 112, s.slope, be);
   store<float>(h, 116, s.intercept, be);
   store<int16_t>(h, 252, s.qformCode, be);
   store<int16_t>(h, 254, s.sformCode, be);
+  for (int i = 0; i < 3; ++i) store<float>(h, 256 + 4 * i, s.quatern[i], be);
   for (int i = 0; i < 3; ++i) store<float>(h, 268 + 4 * i, s.qoffset[i], be);
   for (int row = 0; row < 3; ++row) {
-    store<float>(h, 280 + 16 * row + 4 * row, 1.0f, be);  // an identity rotation: the reader ignores it
+    for (int column = 0; column < 3; ++column) store<float>(h, 280 + 16 * row + 4 * column, s.srow[row][column], be);
     store<float>(h, 280 + 16 * row + 12, s.sformTranslation[row], be);
   }
   std::memcpy(h.data() + 344, s.magic.data(), 4);
@@ -151,6 +156,12 @@ fs::path sharedData(const std::string& name) { return fs::path(FCC_SHARED_DATA_D
 
 double fractionBelow(const DenseVolume& v, float threshold) {
   return double(std::count_if(v.values.begin(), v.values.end(), [&](float x) { return x < threshold; })) / double(v.values.size());
+}
+
+// A unit vector as expected, to rounding.
+void expectNear(const glm::dvec3& got, const glm::dvec3& want, const char* what) {
+  EXPECT_LT(glm::length(got - want), 1e-6) << what << ": (" << got.x << "," << got.y << "," << got.z << "), want ("
+                                           << want.x << "," << want.y << "," << want.z << ")";
 }
 
 class ReaderFiles : public ::testing::Test {
@@ -206,6 +217,10 @@ TEST(RealData, Ch2BetterNiftiGzip) {
   ASSERT_EQ(v.values.size(), size_t(301) * 370 * 316);
   EXPECT_EQ(v.spacing, glm::dvec3(0.5));
   EXPECT_EQ(v.origin, glm::dvec3(-75.0, -107.0, -69.5));  // sform translation
+  // Stored RAS (the sform is 0.5 times the identity): the world's +z is superior, +y anterior.
+  ASSERT_TRUE(v.patient.has_value());
+  EXPECT_EQ(v.patient->superior, glm::dvec3(0.0, 0.0, 1.0));
+  EXPECT_EQ(v.patient->anterior, glm::dvec3(0.0, 1.0, 0.0));
   EXPECT_GT(*std::max_element(v.values.begin(), v.values.end()), 100.0f);
 }
 
@@ -356,6 +371,35 @@ TEST_F(ReaderFiles, NrrdSpaceDirectionsCrlfAndSkips) {
   expectNrrdVolume(readNrrd(file("t.nhdr", textBytes(header + "data file: skipped.raw\r\nbyte skip: -1\r\n"))));
 }
 
+// An anatomical space gives the patient's axes, with the directions' signs (the world keeps every index
+// axis running forward); other spaces and none give none.
+TEST_F(ReaderFiles, NrrdPatientAxesFromAnatomicalSpace) {
+  auto read = [&](const std::string& fields) {
+    const std::string header = "NRRD0004\ntype: short\ndimension: 3\nsizes: 4 3 2\nendian: big\nencoding: raw\n" + fields + "\n";
+    return readNrrd(file("p.nrrd", concat(textBytes(header), encode(kNrrdValues, true))));
+  };
+  EXPECT_FALSE(read("spacings: 1 1 1\n").patient.has_value());
+  EXPECT_FALSE(read("space: scanner-xyz\nspace directions: (1,0,0) (0,1,0) (0,0,1)\n").patient.has_value());
+  struct Case {
+    std::string fields;
+    glm::dvec3 superior, anterior;
+  };
+  const Case cases[] = {
+      {"space: RAS\nspace directions: (1,0,0) (0,1,0) (0,0,1)\n", {0, 0, 1}, {0, 1, 0}},
+      {"space: right-anterior-superior\nspace directions: (1,0,0) (0,-2,0) (0,0,-1)\n", {0, 0, -1}, {0, -1, 0}},
+      {"space: Left-Anterior-Superior\nspace directions: (-1,0,0) (0,1,0) (0,0,1)\n", {0, 0, 1}, {0, 1, 0}},
+      {"space: left-posterior-superior\nspace directions: (0.5,0,0) (0,0.5,0) (0,0,0.5)\n", {0, 0, 1}, {0, -1, 0}},
+      {"space: LPS\nspace directions: (-0.5,0,0) (0,-0.5,0) (0,0,0.5)\n", {0, 0, 1}, {0, 1, 0}},
+      {"space: lps\nspacings: 1 1 1\n", {0, 0, 1}, {0, -1, 0}},
+  };
+  for (const Case& c : cases) {
+    const DenseVolume v = read(c.fields);
+    ASSERT_TRUE(v.patient.has_value()) << c.fields;
+    expectNear(v.patient->superior, c.superior, c.fields.c_str());
+    expectNear(v.patient->anterior, c.anterior, c.fields.c_str());
+  }
+}
+
 TEST_F(ReaderFiles, NrrdTypeSpellingsAndUnsigned) {
   const std::vector<uint8_t> values(24, 7);
   for (const char* type : {"uchar", "unsigned char", "uint8", "uint8_t"}) {
@@ -387,6 +431,54 @@ TEST_F(ReaderFiles, NiftiFloatWithSform) {
   EXPECT_EQ(v.values, values);
   EXPECT_EQ(v.spacing, glm::dvec3(0.5, 0.75, 2.0));
   EXPECT_EQ(v.origin, glm::dvec3(-10.0, 20.0, 30.5));  // sform wins over qform
+}
+
+// The patient's axes in the reader's world frame (the index axes, scaled): from the sform, else the
+// qform, else none; the world frame itself stays as it was (origin, spacing).
+TEST_F(ReaderFiles, NiftiPatientAxesFromSformElseQform) {
+  const std::vector<float> values(24, 1.0f);
+  auto read = [&](const NiftiSpec& spec) { return readNifti(file("p.nii", niftiFile(spec, encode(values, false)))); };
+  NiftiSpec spec;
+  EXPECT_FALSE(read(spec).patient.has_value()) << "both codes 0: no orientation";
+
+  // Stored LPS-like (i runs right to left, j anterior to posterior), anisotropic voxels.
+  spec.pixdim = {0.5f, 2.0f, 3.0f};
+  spec.sformCode = 1;
+  spec.srow[0] = {-0.5f, 0.0f, 0.0f};
+  spec.srow[1] = {0.0f, -2.0f, 0.0f};
+  spec.srow[2] = {0.0f, 0.0f, 3.0f};
+  DenseVolume v = read(spec);
+  ASSERT_TRUE(v.patient.has_value());
+  expectNear(v.patient->superior, {0, 0, 1}, "superior");
+  expectNear(v.patient->anterior, {0, -1, 0}, "anterior");
+  EXPECT_EQ(v.spacing, glm::dvec3(0.5, 2.0, 3.0));
+
+  // Axes permuted (sagittal storage: i posterior to anterior, j inferior to superior, k left to right).
+  spec.srow[0] = {0.0f, 0.0f, 3.0f};
+  spec.srow[1] = {0.5f, 0.0f, 0.0f};
+  spec.srow[2] = {0.0f, 2.0f, 0.0f};
+  v = read(spec);
+  ASSERT_TRUE(v.patient.has_value());
+  expectNear(v.patient->superior, {0, 1, 0}, "superior");
+  expectNear(v.patient->anterior, {1, 0, 0}, "anterior");
+
+  // A singular sform gives none rather than a guess.
+  spec.srow[2] = {0.0f, 0.0f, 0.0f};
+  EXPECT_FALSE(read(spec).patient.has_value());
+
+  // The qform: 90 degrees about z (quaternion (cos 45, 0, 0, sin 45)): i runs anterior, j left; qfac -1
+  // flips k (inferior).
+  spec = NiftiSpec();
+  spec.qformCode = 1;
+  spec.quatern = {0.0f, 0.0f, float(std::sqrt(0.5))};
+  spec.qfac = -1.0f;
+  v = read(spec);
+  ASSERT_TRUE(v.patient.has_value());
+  expectNear(v.patient->superior, {0, 0, -1}, "superior");
+  expectNear(v.patient->anterior, {1, 0, 0}, "anterior");
+  // A zero sform code leaves the qform in charge, whatever the srows say.
+  spec.srow[0] = {0.0f, 0.0f, 0.0f};
+  EXPECT_TRUE(read(spec).patient.has_value());
 }
 
 TEST_F(ReaderFiles, NiftiScaledU8QformGzip) {
