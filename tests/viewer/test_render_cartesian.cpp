@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "CartesianTestSupport.h"
 #include "RenderTestSupport.h"
 #include "io/CartesianBrickStore.h"
 #include "io/VdbFile.h"
@@ -26,6 +27,11 @@ namespace {
 
 using test::GlSuite;
 using test::TempDir;
+using test::kBackground;
+using test::kDim;
+using test::renderCartesian;
+using test::wavy;
+using test::writeCartesianFile;
 
 // Depth (voxels) and normal (degrees) agreement of the device and the CPU raycaster: both find the
 // roots of the same polynomials in float; they differ by rounding only.
@@ -34,45 +40,6 @@ constexpr double kNormalTolDegrees = 0.1;
 // Pixels where one of them hits and the other misses, or they find different roots: only rays that
 // graze the surface (a matter of the last float bits), at most this fraction of the image.
 constexpr double kMaxDisagreeingFraction = 0.005;
-
-constexpr int kDim = 48;  // grid points per axis, [0, 48)^3
-constexpr float kBackground = 2.0f;
-
-// A smooth field with detail at several scales and orientations (values about -1 .. 1).
-float wavy(const glm::ivec3& ijk) {
-  const glm::dvec3 p = glm::dvec3(ijk) / double(kDim);
-  return float(std::sin(7.0 * p.x + 1.0) * std::cos(5.0 * p.y - 0.5) + 0.6 * std::sin(9.0 * p.z + 4.0 * p.x) +
-               0.3 * std::cos(13.0 * p.y + 11.0 * p.z));
-}
-
-// Writes the grid values(ijk) on [0, kDim)^3 with worldFromIndex = translate(origin) * scale(scale).
-void writeCartesianFile(const std::string& path, const std::function<float(const glm::ivec3&)>& values, double scale,
-                        const openvdb::Vec3d& origin, float background = kBackground) {
-  initializeVdb();
-  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(background);
-  auto accessor = grid->getAccessor();
-  for (int z = 0; z < kDim; ++z)
-    for (int y = 0; y < kDim; ++y)
-      for (int x = 0; x < kDim; ++x) accessor.setValue(openvdb::Coord(x, y, z), values(glm::ivec3(x, y, z)));
-  auto xform = openvdb::math::Transform::createLinearTransform(scale);
-  xform->postTranslate(origin);
-  grid->setTransform(xform);
-  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
-  grid->setName("density");
-  io::writeVdbAtomically(path, openvdb::GridCPtrVec{grid}, /*overwrite=*/true);
-}
-
-render::FrameImages renderCartesian(const std::string& path, const std::string& reconstruction, const render::Camera& camera,
-                                    int width, int height, float iso, render::RenderOptions options = {},
-                                    render::FrameStats* stats = nullptr) {
-  const io::CartesianBrickStore store(path);
-  const render::CartesianBrickSource source(store, findReconstruction(reconstruction));
-  options.iso = iso;
-  render::Raycaster raycaster(source, options);
-  const render::FrameStats s = raycaster.render(camera, width, height);
-  if (stats) *stats = s;
-  return raycaster.readImages();
-}
 
 class RenderCartesian : public GlSuite {};
 

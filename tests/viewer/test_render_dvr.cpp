@@ -1,0 +1,246 @@
+// Direct volume rendering on the GPU (shaders/dvr.glsl): the exact chord opacity of a sphere, agreement
+// with the CPU reference integrator (sparse/ReferenceDvr.h) on every lattice, and images independent of
+// skipping and of the cache budgets.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "CartesianTestSupport.h"
+#include "RenderTestSupport.h"
+#include "io/VdbFile.h"
+#include "sparse/CubicBSpline.h"
+#include "sparse/Lattice.h"
+#include "sparse/LatticeSamples.h"
+#include "sparse/ReferenceDvr.h"
+#include "sparse/SynthFields.h"
+#include "viewer/FccBrickSource.h"
+
+namespace fcc {
+namespace {
+
+using test::GlSuite;
+using test::TempDir;
+
+// The bound: the device against the CPU reference, PSNR of premultiplied RGBA.
+constexpr double kMinPsnrDb = 45.0;
+// The sphere: |alpha - (1 - exp(-sigma chord))| per pixel. The transfer table turns the step of the
+// opacity at r^2 into a ramp one entry wide (4e-4 of f here, 0.007 voxels of radius), and float
+// arithmetic adds ~1e-6: well inside.
+constexpr double kChordAlphaTol = 2e-3;
+
+render::RenderOptions dvrOptions(const TransferTable& table) {
+  render::RenderOptions options;
+  options.mode = render::RenderMode::Dvr;
+  options.transfer = std::make_shared<const TransferTable>(table);
+  return options;
+}
+
+render::FrameImages renderSource(const render::BrickSource& source, const render::Camera& camera, int w, int h,
+                                 const render::RenderOptions& options, render::FrameStats* stats = nullptr) {
+  render::Raycaster raycaster(source, options);
+  const render::FrameStats s = raycaster.render(camera, w, h);
+  if (stats) *stats = s;
+  return raycaster.readImages();
+}
+
+double psnr(const render::FrameImages& image, const std::vector<DvrPixel>& reference) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < reference.size(); ++i)
+    for (int c = 0; c < 4; ++c) {
+      const double e = double(image.rgba[4 * i + c]) - reference[i].rgba[c];
+      sum += e * e;
+    }
+  const double mse = sum / double(4 * reference.size());
+  {  // where it is worst, for a failure's message
+    std::size_t worst = 0;
+    double worstE = 0.0;
+    for (std::size_t i = 0; i < reference.size(); ++i) {
+      const double e = std::abs(double(image.rgba[4 * i + 3]) - reference[i].rgba[3]);
+      if (e > worstE) worstE = e, worst = i;
+    }
+    std::printf("worst alpha error %.4g at pixel %zu: device %.6g reference %.6g\n", worstE, worst,
+                double(image.rgba[4 * worst + 3]), reference[worst].rgba[3]);
+  }
+  return mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : 1e9;
+}
+
+// A colour map with an opacity ramp over [lo, hi] (zero below lo), constant above up to `cut` and zero
+// from there: the renderer draws only bricks with data, so the background must be transparent (the
+// Cartesian test grid's is 2, above its data).
+TransferTable rampTable(double lo, double hi, double unitDistance, double cut = 1e30) {
+  std::vector<OpacityPoint> opacity{{lo, 0.0}, {hi, 0.6}};
+  if (cut < 1e30) opacity.insert(opacity.end(), {{cut, 0.6}, {cut, 0.0}});
+  const TransferFunction tf({{lo, {0.1, 0.2, 0.9}}, {0.5 * (lo + hi), {0.9, 0.5, 0.1}}, {hi, {1.0, 1.0, 0.8}}}, opacity);
+  return TransferTable(tf, lo, cut < 1e30 ? cut + 0.05 : hi, 256, OpticalScale{unitDistance, 1.0});
+}
+
+class RenderDvr : public GlSuite {};
+
+// The sphere field f = |x - c|^2 / R^2 (quadratic: the prefiltered box spline reproduces it) with a
+// constant extinction sigma where f < iso and none elsewhere: each ray's opacity is 1 - exp(-sigma
+// chord) of the exact sphere chord, and its colour (white) the same.
+TEST_F(RenderDvr, SphereOpacityIsTheExactChordsExtinction) {
+  TempDir dir;
+  const std::string path = dir / "sphere.vdb";
+  const glm::ivec3 dims(40);
+  const SynthField synth = makeSynthField(SynthSpec{"sphere", dims, 1});
+  const double scale = 0.25;
+  const openvdb::Vec3d origin(1.0, -2.0, 0.5);
+  test::writeFccFile(path, *synth.field, scale, origin);
+  const double R = 0.5 * (dims.x - 1), iso = 0.3;
+  const glm::dvec3 center = glm::dvec3(origin.x(), origin.y(), origin.z()) + scale * glm::dvec3(0.5 * (dims.x - 1));
+  const double radius = scale * R * std::sqrt(iso);
+
+  const double alphaInside = 0.1;  // per world unit (the unit distance)
+  const TransferFunction tf({{0.0, {1.0, 1.0, 1.0}}}, {{0.0, alphaInside}, {iso, alphaInside}, {iso, 0.0}});
+  const TransferTable table(tf, iso - 0.05, iso + 0.05, 256, OpticalScale{1.0, 1.0});
+  const double sigma = extinctionFromOpacity(alphaInside, OpticalScale{1.0, 1.0});
+
+  render::Camera camera;
+  camera.lookat = center + glm::dvec3(0.3, -0.2, 0.1);
+  camera.eye = center + glm::dvec3(9.0, 5.0, 7.0);
+  camera.fovYDegrees = 30.0;
+  const int w = 80, h = 64;
+  const io::BrickStore store(path);
+  const render::FccBrickSource source(store, std::size_t(64) << 20);
+  const render::FrameImages img = renderSource(source, camera, w, h, dvrOptions(table));
+  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+  int inside = 0;
+  double worst = 0.0;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const glm::dvec3 d = render::pixelRay(frame, px, py, w, h);
+      const glm::dvec3 oc = camera.eye - center;
+      const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - radius * radius;
+      const double closest = std::sqrt(std::max(glm::dot(oc, oc) - b * b, 0.0));
+      if (std::abs(closest - radius) < 0.02 * radius) continue;  // grazing: the chord is a matter of rounding
+      const double chord = b * b - c > 0.0 ? 2.0 * std::sqrt(b * b - c) : 0.0;
+      const double expected = 1.0 - std::exp(-sigma * chord);
+      const std::size_t i = std::size_t(py) * w + px;
+      const double alpha = img.rgba[4 * i + 3];
+      worst = std::max(worst, std::abs(alpha - expected));
+      EXPECT_NEAR(alpha, expected, kChordAlphaTol) << "pixel (" << px << ", " << py << ") chord " << chord;
+      EXPECT_NEAR(img.rgba[4 * i], alpha, 1e-5) << "white emission: colour equals opacity";
+      inside += chord > 0.0;
+    }
+  EXPECT_GT(inside, w * h / 10);
+  std::printf("sphere chords: %d rays through it, worst opacity error %.3g\n", inside, worst);
+}
+
+// Every reconstruction of a Cartesian grid, and the FCC box spline, against the CPU reference with a
+// tiny step (0.02 voxels), PSNR of the premultiplied RGBA.
+TEST_F(RenderDvr, MatchesTheCpuReferenceOnEveryLattice) {
+  TempDir dir;
+  const int w = 48, h = 40;
+  const float unitDistance = 4.0f;
+  const TransferTable table = rampTable(0.0, 1.5, unitDistance, /*cut=*/1.95);
+  DvrOptions reference;
+  reference.step = 0.01;  // world units: 0.02 voxels at the scale below
+
+  // Cartesian: the wavy field of the isosurface tests.
+  const std::string ccPath = dir / "wavy.vdb";
+  const double scale = 0.5;
+  test::writeCartesianFile(ccPath, test::wavy, scale, openvdb::Vec3d(-3.0, 1.0, 2.0));
+  const io::CartesianBrickStore ccStore(ccPath);
+  const glm::dmat4 ccIndexFromWorld = glm::inverse(ccStore.worldFromIndex());
+  render::Camera camera;
+  camera.lookat = glm::dvec3(ccStore.worldFromIndex() * glm::dvec4(24.0, 24.0, 24.0, 1.0));
+  camera.eye = camera.lookat + glm::dvec3(30.0, 22.0, 36.0);
+  camera.fovYDegrees = 35.0;
+  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+  for (const char* name : {"trilinear", "tricubic"}) {
+    SCOPED_TRACE(name);
+    const ReconstructionInfo& info = findReconstruction(name);
+    const render::CartesianBrickSource source(ccStore, info);
+    const render::FrameImages gpu = renderSource(source, camera, w, h, dvrOptions(table));
+    const int pad = kBSplinePrefilterReach + 4;
+    LatticeSamples samples(Lattice::Cc, glm::ivec3(-pad), glm::ivec3(test::kDim + 2 * pad), test::kBackground);
+    samples.fill([](const glm::ivec3& ijk) {
+      const bool in = glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) && glm::all(glm::lessThan(ijk, glm::ivec3(test::kDim)));
+      return in ? test::wavy(ijk) : test::kBackground;
+    });
+    samples.prefilter(info.prefilter);
+    const CellBounds bounds(samples);
+    const std::unique_ptr<Reconstruction> recon = makeReconstruction(name);
+    const std::vector<DvrPixel> ref = renderDvrImage(
+        w, h, [&](int x, int y) { return dvrRayFromWorld(ccIndexFromWorld, camera.eye, render::pixelRay(frame, x, y, w, h), 0.0, 200.0); },
+        *recon, samples.accessor(), &bounds, dvrMedium(table), reference);
+    const double db = psnr(gpu, ref);
+    std::printf("%s: PSNR %.1f dB against the CPU reference\n", name, db);
+    EXPECT_GE(db, kMinPsnrDb);
+  }
+
+  // FCC: blobs from `synth`, its coefficients read whole for the CPU.
+  const std::string fccPath = dir / "blobs.vdb";
+  ASSERT_EQ(test::runFccvdb("synth blobs " + fccPath + " --dims 48,48,48 --quiet").status, 0);
+  const io::BrickStore store(fccPath);
+  const render::FccBrickSource source(store, std::size_t(64) << 20);
+  const glm::dmat4 indexFromWorld = glm::inverse(store.worldFromIndex());
+  render::Camera fccCamera;
+  fccCamera.lookat = glm::dvec3(store.worldFromIndex() * glm::dvec4(24.0, 24.0, 24.0, 1.0));
+  fccCamera.eye = fccCamera.lookat + glm::dvec3(60.0, 44.0, 72.0);
+  fccCamera.fovYDegrees = 35.0;
+  const render::CameraFrame fccFrame = render::cameraFrame(fccCamera, double(w) / h);
+  const TransferTable blobTable = rampTable(0.1, 1.2, 4.0);
+  const render::FrameImages gpu = renderSource(source, fccCamera, w, h, dvrOptions(blobTable));
+  const FccGrid::Ptr grid = io::readFccGrid(fccPath);
+  const auto accessor = grid->getConstAccessor();
+  const SiteValue at = [&](const glm::ivec3& ijk) {
+    const glm::ivec3 v = packedVoxelOfSite(ijk);
+    return accessor.getValue(openvdb::Coord(v.x, v.y, v.z))[channelOfSite(ijk)];
+  };
+  // One accessor is not thread-safe: the reference's rows run in parallel, so each reads the grid itself.
+  const SiteValue threadSafeAt = [&](const glm::ivec3& ijk) {
+    const glm::ivec3 v = packedVoxelOfSite(ijk);
+    return grid->tree().getValue(openvdb::Coord(v.x, v.y, v.z))[channelOfSite(ijk)];
+  };
+  (void)at;
+  const std::unique_ptr<Reconstruction> boxSpline = makeReconstruction("boxspline");
+  DvrOptions fccReference;
+  fccReference.step = 0.02;  // world units (one index unit each here)
+  const std::vector<DvrPixel> ref = renderDvrImage(
+      w, h, [&](int x, int y) { return dvrRayFromWorld(indexFromWorld, fccCamera.eye, render::pixelRay(fccFrame, x, y, w, h), 0.0, 300.0); },
+      *boxSpline, threadSafeAt, nullptr, dvrMedium(blobTable), fccReference);
+  const double db = psnr(gpu, ref);
+  std::printf("boxspline: PSNR %.1f dB against the CPU reference\n", db);
+  EXPECT_GE(db, kMinPsnrDb);
+}
+
+// Skipping (bricks, nodes, cells, segments the transfer function maps to zero) and a pool of a few
+// slots change no pixel: bit for bit.
+TEST_F(RenderDvr, SkippingAndSmallCachesChangeNothing) {
+  TempDir dir;
+  const std::string path = test::writeSmallBlobs(dir);
+  const render::Camera camera = test::smallBlobsCamera();
+  const int w = 48, h = 48;
+  const TransferTable table = rampTable(0.2, 1.0, 2.0);
+  const io::BrickStore store(path);
+  render::RenderOptions options = dvrOptions(table);
+  render::FrameStats bigStats, smallStats;
+  const render::FrameImages reference = renderSource(render::FccBrickSource(store, std::size_t(64) << 20), camera, w, h, options, &bigStats);
+  render::RenderOptions noSkip = options;
+  noSkip.skipEmpty = false;
+  render::RenderOptions small = options;
+  small.gpuCacheBytes = small.hostCacheBytes = test::kSmallPoolBytes;
+  const render::FrameImages unskipped = renderSource(render::FccBrickSource(store, std::size_t(64) << 20), camera, w, h, noSkip);
+  const render::FrameImages limited = renderSource(render::FccBrickSource(store, test::kSmallPoolBytes), camera, w, h, small, &smallStats);
+  std::printf("unbounded: %d passes, %llu uploads; 1 MiB: %d passes, %llu uploads\n", bigStats.passes,
+              (unsigned long long)bigStats.bricksUploaded, smallStats.passes, (unsigned long long)smallStats.bricksUploaded);
+  EXPECT_GT(smallStats.bricksUploaded, bigStats.bricksUploaded) << "the small pool must have evicted bricks";
+  int visible = 0;
+  for (std::size_t i = 0; i < reference.rgba.size(); ++i) {
+    ASSERT_EQ(reference.rgba[i], unskipped.rgba[i]) << "skipping changed component " << i;
+    ASSERT_EQ(reference.rgba[i], limited.rgba[i]) << "the small pool changed component " << i;
+    ASSERT_EQ(reference.normalDepth[i], limited.normalDepth[i]) << "the small pool changed depth component " << i;
+    visible += i % 4 == 3 && reference.rgba[i] > 0.05f;
+  }
+  EXPECT_GT(visible, w * h / 10);
+}
+
+}  // namespace
+}  // namespace fcc
