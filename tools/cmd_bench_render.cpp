@@ -140,6 +140,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
             }
             render::RenderOptions options = renderOptionsFromFlags(flags);
             options.iso = iso;
+            data.applyMode(args->flags, options);  // --mode dvr: the transfer function
             options.timeGpu = args->gpuTime;
             resolutionFromFlags(args->workGroup, options.workGroup.x, options.workGroup.y, "--work-group");
 
@@ -195,7 +196,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
                             "\"res\": [%d, %d], \"arc_degrees\": %s, \"iso\": %s, \"frames\": %d, \"fps\": %s, \"frame_ms\": %s, "
                             "\"gpu_frame_ms\": %s, \"passes_per_frame\": %s, \"bricks_streamed_per_second\": %s, "
                             "\"first_frame_seconds\": %s, \"first_frame_bricks\": %llu, \"pool_mib\": %s, "
-                            "\"device\": %s, \"file\": %s}",
+                            "\"device\": %s, \"file\": %s, \"reconstruction\": %s, \"mode\": %s, \"tf\": %s}",
                             i ? "," : "", jsonString(m.variant).c_str(), jsonString(m.layout).c_str(), m.skip ? "true" : "false",
                             jsonString(m.normals).c_str(), width, height, jsonNumber(args->arc).c_str(), jsonNumber(iso).c_str(), m.frames,
                             jsonNumber(m.frames / m.seconds).c_str(), jsonNumber(1e3 * m.seconds / m.frames).c_str(),
@@ -203,14 +204,18 @@ Command addBenchRenderCommand(CLI::App& bench) {
                             jsonNumber(double(m.passes) / m.frames).c_str(), jsonNumber(m.uploads / m.seconds).c_str(),
                             jsonNumber(cold.seconds).c_str(), (unsigned long long)cold.bricksUploaded,
                             jsonNumber(poolMiB).c_str(), jsonString(gl.renderer()).c_str(),
-                            jsonString(args->flags.file).c_str());
+                            jsonString(args->flags.file).c_str(), jsonString(std::string(data.source().reconstruction().name)).c_str(),
+                            jsonString(args->flags.mode).c_str(),
+                            options.mode == render::RenderMode::Dvr ? jsonString(args->flags.tf).c_str() : "null");
               }
               std::printf("\n]\n");
               return 0;
             }
-            std::printf("device: %s\nfile:   %s, iso %g, %dx%d, pool %.0f MiB (%u slots), orbit %g degrees\n",
-                        gl.renderer().c_str(), args->flags.file.c_str(), double(iso), width, height, poolMiB, slotCount,
-                        args->arc);
+            const std::string what = options.mode == render::RenderMode::Dvr ? "dvr, --tf " + args->flags.tf
+                                                                              : "iso " + std::to_string(iso);
+            std::printf("device: %s\nfile:   %s, %s, %s, %dx%d, pool %.0f MiB (%u slots), orbit %g degrees\n",
+                        gl.renderer().c_str(), args->flags.file.c_str(), std::string(data.source().reconstruction().name).c_str(),
+                        what.c_str(), width, height, poolMiB, slotCount, args->arc);
             std::printf("first complete frame (cold caches, %s): %.3f s, %llu bricks streamed (%.0f bricks/s), %d passes\n",
                         coldLayout.c_str(), cold.seconds, (unsigned long long)cold.bricksUploaded, cold.bricksUploaded / cold.seconds,
                         cold.passes);

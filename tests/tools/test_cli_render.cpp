@@ -42,6 +42,29 @@ TEST(CliRender, WritesExrWithTheContractChannelsAndPng) {
   EXPECT_EQ(dir.fileCount(), 3) << "no temporary files left behind";
 }
 
+// A Cartesian .vdb renders as it is with each CC reconstruction; direct volume rendering writes
+// R, G, B, A and Z (depth at opacity 0.5), no normals.
+TEST(CliRender, CartesianReconstructionsAndDvrOutputs) {
+  TempDir dir;
+  const std::string cartesian = std::string(FCC_SHARED_DATA_DIR) + "/sphere.vdb";
+  for (const char* recon : {"trilinear", "tricubic", "tricubic-bspline"}) {
+    const std::string png = dir / (std::string(recon) + ".png");
+    const auto r = runFccvdb("render " + cartesian + " " + png + " --res 32x24 --reconstruction " + recon);
+    if (failedForLackOfGl(r)) GTEST_SKIP() << r.err;
+    EXPECT_EQ(r.status, 0) << recon << ": " << r.err;
+    EXPECT_THAT(r.err, HasSubstr("a level set's zero crossing")) << recon;
+    EXPECT_TRUE(std::filesystem::exists(png)) << recon;
+  }
+  const std::string vdb = dir / "b.vdb", exr = dir / "b.exr";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 32,32,32 --quiet").status, 0);
+  const auto r = runFccvdb("render " + vdb + " " + exr + " --res 40x30 --mode dvr --tf inferno --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  Imf::InputFile file(exr.c_str());
+  std::set<std::string> channels;
+  for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) channels.insert(it.name());
+  EXPECT_EQ(channels, (std::set<std::string>{"R", "G", "B", "A", "Z"}));
+}
+
 // The camera render prints is the one it used: pasted back, it gives the same image bit for bit; by
 // default it looks at the centre of info's world_bounds.
 TEST(CliRender, PrintedCameraReproducesTheImageAndFramesTheWorldBounds) {
@@ -90,6 +113,11 @@ TEST(CliRender, BadInputsGiveOneLineStatus1AndNoOutput) {
       {"render " + vdb + " -o " + (dir / "g.jpg"), ".exr or .png"},
       {"render " + (dir / "nothere.vdb") + " -o " + (dir / "h.png"), "nothere.vdb"},
       {"render " + vdb + " -o " + (dir / "i.png") + " --eye 1,1,1 --lookat 1,1,1", "coincide"},
+      {"render " + cartesian + " -o " + (dir / "j.png") + " --reconstruction nearest", "valid: trilinear"},
+      {"render " + cartesian + " -o " + (dir / "k.png") + " --reconstruction barycentric", "FCC and Cartesian grids only"},
+      {"render " + vdb + " -o " + (dir / "l.png") + " --reconstruction trilinear", "holds no grid of type Tree_float"},
+      {"render " + vdb + " -o " + (dir / "m.png") + " --mode dvr --tf nope", "grayscale"},
+      {"render " + vdb + " -o " + (dir / "n.png") + " --mode dvr --tf " + (dir / "nothere.json"), "nothere.json"},
   };
   for (const Case& c : cases) {
     const auto r = runFccvdb(c.args);
