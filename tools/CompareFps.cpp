@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 
+#include "CpuRenderer.h"
 #include "Median.h"
 #include "io/BrickStore.h"
 #include "io/CartesianBrickStore.h"
@@ -149,7 +150,7 @@ FrameTiming timeFrames(render::Raycaster& raycaster, const render::Camera& camer
 }  // namespace
 
 FpsReport timeCompareRows(const AnalyticField& field, const CompareOptions& options, std::vector<CompareRow>& rows,
-                          const FpsSettings& settings) {
+                          const FpsSettings& asked) {
   FpsReport report;
   if (options.width <= 0 || options.height <= 0) {
     report.line = "fps: not timed (no renders: --res 0x0)";
@@ -163,6 +164,11 @@ FpsReport timeCompareRows(const AnalyticField& field, const CompareOptions& opti
     return report;
   }
   report.renderer = context->describe();
+  FpsSettings settings = asked;
+  if (isCpuRenderer(context->renderer())) {
+    settings.warmupFrames = asked.cpuWarmupFrames;
+    settings.timedFrames = asked.cpuTimedFrames;
+  }
   initializeVdb();
   const ScratchDir scratch;
   const glm::dvec3 e = field.halfExtent();

@@ -5,7 +5,8 @@
 // bounds, as `synth` writes one), whose worldFromIndex puts them where compare sampled them, opened
 // through the brick sources and rendered at compare's size from compare's camera: one cold frame, a
 // few warm-up frames, then timed frames; fps = 1 / the median frame time (the GPU time of the frame's
-// raycasting passes where the context has timer queries, else wall time).
+// raycasting passes where the context has timer queries, else wall time). A software rasterizer
+// (llvmpipe) gets fewer frames (FpsSettings).
 #pragma once
 
 #include <string>
@@ -18,6 +19,9 @@ namespace fcc::cli {
 struct FpsSettings {
   int warmupFrames = 3;
   int timedFrames = 10;
+  // On a software rasterizer (llvmpipe: seconds a frame at 256x256 on a few cores) instead.
+  int cpuWarmupFrames = 1;
+  int cpuTimedFrames = 3;
 };
 
 struct FpsReport {
