@@ -2,17 +2,26 @@
 
 #include "VdbFile.h"
 #include "sparse/BrickBounds.h"
+#include "sparse/CartesianGridBuilder.h"
 #include "sparse/StreamedBuild.h"
 
 namespace fcc::io {
 
-void describeSynthGrid(FccGrid& grid, const std::string& kind, const SynthField& synth, bool prefilter,
-                       const SampleSummary& samples) {
+namespace {
+
+openvdb::math::Transform::Ptr synthTransform(const SynthField& synth) {
   auto xform = openvdb::math::Transform::createLinearTransform();
   const glm::dvec3 s = synth.worldFromIndexScale, o = synth.worldFromIndexOrigin;
   xform->preScale(openvdb::Vec3d(s.x, s.y, s.z));
   xform->postTranslate(openvdb::Vec3d(o.x, o.y, o.z));
-  grid.setTransform(xform);
+  return xform;
+}
+
+}  // namespace
+
+void describeSynthGrid(FccGrid& grid, const std::string& kind, const SynthField& synth, bool prefilter,
+                       const SampleSummary& samples) {
+  grid.setTransform(synthTransform(synth));
   grid.setName(kind);
   FccProvenance p;
   p.coefficients = prefilter;
@@ -43,6 +52,26 @@ SynthSummary writeSynthFile(const std::string& output, const SynthOptions& optio
   summary.activeSamples = built.grid->activeVoxelCount() * 4;
   summary.bricks = built.grid->tree().leafCount();
   summary.boundsBricks = bounds->activeVoxelCount();
+  return summary;
+}
+
+SynthSummary writeSynthCartesianFile(const std::string& output, const SynthOptions& options) {
+  const SynthField synth = makeSynthField(options.spec);
+  initializeVdb();
+  const SampleField& field = *synth.field;
+  // Every point is a sample: the synth fields are functions of the point, whatever its parity.
+  const openvdb::FloatGrid::Ptr grid = buildCartesianGrid(
+      SiteBox{glm::ivec3(0), options.spec.dims - 1}, field.background(),
+      [&](const glm::ivec3& ijk) { return field.sample(ijk); },
+      [&](const SiteBox& box) { return field.mayHoldData(box); });
+  grid->setTransform(synthTransform(synth));
+  grid->setName(options.spec.kind);
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  grid->setSaveFloatAsHalf(options.half);
+  writeVdbAtomically(output, openvdb::GridCPtrVec{grid}, options.overwrite);
+  SynthSummary summary;
+  summary.activeSamples = grid->activeVoxelCount();
+  summary.bricks = grid->tree().leafCount();
   return summary;
 }
 

@@ -1,5 +1,6 @@
 // `fccvdb synth`: a synthetic field (sparse/SynthFields.h) as an FCC grid with its bounds grid in a
-// .vdb, built streamed (sparse/StreamedBuild.h): memory stays bounded whatever the size.
+// .vdb, built streamed (sparse/StreamedBuild.h): memory stays bounded whatever the size. With
+// `--lattice cc`, the same field as a Cartesian float grid, for rendering with a CC reconstruction.
 #pragma once
 
 #include <openvdb/util/NullInterrupter.h>
@@ -34,6 +35,14 @@ struct SynthSummary {
 // Writes the dataset atomically (AtomicOutput); `progress` reports both passes.
 SynthSummary writeSynthFile(const std::string& output, const SynthOptions& options,
                             openvdb::util::NullInterrupter* progress = nullptr);
+
+// `synth --lattice cc`: the same field at every point of the Cartesian embedding of spec.dims (the FCC
+// file holds the half of them with an even coordinate sum), as a FloatGrid fog volume named after the
+// kind, with the FCC file's transform, so both cover the same world box for the same --dims. Built in
+// memory (sparse/CartesianGridBuilder.h: 4 bytes a point); `half` stores 16-bit floats; `prefilter` and
+// `preprocess` do not apply (the renderer prefilters CC data itself). SynthSummary::bricks counts leaves,
+// boundsBricks is 0 (no bounds grid: the renderer computes a Cartesian grid's ranges when it opens it).
+SynthSummary writeSynthCartesianFile(const std::string& output, const SynthOptions& options);
 
 // What a synth dataset's FCC grid carries: the kind as its name, the field's transform, and the
 // metadata (fcc_mode synth:<kind>, the samples' range and histogram).

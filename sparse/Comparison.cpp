@@ -206,6 +206,7 @@ LatticeSampling samplingFor(Lattice lattice, int64_t budget, const glm::dvec3& h
   s.budget = budget;
   s.worldPerIndex = worldPerIndexFor(lattice, budget, halfExtent);
   const glm::ivec3 reach = reachFor(s.worldPerIndex, halfExtent);
+  s.reach = reach;
   s.boxMin = -reach - kPad;
   s.boxDims = boxDimsFor(reach);
   // The box is held densely (LatticeSamples: every integer point, a float each, twice while prefiltered).

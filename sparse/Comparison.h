@@ -25,6 +25,7 @@ struct LatticeSampling {
   int64_t budget;
   double worldPerIndex;  // h
   int64_t samples;       // sites inside the domain
+  glm::ivec3 reach;      // those sites: the lattice's sites ijk with |ijk| <= reach per axis
   glm::ivec3 boxMin, boxDims;  // the sampled index box, padded for stencils and prefilters
 };
 // The largest sampled box (integer points) a comparison holds: 2^26, whose samples take 256 MiB and

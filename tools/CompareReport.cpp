@@ -95,7 +95,7 @@ std::string compareTable(const std::vector<CompareRow>& rows) {
                   r.normalErrorP95Deg, r.renderNormalErrorMeanDeg ? format("%.3f", *r.renderNormalErrorMeanDeg).c_str() : "-",
                   r.renderDepthErrorMean ? format("%.2e", *r.renderDepthErrorMean).c_str() : "-",
                   r.shaded.width > 0 ? std::to_string(r.renderHitMissPixels).c_str() : "-",
-                  std::isfinite(slope) ? format("%.2f", slope).c_str() : "-", r.fps ? format("%.1f", *r.fps).c_str() : "-");
+                  std::isfinite(slope) ? format("%.2f", slope).c_str() : "-", r.fps ? format("%.3g", *r.fps).c_str() : "-");
     out += line;
   }
   return out;

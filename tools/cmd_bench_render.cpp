@@ -11,6 +11,7 @@
 
 #include "BenchOrbit.h"
 #include "Command.h"
+#include "CpuRenderer.h"
 #include "JsonText.h"
 #include "ProgressBar.h"
 #include "RenderData.h"
@@ -55,13 +56,6 @@ Measurement measureOrbit(render::Raycaster& raycaster, const render::Camera& cam
 // What a CPU renderer times unless told otherwise: about a second a frame for llvmpipe on two cores.
 constexpr int kCpuFrames = 8, kCpuWarmup = 1;
 constexpr const char* kCpuRes = "128x128";
-
-// Mesa's software rasterizers: the GPU pipeline run on the CPU, tens to hundreds of times slower.
-bool isCpuRenderer(const std::string& renderer) {
-  for (const char* name : {"llvmpipe", "softpipe", "lavapipe", "SwiftShader"})
-    if (renderer.find(name) != std::string::npos) return true;
-  return false;
-}
 
 }  // namespace
 

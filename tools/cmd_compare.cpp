@@ -12,6 +12,7 @@
 
 #include "Command.h"
 #include "JsonText.h"
+#include "CompareFps.h"
 #include "CompareReport.h"
 #include "io/AtomicOutput.h"
 #include "io/DenseVolume.h"
@@ -106,7 +107,7 @@ Command addCompareCommand(CLI::App& parent) {
     double iso = NAN;
     int points = 20000;
     uint64_t seed = 1;
-    bool json = false, force = false;
+    bool json = false, force = false, noFps = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* app = parent.add_subcommand(
@@ -129,6 +130,9 @@ Command addCompareCommand(CLI::App& parent) {
                   "Only these, comma-separated (default: all: " + reconstructionNames() + ")");
   app->add_option("--res", args->res, "Size WxH of the renders measured against the field's own render (0x0: none)")
       ->capture_default_str();
+  app->add_flag("--no-fps", args->noFps,
+                "Do not time the renderer (by default the cc and fcc rows' data are rendered at --res from the "
+                "renders' camera: fps = 1 / the median frame time; BCC rows stay null)");
   app->add_flag("--json", args->json, "Print the rows as a JSON list instead of the table");
   app->add_option("-o,--output-dir", args->outDir,
                   "Also write compare.json, compare.md, convergence.svg and (with renders) compare_BUDGET.png into DIR");
@@ -164,22 +168,25 @@ Command addCompareCommand(CLI::App& parent) {
             }
             options.keepImages = !args->outDir.empty();  // the images are only for the grids
             RgbImage truth;
-            const std::vector<CompareRow> rows = compareReconstructions(*field, options, &truth);
+            std::vector<CompareRow> rows = compareReconstructions(*field, options, &truth);
             if (rows.empty()) throw ValueError("--reconstruction: nothing to compare");
+            // The frame rates, after the measurements have freed their samples.
+            const FpsReport fps =
+                args->noFps ? FpsReport{false, "", "fps: not timed (--no-fps)"} : timeCompareRows(*field, options, rows);
             // The command as run (its effective flags), the seed and the machine: what a reader needs to
             // measure the same.
             std::string command = "fccvdb compare " + (args->input.empty() ? "--field " + args->field : "--input " + args->input) +
                                   " --budget " + args->budgets + " --iso " + jsonNumber(options.iso) + " --points " +
                                   std::to_string(options.points) + " --seed " + std::to_string(options.seed) + " --res " + args->res;
             if (!args->reconstructions.empty()) command += " --reconstruction " + args->reconstructions;
+            if (args->noFps) command += " --no-fps";
             char settings[1024];
             std::snprintf(settings, sizeof settings,
                           "%d uniform points and %d on the isosurface; the stack schemes' planes normal to z there, "
                           "from the view in the renders; renders %dx%d against the truth's own (img_norm: mean normal "
-                          "error in degrees, img_depth: mean hit distance error, img_hm: pixels where only one hits); "
-                          "fps: not timed (no GPU path for CC/BCC yet)",
+                          "error in degrees, img_depth: mean hit distance error, img_hm: pixels where only one hits)",
                           options.points, rows.front().surfacePoints, width, height);
-            const std::string header = command + "\n" + settings + "\nmachine: " + machineLine() + "\n";
+            const std::string header = command + "\n" + settings + "\n" + fps.line + "\nmachine: " + machineLine() + "\n";
             const std::string table = compareTable(rows);
             if (args->json) std::fputs(compareJson(rows).c_str(), stdout);
             else std::printf("%s%s", header.c_str(), table.c_str());

@@ -1,4 +1,6 @@
-// fccvdb synth KIND OUTPUT.vdb: synthetic FCC datasets for tests and benchmarks.
+// fccvdb synth KIND OUTPUT.vdb [--lattice fcc|cc]: synthetic datasets for tests and benchmarks: an FCC
+// grid (the default), or the same field as a Cartesian float grid (--lattice cc) to compare the
+// reconstructions at equal sample counts.
 #include <cstdio>
 
 #include "Command.h"
@@ -6,23 +8,37 @@
 #include "Triple.h"
 #include "io/SynthFile.h"
 #include "sparse/BrickKernels.h"
+#include "sparse/Error.h"
 
 namespace fcc::cli {
 
 Command addSynthCommand(CLI::App& parent) {
   struct Args {
-    std::string kind, output, dims, device = "auto";
+    std::string kind, output, dims, device = "auto", lattice = "fcc";
     uint64_t seed = 1;
     bool force = false, quiet = false, half = false, noPrefilter = false;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* app = parent.add_subcommand("synth", "Write a synthetic FCC dataset: sphere (quadratic field, exact spherical isosurfaces), marschner-lobb (over [-1,1]^3), blobs (sparse smooth random blobs)");
+  CLI::App* app = parent.add_subcommand(
+      "synth",
+      "Write a synthetic dataset: sphere (quadratic field, exact spherical isosurfaces), marschner-lobb (over [-1,1]^3), "
+      "blobs (sparse smooth random blobs); an FCC grid, or with --lattice cc the same field as a Cartesian float grid. "
+      "Equal samples: FCC with --dims D holds D^3/2 sites; CC with as many samples has D / 2^(1/3) points per axis "
+      "(e.g. FCC --dims 256,256,256 and CC --dims 203,203,203, 8.4 M samples each)");
   app->add_option("KIND", args->kind, "sphere | marschner-lobb | blobs")->required()->check(CLI::IsMember(synthKinds()));
   app->add_option("OUTPUT", args->output, "Output .vdb")->required();
-  app->add_option("--dims", args->dims, "Cartesian embedding size X,Y,Z (the FCC lattice holds half of these points)")->required()->check(tripleValidator("--dims"));
+  app->add_option("--dims", args->dims,
+                  "Cartesian embedding size X,Y,Z: the grid's points (fcc: the lattice holds the half of them with an even "
+                  "coordinate sum; cc: every point is a sample)")
+      ->required()->check(tripleValidator("--dims"));
+  app->add_option("--lattice", args->lattice,
+                  "fcc: an FCC grid with its bounds (streamed, bounded memory); cc: a Cartesian FloatGrid fog volume over "
+                  "the same world box as fcc with the same --dims, for `render --reconstruction trilinear|tricubic|"
+                  "tricubic-bspline` (built in memory: 4 bytes a point)")
+      ->capture_default_str()->check(CLI::IsMember({"fcc", "cc"}));
   app->add_option("--seed", args->seed, "Random seed (blobs)")->capture_default_str();
   app->add_flag("--half", args->half, "Store values as 16-bit floats");
-  app->add_flag("--no-prefilter", args->noPrefilter, "Store raw samples instead of spline coefficients");
+  app->add_flag("--no-prefilter", args->noPrefilter, "Store raw samples instead of spline coefficients (fcc only)");
   app->add_flag("--force", args->force, "Overwrite an existing OUTPUT");
   app->add_flag("--quiet", args->quiet, "No progress bar or summary");
   addDeviceOption(*app, args->device);
@@ -36,6 +52,16 @@ Command addSynthCommand(CLI::App& parent) {
             options.prefilter = !args->noPrefilter;
             options.half = args->half;
             options.overwrite = args->force;
+            if (args->lattice == "cc") {
+              if (args->noPrefilter)
+                throw ValueError("--no-prefilter: a Cartesian grid always stores the samples (the renderer prefilters for tricubic)");
+              const io::SynthSummary summary = io::writeSynthCartesianFile(args->output, options);
+              if (!args->quiet)
+                std::fprintf(stderr, "wrote %s: %s, a Cartesian float grid of %llu samples in %llu leaves\n",
+                             args->output.c_str(), args->kind.c_str(), (unsigned long long)summary.activeSamples,
+                             (unsigned long long)summary.bricks);
+              return 0;
+            }
             const std::unique_ptr<BrickKernels> kernels = preprocessKernels(args->device);
             options.preprocess = kernels.get();
             ProgressBar progress(args->quiet);

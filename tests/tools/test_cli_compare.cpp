@@ -1,9 +1,11 @@
 // `fccvdb compare` as other tools read it: --json rows with the contract's keys, the table's figures
-// (the convergence slope) recomputed from the JSON, -o DIR's files, and one-line errors.
+// (the convergence slope) recomputed from the JSON, -o DIR's files, the fps of the rendered lattices,
+// and one-line errors. Only FpsOfTheLatticesTheRendererStores times the renderer (the rest: --no-fps).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -31,7 +33,7 @@ std::vector<std::map<std::string, std::string>> parseRows(const std::string& jso
 }
 
 TEST(CliCompare, JsonRowsCarryTheContractAndTheTableRecomputesFromThem) {
-  const std::string flags = "compare --field marschner-lobb --budget 3000,24000 --points 400 --res 16x16";
+  const std::string flags = "compare --field marschner-lobb --budget 3000,24000 --points 400 --res 16x16 --no-fps";
   const auto json = runFccvdb(flags + " --json");
   ASSERT_EQ(json.status, 0) << json.err;
   const auto rows = parseRows(json.out);
@@ -68,8 +70,8 @@ TEST(CliCompare, JsonRowsCarryTheContractAndTheTableRecomputesFromThem) {
 
 TEST(CliCompare, OutputDirectoryHoldsTheReport) {
   TempDir dir;
-  const auto r = runFccvdb("compare --field random-waves --budget 2000,8000 --points 300 --res 12x12 --reconstruction "
-                           "trilinear,boxspline -o " + dir.path.string());
+  const auto r = runFccvdb("compare --field random-waves --budget 2000,8000 --points 300 --res 12x12 --no-fps "
+                           "--reconstruction trilinear,boxspline -o " + dir.path.string());
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* f : {"compare.json", "compare.md", "convergence.svg", "compare_2000.png", "compare_8000.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
@@ -95,7 +97,7 @@ TEST(CliCompare, ACartesianVolumeIsTheTruthWithInput) {
         }
   }
   const auto r = runFccvdb("compare --input " + raw + " --dims 20,20,20 --type f32 --budget 4000,16000 --points 300 "
-                           "--res 16x16 --reconstruction tricubic,boxspline --json");
+                           "--res 16x16 --reconstruction tricubic,boxspline --json --no-fps");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto rows = parseRows(r.out);
   ASSERT_EQ(rows.size(), 4u) << r.out;
@@ -110,6 +112,39 @@ TEST(CliCompare, ACartesianVolumeIsTheTruthWithInput) {
   const auto neither = runFccvdb("compare --budget 4000");
   EXPECT_EQ(neither.status, 1);
   EXPECT_THAT(neither.err, HasSubstr("--field"));
+}
+
+// The renderer timed on each row's data: a positive fps for every cc and fcc row (the lattices it
+// stores), null for BCC; the report names the renderer. A measurement, not a benchmark: no figure is
+// asserted beyond being there.
+TEST(CliCompare, FpsOfTheLatticesTheRendererStores) {
+  TempDir dir;
+  const auto r = runFccvdb("compare --field marschner-lobb --budget 2000 --points 200 --res 16x16 --json -o " +
+                           dir.path.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string report = readText(dir / "compare.md");
+  if (report.find("fps: not timed (no usable EGL") != std::string::npos) {
+    if (std::getenv("CI")) FAIL() << "EGL/OpenGL 4.5 is required when CI is set:\n" << report;
+    GTEST_SKIP() << report;
+  }
+  EXPECT_THAT(report, HasSubstr("fps: 1 / the median frame time"));
+  EXPECT_THAT(report, HasSubstr("brick-paged raycaster on "));
+  EXPECT_THAT(report, ::testing::Not(HasSubstr("not timed"))) << report;
+  const auto rows = parseRows(r.out);
+  ASSERT_EQ(rows.size(), 8u) << r.out;
+  int timed = 0;
+  for (const auto& row : rows) {
+    const std::string& lattice = row.at("lattice");
+    if (lattice == "\"bcc\"") {
+      EXPECT_EQ(row.at("fps"), "null") << row.at("reconstruction");
+      continue;
+    }
+    ASSERT_NE(row.at("fps"), "null") << lattice << " " << row.at("reconstruction");
+    EXPECT_GT(std::stod(row.at("fps")), 0.0) << lattice << " " << row.at("reconstruction");
+    ++timed;
+  }
+  EXPECT_EQ(timed, 4);  // cc trilinear, tricubic, tricubic-bspline; fcc boxspline
+  EXPECT_EQ(parseRows(readText(dir / "compare.json")), rows);
 }
 
 TEST(CliCompare, BadInputGivesOneLineListingTheValidValues) {
