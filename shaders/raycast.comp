@@ -30,7 +30,7 @@ layout(std430, binding = 1) readonly buffer PageTable { uint pageEntries[]; };
 // Per node of 16^3 bricks (relative to uBrickMin): 0 if no brick in it needs evaluation.
 layout(std430, binding = 2) readonly buffer NodeTable { uint nodeEntries[]; };
 // What a pass tells the host, read back in one copy: the count of bricks requested this pass; the
-// pixels that show the surface, over every pass of this view (first and last column and row: the
+// pixels that show the surface (DVR: any opacity, a waiting ray's too), over every pass of this view (first and last column and row: the
 // viewer draws only what changed, see viewer/RedrawTracker.h); then the requested bricks' indices
 // (bit 31 set for look-ahead requests). Coherent: noteSurfacePixel reads what other groups wrote.
 layout(std430, binding = 3) coherent buffer Requests {
@@ -291,6 +291,8 @@ void main() {
   if (stopped && !found) {  // resumes next pass; meanwhile the pixel shows what it has so far
     imageStore(uColor, pixel, vec4(st.color, 1.0 - st.transmittance));
     imageStore(uNormalDepth, pixel, vec4(st.transmittance, 0.0, 0.0, st.depthHalf));
+    // What it has so far differs from the background: the viewer's presenter must draw it.
+    if (st.transmittance < 1.0) noteSurfacePixel(pixel);
     return;
   }
   imageStore(uResume, pixel, vec4(-1.0));

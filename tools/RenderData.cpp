@@ -1,6 +1,5 @@
 #include "RenderData.h"
 
-#include <cmath>
 #include <cstdio>
 
 #include "io/TransferFunctionFile.h"
@@ -9,12 +8,6 @@
 #include "viewer/FccBrickSource.h"
 
 namespace fcc::cli {
-namespace {
-
-// Entries of the GPU's transfer table: dvr.glsl steps about one entry of value change at a time.
-constexpr int kTransferTableSize = 256;
-
-}  // namespace
 
 RenderData::RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, bool quiet) {
   const ReconstructionInfo& info = findReconstruction(flags.reconstruction.empty() ? "boxspline" : flags.reconstruction);
@@ -53,26 +46,17 @@ render::Camera RenderData::camera(const RenderFlags& flags, double aspect) const
   return cameraFromFlags(flags, lo, hi, std::nullopt, aspect);  // Cartesian .vdb files carry no patient axes
 }
 
+render::DvrTransfer RenderData::dvrTransfer(const RenderFlags& flags) const {
+  const TransferFunction tf = render::fitTransferFunction(io::transferFunctionFromSpec(flags.tf), *source_);
+  const OpticalScale scale{flags.unitDistance > 0.0 ? flags.unitDistance : render::defaultUnitDistance(*source_),
+                           flags.densityScale};
+  return render::DvrTransfer{flags.tf, tf, scale};
+}
+
 void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& options) const {
   options.mode = render::parseRenderMode(flags.mode);
   if (options.mode != render::RenderMode::Dvr) return;
-  TransferFunction tf = io::transferFunctionFromSpec(flags.tf);
-  if (tf.normalized()) {
-    // From empty space (transparent under every preset's opacity ramp) to the largest value, when the
-    // background lies below the data; else (a level set's outside, for one) the whole range.
-    const float lo = source_->valueMin(), hi = source_->valueMax(), background = source_->background();
-    const bool fromBackground = background > lo && background < hi && background - lo < 0.1f * (hi - lo);
-    tf = tf.stretchedTo(fromBackground ? background : lo, hi);
-  }
-  const double indexUnit = std::cbrt(std::abs(glm::determinant(glm::dmat3(source_->worldFromIndex()))));
-  const OpticalScale scale{flags.unitDistance > 0.0 ? flags.unitDistance : indexUnit, flags.densityScale};
-  // The table spans the function's points (outside them it keeps its end values, as the lookups do).
-  double lo = tf.domainMin(), hi = tf.domainMax();
-  if (!(hi > lo)) {
-    lo -= 0.5;
-    hi += 0.5;
-  }
-  options.transfer = std::make_shared<const TransferTable>(tf, lo, hi, kTransferTableSize, scale);
+  options.transfer = dvrTransfer(flags).table();
   const float background = source_->background();
   if (!options.transfer->zeroOn(background, background))
     std::fprintf(stderr,

@@ -10,6 +10,7 @@
 #include "RenderFlags.h"
 #include "io/CartesianBrickStore.h"
 #include "viewer/BrickSource.h"
+#include "viewer/DvrTransfer.h"
 
 namespace fcc::cli {
 
@@ -32,6 +33,9 @@ class RenderData {
   // (default: the world length of one index unit, the cube root of worldFromIndex's determinant),
   // --density-scale and --stop-opacity. ValueError / InputError (one line) for a bad --tf.
   void applyMode(const RenderFlags& flags, render::RenderOptions& options) const;
+  // --tf fitted to the source with the optical scale of --unit-distance and --density-scale (the
+  // viewer keeps it to rebuild the table). ValueError / InputError (one line) for a bad --tf.
+  render::DvrTransfer dvrTransfer(const RenderFlags& flags) const;
   render::Camera camera(const RenderFlags& flags, double aspect) const;
   // Damaged bricks met so far (FCC files: rendered as holes; a damaged Cartesian leaf fails the frame).
   io::BrickStore::Damage damage() const;

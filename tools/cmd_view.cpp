@@ -6,6 +6,7 @@
 #include <string>
 
 #include "Command.h"
+#include "RenderData.h"
 #include "RenderFlags.h"
 #include "io/Convert.h"
 #include "io/PatientMetadata.h"
@@ -17,22 +18,28 @@
 namespace fcc::cli {
 namespace {
 
-// One file open in the viewer: its FCC input (itself, or its cached or temporary conversion) and store.
+// One file open in the viewer (tools/RenderData.h): an FCC .vdb (itself, or a Cartesian input's
+// cached or temporary conversion), or with a Cartesian --reconstruction a Cartesian .vdb as it is.
 struct Dataset {
-  std::unique_ptr<io::FccInput> input;
-  std::unique_ptr<io::BrickStore> store;
+  std::unique_ptr<RenderData> data;
   float iso = 0.0f;
+  std::optional<render::DvrTransfer> dvr;  // --mode dvr
 };
 
-Dataset openDataset(const RenderFlags& flags) {
+Dataset openDataset(const RenderFlags& flags, std::size_t hostCacheBytes) {
   Dataset d;
-  d.input = openFccInput(flags, false);
-  d.store = std::make_unique<io::BrickStore>(d.input->path(), flags.grid);
-  d.iso = isoFromFlags(flags, *d.store).value;
-  warnIfIsoOutside(d.iso, *d.store);
+  d.data = std::make_unique<RenderData>(flags, hostCacheBytes, false);
+  if (render::parseRenderMode(flags.mode) == render::RenderMode::Dvr) {
+    render::RenderOptions options;
+    d.data->applyMode(flags, options);  // the warnings `render` gives
+    d.dvr = d.data->dvrTransfer(flags);
+  } else {
+    d.iso = d.data->iso(flags).value;
+    d.data->warnIfIsoOutside(d.iso);
+  }
   // Damaged patient axes refuse the file here, while a file opened from the window can still be
   // refused in a notice (the camera reads them).
-  io::patientAxesOf(d.store->index(), d.store->path());
+  if (const io::BrickStore* store = d.data->fccStore()) io::patientAxesOf(store->index(), store->path());
   return d;
 }
 
@@ -46,6 +53,13 @@ RenderFlags flagsForAnotherFile(const RenderFlags& first, const std::string& pat
   f.hostCacheMiB = first.hostCacheMiB;
   f.layout = first.layout;
   f.noCache = first.noCache;
+  // The look stays too: the mode, the transfer function and a Cartesian reconstruction.
+  f.reconstruction = first.reconstruction;
+  f.mode = first.mode;
+  f.tf = first.tf;
+  f.unitDistance = first.unitDistance;
+  f.densityScale = first.densityScale;
+  f.terminationOpacity = first.terminationOpacity;
   return f;
 }
 
@@ -61,7 +75,7 @@ Command addViewCommand(CLI::App& parent) {
   auto args = std::make_shared<Args>();
   args->flags.res = "1280x800";
   CLI::App* app = parent.add_subcommand(
-      "view", "Interactive viewer: orbit/pan/zoom, isovalue and shading panel, live streaming statistics (H for help)");
+      "view", "Interactive viewer: orbit/pan/zoom, isovalue or transfer function and shading panel, live streaming statistics (H for help)");
   addRenderFlags(*app, args->flags);
   app->get_option("--res")->description("Window size WxH");
   app->add_option("--screenshot", args->screenshot,
@@ -80,7 +94,8 @@ Command addViewCommand(CLI::App& parent) {
             // A bad camera file is one line before any window opens (it is read again for the camera).
             if (!args->flags.camera.empty()) render::readCameraFile(args->flags.camera);
 
-            Dataset data = openDataset(args->flags);
+            const render::RenderOptions budgets = renderOptionsFromFlags(args->flags);
+            Dataset data = openDataset(args->flags, budgets.hostCacheBytes);
             render::WindowOptions windowOptions;
             windowOptions.width = width;
             windowOptions.height = height;
@@ -88,13 +103,15 @@ Command addViewCommand(CLI::App& parent) {
             windowOptions.screenshot = args->screenshot;
             windowOptions.frames = args->frames;
             render::ViewerWindow window(windowOptions);
-            const render::RenderOptions budgets = renderOptionsFromFlags(args->flags);
             const auto print = [](const std::string& line) { std::printf("%s\n", line.c_str()); };
             auto newSession = [&](const RenderFlags& flags, const Dataset& d) {
               render::RenderOptions options = budgets;
               options.iso = d.iso;
+              options.terminationOpacity = float(flags.terminationOpacity);
+              const io::BrickStore* store = d.data->fccStore();
               auto session = std::make_unique<render::ViewerSession>(
-                  *d.store, options, cameraFromFlags(flags, *d.store, window.aspect()), render::summarizeDataset(*d.store));
+                  d.data->source(), store, options, d.data->camera(flags, window.aspect()),
+                  store ? render::summarizeDataset(*store) : render::summarizeSource(d.data->source()), d.dvr);
               session->setReport(print);
               return session;
             };
@@ -105,12 +122,12 @@ Command addViewCommand(CLI::App& parent) {
               const RenderFlags nextFlags = flagsForAnotherFile(args->flags, *next);
               Dataset opened;
               try {
-                opened = openDataset(nextFlags);  // a Cartesian file is converted first (progress on stderr)
+                opened = openDataset(nextFlags, budgets.hostCacheBytes);  // a Cartesian file is converted first
               } catch (const std::exception& e) {  // fcc::Error's one line, or anything a reader threw
                 session->notify(std::string("cannot open it: ") + e.what());
                 continue;
               }
-              session.reset();  // before the store it reads
+              session.reset();  // before the data it reads
               data = std::move(opened);
               session = newSession(nextFlags, data);
               window.setTitle("fccvdb — " + *next);

@@ -44,14 +44,22 @@ float SplineProbe::valueAt(const glm::dvec3& xyz) {
   return spline::evaluate(glm::vec3(xyz), [&](const glm::ivec3& ijk) { return coefficientAt(ijk); });
 }
 
-CursorProbe probeSurface(SplineProbe& spline, const glm::dmat4& indexFromWorld, const Camera& camera, int px, int py,
-                         int width, int height, float depth) {
+CursorProbe probePoint(const glm::dmat4& indexFromWorld, const Camera& camera, int px, int py, int width, int height,
+                       float depth) {
   CursorProbe p;
   if (!std::isfinite(depth)) return p;
   const CameraFrame frame = cameraFrame(camera, double(width) / double(height));
   p.hit = true;
   p.pWorld = frame.eye + double(depth) * pixelRay(frame, px, py, width, height);
   p.xyz = glm::dvec3(indexFromWorld * glm::dvec4(p.pWorld, 1.0));
+  return p;
+}
+
+CursorProbe probeSurface(SplineProbe& spline, const glm::dmat4& indexFromWorld, const Camera& camera, int px, int py,
+                         int width, int height, float depth) {
+  CursorProbe p = probePoint(indexFromWorld, camera, px, py, width, height, depth);
+  if (!p.hit) return p;
+  p.values = true;
   p.ijk = nearestFccSite(p.xyz);
   p.valueAtSite = spline.valueAt(glm::dvec3(p.ijk));
   p.valueAtPoint = spline.valueAt(p.xyz);

@@ -16,6 +16,7 @@ namespace fcc::render {
 
 struct CursorProbe {
   bool hit = false;
+  bool values = false;         // ijk and the values below are known (an FCC store: probeSurface)
   glm::dvec3 pWorld{0.0};
   glm::dvec3 xyz{0.0};
   glm::ivec3 ijk{0};           // the FCC site nearest xyz
@@ -40,6 +41,9 @@ class SplineProbe {
 
 // The probe of pixel (px, py) (row 0 at the top) of a width x height image of `camera` whose depth
 // there (distance along the unit ray, +inf on a miss) is `depth`.
+// probePoint: the point only (any lattice; values false).
+CursorProbe probePoint(const glm::dmat4& indexFromWorld, const Camera& camera, int px, int py, int width, int height,
+                       float depth);
 CursorProbe probeSurface(SplineProbe& spline, const glm::dmat4& indexFromWorld, const Camera& camera, int px, int py,
                          int width, int height, float depth);
 

@@ -63,4 +63,40 @@ DatasetSummary summarizeDataset(const io::BrickStore& store, std::size_t maxBric
   return s;
 }
 
+DatasetSummary summarizeSource(const BrickSource& source, std::size_t maxBricks, int bins) {
+  DatasetSummary s;
+  s.file = source.path();
+  s.bricks = source.varyingBrickCount();
+  s.bytes = s.bricks * std::size_t(16 * 16 * 16) * sizeof(float);
+  s.valueMin = source.valueMin();
+  s.valueMax = source.valueMax();
+  s.histogram.assign(std::size_t(std::max(bins, 1)), 0.0f);
+  s.histogramMin = s.valueMin;
+  s.histogramMax = s.valueMax;
+  s.histogramOfSamples = source.reconstruction().prefilter == Prefilter::None;
+  if (source.slotBlock() != SlotBlock::Sites) return s;  // FCC sources: summarizeDataset
+  const std::size_t stride = std::max<std::size_t>(1, (s.bricks + maxBricks - 1) / std::max<std::size_t>(maxBricks, 1));
+  std::vector<LoadedBrick> chunk;
+  std::size_t number = 0;
+  source.forEachVaryingBrick([&](const glm::ivec3& brick, float, float) {
+    if (number++ % stride == 0) chunk.push_back(LoadedBrick{brick, {}});
+  });
+  source.decode(chunk);
+  const float span = s.valueMax - s.valueMin;
+  constexpr int kDim = 20, kLo = 2, kSites = 16;  // the block's points [16b - 2, 16b + 18)^3; the brick's from 2
+  for (const LoadedBrick& b : chunk) {
+    ++s.histogramBricks;
+    for (int z = kLo; z < kLo + kSites; ++z)
+      for (int y = kLo; y < kLo + kSites; ++y)
+        for (int x = kLo; x < kLo + kSites; ++x) {
+          const float v = b.halo[(std::size_t(z) * kDim + y) * kDim + x];
+          const float t = span > 0.0f ? (v - s.valueMin) / span : 0.5f;
+          const int bin = std::clamp(int(t * float(s.histogram.size())), 0, int(s.histogram.size()) - 1);
+          s.histogram[std::size_t(bin)] += 1.0f;
+          ++s.histogramValues;
+        }
+  }
+  return s;
+}
+
 }  // namespace fcc::render

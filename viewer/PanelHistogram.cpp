@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "HistogramAxis.h"
+#include "Srgb.h"
 #include "ViewerSession.h"
 
 namespace fcc::render {
@@ -37,18 +38,27 @@ void ViewerSession::drawHistogram() {
     // Replaces ImGui's own tooltip (the bin's index and log count).
     const int bin = axis.binAt(positionOfMouse());
     char tip[128];
-    std::snprintf(tip, sizeof tip, "%.5g .. %.5g: %.0f %s\nclick: isovalue %.5g", axis.binLow(bin),
-                  axis.binHigh(bin), double(h[std::size_t(bin)]), what, double(axis.valueAt(positionOfMouse())));
+    const double v = axis.valueAt(positionOfMouse());
+    if (dvr_)
+      std::snprintf(tip, sizeof tip, "%.5g .. %.5g: %.0f %s\nopacity at %.5g: %.3g", axis.binLow(bin), axis.binHigh(bin),
+                    double(h[std::size_t(bin)]), what, v, dvr_->function.opacity(v));
+    else
+      std::snprintf(tip, sizeof tip, "%.5g .. %.5g: %.0f %s\nclick: isovalue %.5g", axis.binLow(bin), axis.binHigh(bin),
+                    double(h[std::size_t(bin)]), what, v);
     ImGui::SetTooltip("%s", tip);
     layout_.histogramTooltip = tip;
   }
-  if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
+  if (dvr_) {
+    drawOpacityCurve(x0, x1, outerHi.y - pad.y, outerLo.y + pad.y);
+  } else if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
     // Where a surface can be: the samples' range may reach past the spline's.
     settings_.iso = std::clamp(axis.valueAt(positionOfMouse()), summary_.valueMin, summary_.valueMax);
   }
   // The isovalue's place in the histogram.
-  const float x = x0 + axis.positionOf(settings_.iso) * (x1 - x0);
-  ImGui::GetWindowDrawList()->AddLine(ImVec2(x, outerLo.y), ImVec2(x, outerHi.y), IM_COL32(255, 90, 60, 255), 2.0f);
+  if (!dvr_) {
+    const float x = x0 + axis.positionOf(settings_.iso) * (x1 - x0);
+    ImGui::GetWindowDrawList()->AddLine(ImVec2(x, outerLo.y), ImVec2(x, outerHi.y), IM_COL32(255, 90, 60, 255), 2.0f);
+  }
   // The value axis: the first bin's low end under the left edge, the last bin's high end under the right.
   char low[32], high[32];
   std::snprintf(low, sizeof low, "%.4g", double(axis.min));
@@ -56,6 +66,28 @@ void ViewerSession::drawHistogram() {
   ImGui::TextDisabled("%s", low);
   ImGui::SameLine(std::max(0.0f, outerHi.x - ImGui::GetWindowPos().x - ImGui::CalcTextSize(high).x));
   ImGui::TextDisabled("%s", high);
+}
+
+// DVR: the transfer function's opacity over the histogram's value axis (0 at yLo, 1 at yHi), one
+// segment per pixel column, each in the function's colour there (as shown: sRGB) over a light outline
+// so that dark colours show on the panel.
+void ViewerSession::drawOpacityCurve(float x0, float x1, float yLo, float yHi) {
+  const HistogramAxis axis{summary_.histogramMin, summary_.histogramMax, std::max(1, int(summary_.histogram.size()))};
+  const int n = std::max(2, int(x1 - x0));
+  std::vector<ImVec2> points(std::size_t(n) + 1);
+  std::vector<ImU32> colours(points.size());
+  for (int i = 0; i <= n; ++i) {
+    const float t = float(i) / float(n);
+    const double v = axis.valueAt(t);
+    points[std::size_t(i)] = ImVec2(x0 + t * (x1 - x0), yLo + float(dvr_->function.opacity(v)) * (yHi - yLo));
+    const glm::vec3 c = srgbFromLinear(glm::vec3(dvr_->function.color(v)));
+    colours[std::size_t(i)] = ImGui::ColorConvertFloat4ToU32(ImVec4(c.x, c.y, c.z, 1.0f));
+  }
+  ImDrawList& draw = *ImGui::GetWindowDrawList();
+  const float scale = ImGui::GetIO().FontGlobalScale;
+  draw.AddPolyline(points.data(), int(points.size()), IM_COL32(230, 230, 230, 255), ImDrawFlags_None, 3.5f * scale);
+  for (int i = 0; i < n; ++i)
+    draw.AddLine(points[std::size_t(i)], points[std::size_t(i) + 1], colours[std::size_t(i)], 1.5f * scale);
 }
 
 }  // namespace fcc::render

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cfloat>
+#include <cctype>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -79,7 +80,10 @@ void ViewerSession::drawPanel(int windowHeight) {
   ImGui::PopStyleVar();
   ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);  // room for the labels
 
-  if (ImGui::CollapsingHeader("Isosurface", ImGuiTreeNodeFlags_DefaultOpen)) {
+  layout_.isoLabel = layout_.isoSlider = layout_.transferCombo = layout_.densitySlider = {};
+  if (dvr()) {
+    drawTransferSection();
+  } else if (ImGui::CollapsingHeader("Isosurface", ImGuiTreeNodeFlags_DefaultOpen)) {
     // The value above the slider, not in it: the slider's handle would cover it wherever it stands.
     ImGui::Text("isovalue %.6g", double(settings_.iso));
     layout_.isoLabel = lastItemRect();
@@ -91,7 +95,7 @@ void ViewerSession::drawPanel(int windowHeight) {
     layout_.isoSlider = lastItemRect();
     drawHistogram();
   }
-  if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (!dvr() && ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) {
     // Light direction in camera space as azimuth (from the view axis towards the right) and
     // elevation; written back only when moved, so the default light stays bit-exact.
     const glm::vec3 l = glm::normalize(settings_.lightInCamera);
@@ -108,31 +112,39 @@ void ViewerSession::drawPanel(int windowHeight) {
     if (colourEdit("surface", surface)) settings_.surfaceColor = linearFromSrgb(surface);
     if (colourEdit("background", background, &layout_.backgroundSwatch))
       settings_.background = linearFromSrgb(background);
+  } else if (dvr() && ImGui::CollapsingHeader("Background", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // DVR has no lighting (yet): only the colour the volume is composited over.
+    glm::vec3 background = srgbFromLinear(settings_.background);
+    if (colourEdit("background", background, &layout_.backgroundSwatch))
+      settings_.background = linearFromSrgb(background);
   }
   if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("empty-space skipping", &settings_.skipEmpty);
-    ImGui::Checkbox("finite-difference normals", &settings_.finiteDifferenceNormals);
+    if (!dvr()) ImGui::Checkbox("finite-difference normals", &settings_.finiteDifferenceNormals);
+    row("mode", dvr() ? "direct volume rendering" : "isosurface");
     row("brick layout", brickLayoutName(*raycaster_.options().layout));
   }
   drawCameraSection();
   drawCursorSection();
   if (ImGui::CollapsingHeader("Dataset", ImGuiTreeNodeFlags_DefaultOpen)) {
     row("file", summary_.file);
-    row("grid", summary_.grid);
-    row("lattice", "FCC");
-    row("samples", count(summary_.samples));
+    if (!summary_.grid.empty()) row("grid", summary_.grid);
+    std::string lattice(latticeName(source().reconstruction().lattice));
+    std::transform(lattice.begin(), lattice.end(), lattice.begin(), [](unsigned char c) { return char(std::toupper(c)); });
+    row("lattice", lattice + ", " + std::string(source().reconstruction().name));  // the reconstruction
+    if (summary_.samples > 0) row("samples", count(summary_.samples));
     row("bricks", count(summary_.bricks));
     row("memory", mib(double(summary_.bytes)) + " decoded");
     // Two ranges, named as `fccvdb info` names them: the samples' (the data) and the spline's (the
-    // isovalues with a surface: the slider's range).
+    // isovalues with a surface: the slider's range; for DVR, the values the transfer function meets).
     char range[64];
     if (summary_.hasDataRange) {
       std::snprintf(range, sizeof range, "%.4g .. %.4g", double(summary_.dataMin), double(summary_.dataMax));
       row("data range", range);
     }
     std::snprintf(range, sizeof range, "%.4g .. %.4g", double(summary_.valueMin), double(summary_.valueMax));
-    row("surface range", range);
-    const io::BrickStore::Damage damage = store_.damage();
+    row(dvr() ? "value range" : "surface range", range);
+    const io::BrickStore::Damage damage = store_ ? store_->damage() : io::BrickStore::Damage{};
     if (damage.bricks > 0) {
       // Damaged bricks are never trusted: they show as holes; the panel says so, and which.
       ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 140, 90, 255));
@@ -148,7 +160,8 @@ void ViewerSession::drawPanel(int windowHeight) {
     // Bricks "at the isovalue" are all those whose bounds hold it, in the whole dataset; rays load only
     // those they reach, so a complete image leaves the hidden and off-screen ones unloaded.
     row("resident", count(stats_.resident) + " bricks");
-    row("at isovalue", count(stats_.needed) + " bricks");
+    // In DVR mode: the bricks the transfer function gives an opacity somewhere.
+    row(dvr() ? "needed" : "at isovalue", count(stats_.needed) + " bricks");
     row("not loaded", count(stats_.missing) + (stats_.complete ? " (no ray reaches them)" : " (streaming or unreached)"));
     row("requested", count(stats_.requested) + " (last pass)");
     row("streaming", count(stats_.streaming) + " bricks");
@@ -166,6 +179,29 @@ void ViewerSession::drawPanel(int windowHeight) {
   ImGui::TextDisabled("H or F1: help");
   ImGui::PopItemWidth();
   ImGui::End();
+}
+
+void ViewerSession::drawTransferSection() {
+  if (!ImGui::CollapsingHeader("Transfer function", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  // The presets, and what --tf named when that is a file (kept as it was read).
+  std::vector<std::string> names;
+  if (!isTransferFunctionPreset(initialDvr_->spec)) names.push_back(initialDvr_->spec);
+  for (const std::string& preset : transferFunctionPresetNames()) names.push_back(preset);
+  ImGui::SetNextItemWidth(-1.0f);
+  if (ImGui::BeginCombo("##transfer", settings_.transferFunction.c_str())) {
+    for (const std::string& name : names)
+      if (ImGui::Selectable(name.c_str(), name == settings_.transferFunction)) settings_.transferFunction = name;
+    ImGui::EndCombo();
+  }
+  layout_.transferCombo = lastItemRect();
+  // Logarithmic: the useful scales span decades. Ctrl + click types any value (0: transparent).
+  ImGui::SliderFloat("density scale", &settings_.densityScale, 0.01f, 100.0f, "%.3g",
+                     ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
+  layout_.densitySlider = lastItemRect();
+  char unit[48];
+  std::snprintf(unit, sizeof unit, "%.4g world units", dvr_->scale.unitDistance);
+  row("unit distance", unit);
+  drawHistogram();  // with the opacity curve over it
 }
 
 void ViewerSession::drawCameraSection() {
@@ -210,11 +246,16 @@ void ViewerSession::drawCursorSection() {
   row("world", text);
   std::snprintf(text, sizeof text, "%.5g, %.5g, %.5g", cursor_.xyz.x, cursor_.xyz.y, cursor_.xyz.z);
   row("lattice xyz", text);
+  if (!cursor_.values) {  // a Cartesian source: no spline to evaluate on the CPU here
+    for (const char* label : {"nearest site", "value"}) row(label, "-");
+    return;
+  }
   // The nearest FCC site and the spline's value there: the data's sample for a prefiltered file.
   std::snprintf(text, sizeof text, "%d, %d, %d: %.5g", cursor_.ijk.x, cursor_.ijk.y, cursor_.ijk.z,
                 double(cursor_.valueAtSite));
   row("nearest site", text);
-  std::snprintf(text, sizeof text, "%.5g (the surface's)", double(cursor_.valueAtPoint));
+  // DVR's depth is where the ray's opacity reaches 0.5.
+  std::snprintf(text, sizeof text, dvr() ? "%.5g (at 50%% opacity)" : "%.5g (the surface's)", double(cursor_.valueAtPoint));
   row("value", text);
 }
 

@@ -19,27 +19,60 @@
 #include "OutputNames.h"
 #include "GlProgram.h"
 #include "io/ImageOutput.h"
+#include "sparse/Error.h"
 
 namespace fcc::render {
 namespace {
 constexpr double kRateWindowSeconds = 0.5;
 
+// The options a session's raycaster gets: DVR's mode and table from `dvr`.
+RenderOptions optionsWith(const RenderOptions& options, const std::optional<DvrTransfer>& dvr) {
+  RenderOptions o = options;
+  if (dvr) {
+    o.mode = RenderMode::Dvr;
+    o.transfer = dvr->table();
+  } else if (o.mode == RenderMode::Dvr) {
+    throw ValueError("a viewer session in DVR mode needs its transfer function");
+  }
+  return o;
+}
+
 }  // namespace
 
 ViewerSession::ViewerSession(const io::BrickStore& store, const RenderOptions& options, const Camera& initialCamera,
                              DatasetSummary summary)
-    : store_(store),
-      raycaster_(store, options),
+    : store_(&store),
+      raycaster_(store, optionsWith(options, std::nullopt)),
       camera_(initialCamera),
       initialCamera_(initialCamera),
-      summary_(std::move(summary)),
-      splineProbe_(store),
-      indexFromWorld_(glm::inverse(store.worldFromIndex())) {
+      summary_(std::move(summary)) {
+  init(options);
+}
+
+ViewerSession::ViewerSession(const BrickSource& source, const io::BrickStore* store, const RenderOptions& options,
+                             const Camera& initialCamera, DatasetSummary summary, std::optional<DvrTransfer> dvr)
+    : store_(store),
+      raycaster_(source, optionsWith(options, dvr)),
+      dvr_(dvr),
+      initialDvr_(std::move(dvr)),
+      camera_(initialCamera),
+      initialCamera_(initialCamera),
+      summary_(std::move(summary)) {
+  init(options);
+}
+
+void ViewerSession::init(const RenderOptions& options) {
+  if (store_) splineProbe_.emplace(*store_);
+  indexFromWorld_ = glm::inverse(raycaster_.source().worldFromIndex());
   settings_.iso = raycaster_.iso();
   settings_.lightInCamera = options.lightInCamera;
   settings_.surfaceColor = options.surfaceColor;
   settings_.skipEmpty = options.skipEmpty;
   settings_.finiteDifferenceNormals = options.finiteDifferenceNormals;
+  if (dvr_) {
+    settings_.transferFunction = dvr_->spec;
+    settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
+  }
 }
 
 void ViewerSession::notify(const std::string& text) {
@@ -84,7 +117,7 @@ void ViewerSession::writeScreenshots(const std::string& pngPath, const std::stri
   }
   if (!exrPath.empty()) {
     writeExr(exrPath);
-    if (report_) report_("wrote " + exrPath + " (R,G,B,A,Z,N.X,N.Y,N.Z)");
+    if (report_) report_("wrote " + exrPath + (dvr() ? " (R,G,B,A,Z)" : " (R,G,B,A,Z,N.X,N.Y,N.Z)"));
     written += (written.empty() ? "" : " and ") + exrPath;
   }
   if (!written.empty()) notify("screenshot written: " + written);
@@ -95,7 +128,7 @@ void ViewerSession::writeExr(const std::string& path) {
   const GlTexture2D& shown = raycaster_.colorTexture();
   raycaster_.render(camera_, shown.width(), shown.height());
   const FrameImages images = raycaster_.readImages();
-  const io::RenderedImage image{images.width, images.height, &images.rgba, &images.normalDepth};
+  const io::RenderedImage image{images.width, images.height, &images.rgba, &images.normalDepth, /*normals=*/!dvr()};
   io::writeRenderedImage(path, image, settings_.background);
 }
 
@@ -132,7 +165,7 @@ void ViewerSession::handleInput(int windowHeight) {
     if (ImGui::IsKeyPressed(GLFW_KEY_MINUS, true) || ImGui::IsKeyPressed(GLFW_KEY_KP_SUBTRACT, true)) isoSteps -= kIsoKeyStep;
     if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_UP, true)) isoSteps += kIsoPageStep;
     if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_DOWN, true)) isoSteps -= kIsoPageStep;
-    if (isoSteps != 0.0f)
+    if (isoSteps != 0.0f && !dvr())
       settings_.iso = std::clamp(settings_.iso + isoSteps * range, summary_.valueMin, summary_.valueMax);
     if (ImGui::IsKeyPressed(GLFW_KEY_O, false)) {
       openField_.shown = true;
@@ -167,19 +200,47 @@ void ViewerSession::updateCursor(int fbWidth, int fbHeight, int windowHeight) {
   glGetTextureSubImage(normalDepth.id(), 0, pixel.x, pixel.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof normalDepthTexel,
                        normalDepthTexel);
   checkGl("reading the depth under the cursor");
-  cursor_ = probeSurface(splineProbe_, indexFromWorld_, camera_, pixel.x, pixel.y, normalDepth.width(),
+  cursor_ = splineProbe_ ? probeSurface(*splineProbe_, indexFromWorld_, camera_, pixel.x, pixel.y, normalDepth.width(),
+                                        normalDepth.height(), normalDepthTexel[3])
+                         : probePoint(indexFromWorld_, camera_, pixel.x, pixel.y, normalDepth.width(),
                          normalDepth.height(), normalDepthTexel[3]);
 }
 
 // The raycaster's setters restart the progressive frame, so only what changed is passed on.
-void ViewerSession::applySettings() {
-  const RenderOptions& o = raycaster_.options();
-  if (settings_.iso != raycaster_.iso()) raycaster_.setIso(settings_.iso);
+bool ViewerSession::applySettings() {
+  const RenderOptions o = raycaster_.options();
+  const float iso = raycaster_.iso();
+  const std::shared_ptr<const TransferTable> transfer = o.transfer;
+  if (dvr_) applyTransfer();
+  else if (settings_.iso != iso) raycaster_.setIso(settings_.iso);
   if (settings_.skipEmpty != o.skipEmpty) raycaster_.setSkipEmpty(settings_.skipEmpty);
   if (settings_.finiteDifferenceNormals != o.finiteDifferenceNormals)
     raycaster_.setFiniteDifferenceNormals(settings_.finiteDifferenceNormals);
   if (settings_.surfaceColor != o.surfaceColor) raycaster_.setSurfaceColor(settings_.surfaceColor);
   if (settings_.lightInCamera != o.lightInCamera) raycaster_.setLightInCamera(settings_.lightInCamera);
+  const RenderOptions& now = raycaster_.options();
+  return raycaster_.iso() != iso || now.transfer != transfer || now.skipEmpty != o.skipEmpty ||
+         now.finiteDifferenceNormals != o.finiteDifferenceNormals || now.surfaceColor != o.surfaceColor ||
+         now.lightInCamera != o.lightInCamera;
+}
+
+void ViewerSession::applyTransfer() {
+  if (settings_.transferFunction == dvr_->spec && settings_.densityScale == appliedDensityScale_) return;
+  try {
+    const std::string& name = settings_.transferFunction;
+    // What --tf named (a file's function, kept), else a preset fitted to the source as `render` fits it.
+    const TransferFunction function = name == initialDvr_->spec ? initialDvr_->function
+                                      : name == dvr_->spec     ? dvr_->function
+                                                               : fitTransferFunction(transferFunctionPreset(name), source());
+    DvrTransfer next{name, function, OpticalScale{dvr_->scale.unitDistance, double(settings_.densityScale)}};
+    raycaster_.setTransfer(next.table());  // validates the scale first: a throw changes nothing
+    dvr_ = std::move(next);
+    appliedDensityScale_ = settings_.densityScale;
+  } catch (const Error& e) {  // a typed density scale below 0, say: the settings go back
+    settings_.transferFunction = dvr_->spec;
+    settings_.densityScale = appliedDensityScale_;
+    notify(e.what());
+  }
 }
 
 void ViewerSession::updateStats(const StepStats& step, double imageDrawn, bool uiDrawn) {
@@ -257,10 +318,11 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   updateCursor(fbWidth, fbHeight, windowHeight);
   regions.front() = intersected(united(regions.front(), raycaster_.surfaceRect()), look.imageArea());  // as drawn
   redraw_.drawn(look, raycaster_.surfaceRect(), overlays, uiHash);
-  applySettings();
+  // A setting edited in this frame's panel shows from the next frame: this one is not the final image.
+  const bool changed = applySettings() || settings_.background != look.background;
   updateStats(step, double(coveredArea(regions)) / double(std::max<long long>(1, look.imageArea().area())), !uiShown);
   // This frame's image is complete (its pass was the last one) and its line told a settled frame.
-  shownSettled_ = shownStatusLine_.empty() && settled();
+  shownSettled_ = shownStatusLine_.empty() && settled() && !changed;
   if (std::exchange(screenshotRequested_, false)) {
     // Here, once the frame is drawn: the PNG shows it as the window will (the notice from the next frame on).
     const std::string stem = uniqueTimestampedStem(outputDirectory_, "fccvdb", {".png", ".exr"});

@@ -17,6 +17,7 @@
 #include "Camera.h"
 #include "CursorProbe.h"
 #include "DatasetSummary.h"
+#include "DvrTransfer.h"
 #include "Presenter.h"
 #include "Raycaster.h"
 #include "RedrawTracker.h"
@@ -31,6 +32,10 @@ struct ViewerSettings {
   glm::vec3 background{0.08f, 0.09f, 0.11f};    // linear, as `fccvdb render`'s PNG
   bool skipEmpty = true;
   bool finiteDifferenceNormals = false;
+  // Direct volume rendering (RenderMode::Dvr): the transfer function by name (a preset, or what --tf
+  // named, a file) and the density scale; the GPU's table is rebuilt when either changes.
+  std::string transferFunction;
+  float densityScale = 1.0f;
   bool showPanel = true;
   bool showHelp = false;
 };
@@ -45,6 +50,7 @@ struct ImRectF {
 };
 struct PanelLayout {
   ImRectF isoLabel, isoSlider, histogram, backgroundSwatch;
+  ImRectF transferCombo, densitySlider;  // DVR mode's (empty in isosurface mode, as the iso ones in DVR)
   std::string histogramTooltip;  // the last one shown
   // The help window's rows: the rightmost end of a key's text and the leftmost start of a description.
   float helpKeysRight = 0.0f, helpTextLeft = 0.0f;
@@ -72,8 +78,15 @@ struct ViewerStats {
 class ViewerSession {
  public:
   // Needs a current OpenGL 4.5 context and an ImGui context with its OpenGL backend.
+  // An FCC store, through a host cache of options.hostCacheBytes; isosurface mode.
   ViewerSession(const io::BrickStore& store, const RenderOptions& options, const Camera& initialCamera,
                 DatasetSummary summary);
+  // Any brick source (viewer/BrickSource.h: an FCC store's, or a Cartesian grid rendered as it is);
+  // `store`, the FCC store behind it or null, gives the damage it met and the spline's values under
+  // the cursor. With `dvr`, direct volume rendering with that transfer function (options' mode and
+  // table are set from it); else options.mode must be Iso.
+  ViewerSession(const BrickSource& source, const io::BrickStore* store, const RenderOptions& options,
+                const Camera& initialCamera, DatasetSummary summary, std::optional<DvrTransfer> dvr = std::nullopt);
 
   // One frame into the bound framebuffer of fbWidth x fbHeight pixels; the window is windowHeight
   // high in ImGui's coordinates (they differ on high-DPI screens). Reads this frame's mouse
@@ -132,6 +145,10 @@ class ViewerSession {
   const ViewerSettings& settings() const { return settings_; }
   ViewerSettings& settings() { return settings_; }
   const ViewerStats& stats() const { return stats_; }
+  bool dvr() const { return raycaster_.options().mode == RenderMode::Dvr; }
+  // The transfer function in use (DVR mode; null otherwise): as of the last frame's settings.
+  const DvrTransfer* transfer() const { return dvr_ ? &*dvr_ : nullptr; }
+  const BrickSource& source() const { return raycaster_.source(); }
   const DatasetSummary& summary() const { return summary_; }
   const PanelLayout& panelLayout() const { return layout_; }
   // The panel's width in window coordinates (0 while hidden), where the image is covered.
@@ -141,8 +158,12 @@ class ViewerSession {
   static constexpr float kPanelWidth = 330.0f;  // window units, before the font scale
 
  private:
+  void init(const RenderOptions& options);
   void handleInput(int windowHeight);
-  void applySettings();
+  bool applySettings();  // true when a setting changed the image (it restarts the frame)
+  void applyTransfer();  // DVR: a new table when the transfer function or density scale changed
+  void drawTransferSection();  // viewer/ViewerPanel.cpp
+  void drawOpacityCurve(float x0, float x1, float yLo, float yHi);  // viewer/PanelHistogram.cpp
   void updateCursor(int fbWidth, int fbHeight, int windowHeight);
   void drawCursorSection();
   void updateStats(const StepStats& step, double imageDrawn, bool uiDrawn);
@@ -156,8 +177,10 @@ class ViewerSession {
   std::string statusLine() const;  // of the last frame's figures; empty once settled
   void drawStreamingLine(int windowHeight);
 
-  const io::BrickStore& store_;  // for the damage it met (io/BrickStore.h)
+  const io::BrickStore* store_;  // for the damage it met (io/BrickStore.h) and the cursor's values; may be null
   Raycaster raycaster_;
+  std::optional<DvrTransfer> dvr_, initialDvr_;  // in use; what the session opened with (--tf)
+  float appliedDensityScale_ = 1.0f;
   Presenter presenter_;
   RedrawTracker redraw_;
   Camera camera_, initialCamera_;
@@ -165,7 +188,7 @@ class ViewerSession {
   ViewerStats stats_;
   DatasetSummary summary_;
   PanelLayout layout_;
-  SplineProbe splineProbe_;
+  std::optional<SplineProbe> splineProbe_;  // with a store
   glm::dmat4 indexFromWorld_{1.0};
   CursorProbe cursor_;
   glm::ivec2 cursorPixel_{-1, -1};  // the framebuffer pixel cursor_ was read at

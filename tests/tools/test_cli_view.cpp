@@ -39,28 +39,19 @@ CommandResult runView(const std::string& args) {
   return runShell("xvfb-run -a -s '-screen 0 1280x1024x24' " + std::string(FCC_FCCVDB_EXE) + " view " + args);
 }
 
-TEST(CliView, ScreenshotShowsThePanelAndMatchesRenderOutsideIt) {
-  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
-  TempDir dir;
-  const std::string vdb = dir / "blobs.vdb", shot = dir / "view.png", ref = dir / "render.png";
-  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 96,96,96 --quiet").status, 0);
-  const std::string common = vdb + " --res 800x450 --iso 0.4";
-  const CommandResult view = runView(common + " --screenshot " + shot + " --frames 30");
-  ASSERT_EQ(view.status, 0) << view.err;
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(view.out, m, std::regex("panel (\\d+) px wide"))) << view.out;
-  const int panel = std::stoi(m[1]);
-  ASSERT_EQ(runFccvdb("render " + common + " -o " + ref + " --quiet").status, 0);
-
+// The viewer's PNG screenshot `shot` against `render`'s PNG `ref` of the same view: beside the panel
+// (the first `panel` columns) the pixels agree within kLevelTolerance (but for kOutlierFraction of
+// them), something other than the background shows, and the panel differs from `render`'s image.
+void expectViewMatchesRender(const std::string& shot, const std::string& ref, int panel, int width, int height) {
   Rgb8 a, b;
   ASSERT_TRUE(readPng(shot, a));
   ASSERT_TRUE(readPng(ref, b));
-  ASSERT_EQ(a.width, 800);
-  ASSERT_EQ(a.height, 450);
+  ASSERT_EQ(a.width, width);
+  ASSERT_EQ(a.height, height);
   ASSERT_EQ(b.width, a.width);
   ASSERT_EQ(b.height, a.height);
   ASSERT_GT(panel, 100);
-  ASSERT_LT(panel, a.width / 2);
+  ASSERT_LT(panel, a.width * 2 / 3);
 
   long compared = 0, outliers = 0, surface = 0, panelDiffers = 0;
   int worst = 0;
@@ -79,11 +70,57 @@ TEST(CliView, ScreenshotShowsThePanelAndMatchesRenderOutsideIt) {
       outliers += diff > kLevelTolerance;
       surface += !std::equal(bg, bg + 3, b.pixels.data() + i);
     }
-  std::printf("3D area: %ld pixels, %ld of them surface, %ld beyond %d levels (worst %d); panel: %ld pixels differ\n",
+  std::printf("3D area: %ld pixels, %ld of them not the background, %ld beyond %d levels (worst %d); panel: %ld pixels differ\n",
               compared, surface, outliers, kLevelTolerance, worst, panelDiffers);
-  EXPECT_GT(surface, compared / 50) << "the surface must show";
+  EXPECT_GT(surface, compared / 50) << "the data must show";
   EXPECT_LE(double(outliers), kOutlierFraction * double(compared));
   EXPECT_GT(panelDiffers, long(panel) * a.height / 4) << "the panel must show";
+}
+
+// The panel's width in pixels, as `view --screenshot` prints it.
+int panelWidthOf(const CommandResult& view) {
+  std::smatch m;
+  EXPECT_TRUE(std::regex_search(view.out, m, std::regex("panel (\\d+) px wide"))) << view.out;
+  return m.empty() ? 0 : std::stoi(m[1]);
+}
+
+TEST(CliView, ScreenshotShowsThePanelAndMatchesRenderOutsideIt) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
+  TempDir dir;
+  const std::string vdb = dir / "blobs.vdb", shot = dir / "view.png", ref = dir / "render.png";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 96,96,96 --quiet").status, 0);
+  const std::string common = vdb + " --res 800x450 --iso 0.4";
+  const CommandResult view = runView(common + " --screenshot " + shot + " --frames 30");
+  ASSERT_EQ(view.status, 0) << view.err;
+  ASSERT_EQ(runFccvdb("render " + common + " -o " + ref + " --quiet").status, 0);
+  expectViewMatchesRender(shot, ref, panelWidthOf(view), 800, 450);
+}
+
+// `view --mode dvr` shows the volume as `render --mode dvr` does (premultiplied colour over the
+// background, sRGB), with the transfer function's panel.
+TEST(CliView, DvrScreenshotMatchesRenderOutsideThePanel) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
+  TempDir dir;
+  const std::string vdb = dir / "blobs.vdb", shot = dir / "view.png", ref = dir / "render.png";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 48,48,48 --quiet").status, 0);
+  const std::string common = vdb + " --res 640x360 --mode dvr --tf viridis --density-scale 2";
+  const CommandResult view = runView(common + " --screenshot " + shot + " --frames 5");
+  ASSERT_EQ(view.status, 0) << view.err;
+  ASSERT_EQ(runFccvdb("render " + common + " -o " + ref + " --quiet").status, 0);
+  expectViewMatchesRender(shot, ref, panelWidthOf(view), 640, 360);
+}
+
+// `view --reconstruction trilinear` renders a Cartesian .vdb as it is (no conversion), as `render` does.
+TEST(CliView, CartesianReconstructionRendersTheGridAsItIs) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
+  TempDir dir;
+  const std::string shot = dir / "view.png", ref = dir / "render.png";
+  const std::string common = std::string(FCC_SHARED_DATA_DIR) + "/sphere.vdb --res 640x360 --reconstruction trilinear";
+  const CommandResult view = runView(common + " --screenshot " + shot + " --frames 5");
+  ASSERT_EQ(view.status, 0) << view.err;
+  EXPECT_EQ(view.err.find("converting"), std::string::npos) << view.err;
+  ASSERT_EQ(runFccvdb("render " + common + " -o " + ref + " --quiet").status, 0);
+  expectViewMatchesRender(shot, ref, panelWidthOf(view), 640, 360);
 }
 
 // The EXR screenshot holds the whole view, the columns under the panel (where the viewer casts no

@@ -12,6 +12,8 @@
 
 #include "RenderTestSupport.h"
 #include "viewer/DatasetSummary.h"
+#include "viewer/DvrTransfer.h"
+#include "viewer/FccBrickSource.h"
 #include "viewer/HeadlessViewer.h"
 #include "viewer/ViewerSession.h"
 
@@ -22,6 +24,7 @@ struct SessionHarness {
   // A pool that holds every brick of the small blobs: one load, no eviction (tests not of streaming).
   static constexpr std::size_t kLargePoolBytes = std::size_t(64) << 20;
   io::BrickStore store;
+  std::unique_ptr<render::FccBrickSource> source;  // DVR sessions' (the other constructor)
   render::HeadlessImGui imgui{kWidth, kHeight};
   render::OffscreenTarget target{kWidth, kHeight};
   std::unique_ptr<render::ViewerSession> session;
@@ -39,6 +42,17 @@ struct SessionHarness {
     options.iso = iso;
     options.gpuCacheBytes = gpuCacheBytes;
     session = std::make_unique<render::ViewerSession>(store, options, smallBlobsCamera(), render::summarizeDataset(store));
+  }
+  // A DVR session over an FCC source with the preset `tf` fitted as `view --mode dvr --tf` fits it.
+  SessionHarness(const std::string& path, const std::string& tf, std::size_t gpuCacheBytes = kLargePoolBytes)
+      : store(path), source(std::make_unique<render::FccBrickSource>(store, std::size_t(64) << 20)) {
+    ImGui::GetIO().FontGlobalScale = 0.5f;
+    render::RenderOptions options;
+    options.gpuCacheBytes = gpuCacheBytes;
+    render::DvrTransfer dvr{tf, render::fitTransferFunction(transferFunctionPreset(tf), *source),
+                            OpticalScale{render::defaultUnitDistance(*source), 1.0}};
+    session = std::make_unique<render::ViewerSession>(*source, &store, options, smallBlobsCamera(),
+                                                      render::summarizeDataset(store), std::move(dvr));
   }
 
   // One frame; `input` sets ImGui's input state for it (keys, mouse) before ImGui::NewFrame().

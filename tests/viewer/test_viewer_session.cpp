@@ -326,5 +326,59 @@ TEST_F(ViewerSession, OpenFieldAsksForAnotherFile) {
   EXPECT_EQ(h.session->takeOpenRequest().value_or(""), "/dropped.vdb");
 }
 
+// Pixels right of `firstColumn` that differ from the background (as drawn: sRGB, 8 bits) by more than a level.
+int pixelsNotBackground(const std::vector<unsigned char>& rgba, const glm::vec3& background, int firstColumn) {
+  const glm::vec3 srgb = render::srgbFromLinear(background) * 255.0f;
+  int n = 0;
+  for (int y = 0; y < SessionHarness::kHeight; ++y)
+    for (int x = firstColumn; x < SessionHarness::kWidth; ++x) {
+      const std::size_t i = (std::size_t(y) * SessionHarness::kWidth + x) * 4;
+      bool differs = false;
+      for (int c = 0; c < 3; ++c) differs |= std::abs(float(rgba[i + c]) - srgb[c]) > 1.5f;
+      n += differs;
+    }
+  return n;
+}
+
+// `view --mode dvr`: the volume shows, the panel has the transfer function's controls instead of the
+// isovalue's, and another preset or density scale (a table rebuilt, resident bricks kept) changes
+// the image; a density scale the table refuses goes back, with a notice.
+TEST_F(ViewerSession, DvrShowsTheVolumeAndThePanelChangesTheTransferFunction) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), "grayscale");
+  ASSERT_TRUE(h.session->dvr());
+  ASSERT_TRUE(h.settle());
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  const std::vector<unsigned char> grayscale = h.pixels();
+  const int shown = pixelsNotBackground(grayscale, h.session->settings().background, panel);
+  std::printf("grayscale: %d of %d pixels beside the panel show the volume\n", shown,
+              (SessionHarness::kWidth - panel) * SessionHarness::kHeight);
+  EXPECT_GT(shown, (SessionHarness::kWidth - panel) * SessionHarness::kHeight / 20) << "the volume must show";
+  const render::PanelLayout& layout = h.session->panelLayout();
+  EXPECT_TRUE(layout.isoSlider.empty()) << "no isovalue in DVR mode";
+  EXPECT_FALSE(layout.transferCombo.empty());
+  EXPECT_FALSE(layout.densitySlider.empty());
+  EXPECT_FALSE(layout.histogram.empty()) << "the opacity curve is drawn over the histogram";
+
+  const uint64_t uploaded = h.session->stats().resident;
+  h.session->settings().transferFunction = "viridis";
+  ASSERT_TRUE(h.settle());
+  ASSERT_NE(h.session->transfer(), nullptr);
+  EXPECT_EQ(h.session->transfer()->spec, "viridis");
+  const std::vector<unsigned char> viridis = h.pixels();
+  EXPECT_GT(differingChannels(grayscale, viridis, panel), shown) << "another preset must change the image";
+  EXPECT_GE(h.session->stats().resident, uploaded) << "resident bricks stay";
+
+  h.session->settings().densityScale = 8.0f;
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(h.session->transfer()->scale.densityScale, 8.0);
+  EXPECT_GT(differingChannels(viridis, h.pixels(), panel), 0) << "a density scale must change the image";
+
+  h.session->settings().densityScale = -1.0f;  // as ctrl + click could type it
+  h.frame();
+  EXPECT_EQ(h.session->settings().densityScale, 8.0f) << "a refused scale goes back";
+  EXPECT_NE(h.session->notice().find("density scale"), std::string::npos) << h.session->notice();
+}
+
 }  // namespace
 }  // namespace fcc
