@@ -4,6 +4,12 @@
 // around it, a polynomial of degree 9 along the ray whose first root is found by subdivision with the
 // convex hull (sparse/CcTricubic.h). Both exact to float precision, no fixed step.
 
+#include "CcTrilinear.h"
+#include "CcTricubic.h"
+
+// raycast.comp's, from valueAt below.
+vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick);
+
 #if FCC_RECON == FCC_RECON_TRILINEAR
 FccCorners8 gatherCorners(ivec3 cell) {
   FccCorners8 c;

@@ -8,7 +8,10 @@
 // few bricks beyond it), saves where it stopped, and resumes there in the next pass, so a frame whose
 // working set exceeds the pool completes in several passes. Headers are inlined by fcc_embed.
 #define FCC_GLSL 1
-#include "ReconDispatch.h"
+// Only the chosen reconstruction's header is compiled (in the march file): the ids, the spline's types
+// that pool.glsl gathers in, and the pool.
+#include "ReconIds.h"
+#include "FccSpline.h"
 #include "pool.glsl"
 
 #ifndef FCC_RECON
@@ -80,21 +83,6 @@ const uint kSkip = 0xFFFFFFFFu;
 const uint kMissing = 0xFFFFFFFEu;
 const float kBrickSites = 16.0;
 
-// The reconstruction's value at xyz (index space) inside the brick whose slot is selected; defined by
-// the march file below.
-float valueAt(vec3 xyz);
-
-// Central differences of the reconstruction's value, six evaluations; the points are kept inside the
-// brick (whose halo is what the pool holds).
-vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick) {
-  const float h = 0.125;
-  vec3 lo = vec3(brick * 16) + h, hi = vec3(brick * 16 + 16) - h;
-  vec3 p = clamp(xyz, lo, hi);
-  return vec3(valueAt(p + vec3(h, 0, 0)) - valueAt(p - vec3(h, 0, 0)),
-              valueAt(p + vec3(0, h, 0)) - valueAt(p - vec3(0, h, 0)),
-              valueAt(p + vec3(0, 0, h)) - valueAt(p - vec3(0, 0, h))) / (2.0 * h);
-}
-
 void request(uint brickIndex, bool lookahead) {
   uint bit = 1u << (brickIndex & 31u);
   uint old = atomicOr(requestBits[brickIndex >> 5], bit);
@@ -129,14 +117,25 @@ struct Hit {
 #include "dvr.glsl"
 #endif
 
-// hitInCell(b, cell, o, d, t0, t1, prevSign, hit), the first hit inside one unit cell of a resident
-// brick, valueAt, and for DVR integrateCell(cell, o, d, t0, t1, state): one per lattice, FCC_RECON
-// says which.
+// valueAt, hitInCell(b, cell, o, d, t0, t1, prevSign, hit) (the first hit inside one unit cell of a
+// resident brick; the box spline's is written into marchBrick), and for DVR integrateCell(cell, o, d,
+// t0, t1, state): one per lattice, FCC_RECON says which.
 #if FCC_RECON == FCC_RECON_BOXSPLINE
 #include "march_fcc.glsl"
 #else
 #include "march_cc.glsl"
 #endif
+
+// Central differences of the reconstruction's value, six evaluations; the points are kept inside the
+// brick (whose halo is what the pool holds).
+vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick) {
+  const float h = 0.125;
+  vec3 lo = vec3(brick * 16) + h, hi = vec3(brick * 16 + 16) - h;
+  vec3 p = clamp(xyz, lo, hi);
+  return vec3(valueAt(p + vec3(h, 0, 0)) - valueAt(p - vec3(h, 0, 0)),
+              valueAt(p + vec3(0, h, 0)) - valueAt(p - vec3(0, h, 0)),
+              valueAt(p + vec3(0, 0, h)) - valueAt(p - vec3(0, 0, h))) / (2.0 * h);
+}
 
 // The first hit in the resident brick b between ta and tb, walking its unit cells (those whose slot
 // bounds exclude the isovalue are passed over). prevSign: the sign of s - iso where the ray reaches
@@ -172,7 +171,46 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     if (tExit > tCell && uSkipEmpty != 0 && !(cellBounds.x <= uIso && uIso <= cellBounds.y)) {
       prevSign = cellBounds.x > uIso ? 1 : -1;
     } else if (tExit > tCell) {
+#if FCC_RECON == FCC_RECON_BOXSPLINE
+      // The box spline's cell (its pieces, the cubic along the ray in each, sparse/FccRay.h), written
+      // here rather than called as march_cc.glsl's hitInCell is: as a function the H200 ran it 8%
+      // (512^2) to 13% (1080p) slower (NVIDIA's compiler did not inline it; docs/BENCHMARKS.md).
+      vec4 splits = fcc_cell_splits(cell, o, d, tCell, tExit);
+      float s0 = tCell;
+      // Up to five sub-segments, one per piece the ray passes (in practice at most three).
+      for (int k = 0; k < 5 && s0 < tExit; ++k) {
+        float s1 = k == 0 ? splits.x : (k == 1 ? splits.y : (k == 2 ? splits.z : (k == 3 ? splits.w : tExit)));
+        if (s1 <= s0) continue;
+        // Kept inside this cell, so the stencil stays inside the slot's halo whatever the rounding.
+        FccFrame frame = fcc_locate(clamp(o + (0.5 * (s0 + s1)) * d, vec3(cell), vec3(cell + 1)));
+        FccSamples samples = gatherStencil(frame);
+        FccCubic cubic = fcc_cubic(samples, frame.type);
+        FccRange range = fcc_cubic_range(cubic);
+        if (!(range.lo <= uIso && uIso <= range.hi)) {
+          prevSign = range.lo > uIso ? 1 : -1;
+        } else {
+          vec4 bz = fcc_segment_bernstein(cubic, frame, o, d, s0, s1, uIso);
+          float u = fcc_first_root_after(bz, prevSign);
+          prevSign = bz.w < 0.0 ? -1 : 1;
+          if (u >= 0.0) {
+            hit.t = s0 + u * (s1 - s0);
+            vec3 xyz = o + hit.t * d;
+            if (uFiniteDifferenceNormals != 0) {
+              hit.gradient = finiteDifferenceGradient(xyz, b);
+            } else {
+              // The gradient of this piece's polynomial at the hit, with the stencil already read:
+              // locating the rounded hit point anew could pick a cell outside the slot's halo.
+              frame.q = vec3(frame.axis) * (xyz - vec3(frame.origin));
+              hit.gradient = fcc_gradient(samples, frame);
+            }
+            return true;
+          }
+        }
+        s0 = s1;
+      }
+#else
       if (hitInCell(b, cell, o, d, tCell, tExit, prevSign, hit)) return true;
+#endif
     }
 #endif
     if (tExit >= tb) break;

@@ -7,7 +7,8 @@
 // must stay cheap on a CPU rasteriser too. One invocation per packed voxel; work group y indexes
 // the uploaded slots.
 #define FCC_GLSL 1
-#include "ReconDispatch.h"
+#include "ReconIds.h"
+#include "FccSpline.h"
 #include "pool.glsl"
 
 #ifndef FCC_RECON

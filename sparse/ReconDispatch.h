@@ -21,15 +21,7 @@
 #include "BccShearedTrilinear.h"
 #include "BccBilinear.h"
 
-// Ids, as sparse/Reconstruction.cpp's reconstructionId gives them (tricubic and tricubic-bspline differ
-// in their prefilter only, so they share an evaluation).
-#define FCC_RECON_TRILINEAR 0
-#define FCC_RECON_TRICUBIC 1
-#define FCC_RECON_BARYCENTRIC 2
-#define FCC_RECON_SHEARED_TRILINEAR 3
-#define FCC_RECON_BILINEAR_SPATIAL 4
-#define FCC_RECON_BILINEAR 5
-#define FCC_RECON_BOXSPLINE 6
+#include "ReconIds.h"
 
 #endif  // FCC_RECON_DISPATCH_H
 
