@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -45,6 +47,31 @@ inline render::FrameImages renderFile(const std::string& path, const render::Cam
   const render::FrameStats s = raycaster.render(camera, width, height);
   if (stats) *stats = s;
   return raycaster.readImages();
+}
+
+// A unit-direction ray o + t d against the sphere of `radius` about `center` (world space): whether and
+// where it enters, the chord, and how close it passes (grazing rays are left out by the exactness tests).
+struct SphereRay {
+  double radius = 0.0;
+  bool hits = false;
+  double tEnter = 0.0;   // where it enters (if it hits)
+  double chord = 0.0;    // length inside (0 if it misses)
+  double closest = 0.0;  // distance of the line from the centre
+  // Passes within `fraction` of the radius of the sphere's outline.
+  bool grazes(double fraction) const { return std::abs(closest - radius) < fraction * radius; }
+};
+inline SphereRay sphereRay(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& center, double radius) {
+  const glm::dvec3 oc = o - center;
+  const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - radius * radius;
+  SphereRay r;
+  r.radius = radius;
+  r.closest = std::sqrt(std::max(glm::dot(oc, oc) - b * b, 0.0));
+  r.hits = b * b - c >= 0.0;
+  if (r.hits) {
+    r.tEnter = -b - std::sqrt(b * b - c);
+    r.chord = 2.0 * std::sqrt(b * b - c);
+  }
+  return r;
 }
 
 // "[x0,x1)x[y0,y1)", for failure messages.

@@ -101,13 +101,11 @@ TEST_F(Render, QuadraticFieldGivesTheExactSphere) {
   for (int py = 0; py < h; ++py)
     for (int px = 0; px < w; ++px) {
       const glm::dvec3 d = render::pixelRay(frame, px, py, w, h);
-      const glm::dvec3 oc = camera.eye - center;
-      const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - radius * radius;
-      const double closest = std::sqrt(std::max(glm::dot(oc, oc) - b * b, 0.0));
-      if (std::abs(closest - radius) < kGrazingFraction * radius) continue;
+      const test::SphereRay ray = test::sphereRay(camera.eye, d, center, radius);
+      if (ray.grazes(kGrazingFraction)) continue;
       ++compared;
       const std::size_t i = std::size_t(py) * w + px;
-      const bool expectHit = b * b - c >= 0.0;
+      const bool expectHit = ray.hits;
       const bool hit = img.rgba[4 * i + 3] > 0.5f;
       ASSERT_EQ(hit, expectHit) << "pixel (" << px << ", " << py << ")";
       if (!hit) {
@@ -115,7 +113,7 @@ TEST_F(Render, QuadraticFieldGivesTheExactSphere) {
         continue;
       }
       ++hits;
-      const double t = -b - std::sqrt(b * b - c);
+      const double t = ray.tEnter;
       const double depthErrorVoxels = std::abs(img.normalDepth[4 * i + 3] - t) / scale;
       const glm::dvec3 nExpected = glm::normalize(camera.eye + t * d - center);
       const glm::dvec3 n(img.normalDepth[4 * i], img.normalDepth[4 * i + 1], img.normalDepth[4 * i + 2]);

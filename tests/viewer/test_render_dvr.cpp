@@ -115,11 +115,9 @@ TEST_F(RenderDvr, SphereOpacityIsTheExactChordsExtinction) {
   for (int py = 0; py < h; ++py)
     for (int px = 0; px < w; ++px) {
       const glm::dvec3 d = render::pixelRay(frame, px, py, w, h);
-      const glm::dvec3 oc = camera.eye - center;
-      const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - radius * radius;
-      const double closest = std::sqrt(std::max(glm::dot(oc, oc) - b * b, 0.0));
-      if (std::abs(closest - radius) < 0.02 * radius) continue;  // grazing: the chord is a matter of rounding
-      const double chord = b * b - c > 0.0 ? 2.0 * std::sqrt(b * b - c) : 0.0;
+      const test::SphereRay ray = test::sphereRay(camera.eye, d, center, radius);
+      if (ray.grazes(0.02)) continue;  // grazing: the chord is a matter of rounding
+      const double chord = ray.chord;
       const double expected = 1.0 - std::exp(-sigma * chord);
       const std::size_t i = std::size_t(py) * w + px;
       const double alpha = img.rgba[4 * i + 3];
