@@ -78,6 +78,8 @@ uniform int uSkipEmpty;       // 0: evaluate every resident brick (for measuring
 uniform int uFiniteDifferenceNormals;  // 1: central differences of the value (the paper's Table 5 baseline)
 uniform vec3 uSurfaceColor;
 uniform vec3 uLightDir;       // world, unit, towards the light
+uniform vec3 uClipLo;         // the clipping box, world space (+-1e30: none); rays are cut to it
+uniform vec3 uClipHi;
 
 const uint kSkip = 0xFFFFFFFFu;
 const uint kMissing = 0xFFFFFFFEu;
@@ -251,8 +253,12 @@ void main() {
 
   vec3 boxLo = vec3(uBrickMin) * kBrickSites, boxHi = vec3(uBrickMin + uBrickDims) * kBrickSites;
   vec2 span = clipBox(o, invD, boxLo, boxHi);
-  float t = max(max(span.x, 0.0), tResume);
-  float tEnd = span.y;
+  // The clipping box in world space, where t is the distance along the unit direction too.
+  vec3 dClip = vec3(abs(dirWorld.x) < kTiny ? kTiny : dirWorld.x, abs(dirWorld.y) < kTiny ? kTiny : dirWorld.y,
+                    abs(dirWorld.z) < kTiny ? kTiny : dirWorld.z);
+  vec2 clip = clipBox(uEye, 1.0 / dClip, uClipLo, uClipHi);
+  float t = max(max(max(span.x, clip.x), 0.0), tResume);
+  float tEnd = min(span.y, clip.y);
   bool found = false;
   bool stopped = false;
   int lookahead = uLookahead;

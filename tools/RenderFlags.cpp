@@ -63,6 +63,9 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("--stop-opacity", flags.terminationOpacity, "DVR: a ray stops once this opaque (and reads no brick behind)")
       ->capture_default_str()->check(CLI::Range(0.5, 1.0));
+  app.add_option("--clip", flags.clip,
+                 "Clipping box X0,Y0,Z0,X1,Y1,Z1 in world space (info --json gives the data's world_bounds): rays are "
+                 "cut to it, bricks outside it are never read");
   addRawFlags(app, flags.source);
   app.add_flag("--no-cache", flags.noCache, "Convert a Cartesian FILE into a temporary file instead of the user cache ($XDG_CACHE_HOME/fccvdb)");
   app.add_option("--iso", flags.iso,
@@ -190,6 +193,17 @@ render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags) {
   const std::size_t ram = pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : (std::size_t(4) << 30);
   options.hostCacheBytes = flags.hostCacheMiB > 0.0 ? mibToBytes(flags.hostCacheMiB) : ram / 4;
   options.gpuCacheBytes = flags.gpuCacheMiB > 0.0 ? mibToBytes(flags.gpuCacheMiB) : (std::size_t(1) << 30);
+  if (!flags.clip.empty()) {
+    double v[6];
+    char rest = 0;
+    const int n = std::sscanf(flags.clip.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &rest);
+    bool finite = n == 6;
+    for (int i = 0; i < 6 && finite; ++i) finite = std::isfinite(v[i]);
+    if (!finite)
+      throw ValueError("--clip '" + flags.clip + "': expected six finite numbers X0,Y0,Z0,X1,Y1,Z1 (the box's corners, world space)");
+    options.clipLo = glm::min(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]));
+    options.clipHi = glm::max(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]));
+  }
   if (flags.layout != "auto") {
     try {
       options.layout = render::parseBrickLayout(flags.layout);

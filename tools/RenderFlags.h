@@ -30,10 +30,11 @@ struct RenderFlags {
   double unitDistance = 0.0;                     // DVR: world units; 0: one index unit of the grid
   double densityScale = 1.0;                     // DVR: multiplies every extinction
   double terminationOpacity = 0.995;             // DVR: a ray stops once this opaque
+  std::string clip;                              // "X0,Y0,Z0,X1,Y1,Z1": the clipping box, world space
 };
 
 // Registers FILE, --grid, --iso, --res, --camera, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache, --layout,
-// --reconstruction, --mode, --tf, --unit-distance, --density-scale, --stop-opacity, the raw input flags
+// --reconstruction, --mode, --tf, --unit-distance, --density-scale, --stop-opacity, --clip, the raw input flags
 // (--dims, --type, ...) and --no-cache.
 void addRenderFlags(CLI::App& app, RenderFlags& flags);
 

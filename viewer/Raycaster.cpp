@@ -90,7 +90,7 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
                        at("uNormalFromIndex"), at("uIso"), at("uBrickMin"), at("uBrickDims"), at("uNodeDims"),
                        at("uPass"), at("uFirstPass"), at("uFirstColumn"), at("uColumnOffset"),
                        at("uRequestCapacity"), at("uLookahead"), at("uSkipEmpty"), at("uFiniteDifferenceNormals"),
-                       at("uSurfaceColor"), at("uLightDir")};
+                       at("uSurfaceColor"), at("uLightDir"), at("uClipLo"), at("uClipHi")};
   slotBoundsProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/slot_bounds.comp"), defines),
                                           "shaders/slot_bounds.comp");
   slotBoundsPassUniform_ = slotBoundsProgram_.uniformLocation("uPass");
@@ -174,13 +174,36 @@ void Raycaster::setIso(float iso) {
   updateNeeded();
 }
 
+void Raycaster::setClip(const glm::dvec3& lo, const glm::dvec3& hi) {
+  options_.clipLo = lo;
+  options_.clipHi = hi;
+  ++settings_;
+  updateNeeded();
+}
+
 void Raycaster::updateNeeded() {
+  // The clipping box in index space: the bounding box of its corners (conservative for a rotated
+  // transform), clamped so that a box of +-1e30 stays finite in float.
+  const glm::dmat4 indexFromWorld = glm::inverse(source_.worldFromIndex());
+  glm::dvec3 clipLo(std::numeric_limits<double>::max()), clipHi(-std::numeric_limits<double>::max());
+  const bool clipEmpty = glm::any(glm::greaterThan(options_.clipLo, options_.clipHi));
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 pWorld((corner & 1) ? options_.clipHi.x : options_.clipLo.x, (corner & 2) ? options_.clipHi.y : options_.clipLo.y,
+                            (corner & 4) ? options_.clipHi.z : options_.clipLo.z);
+    const glm::dvec3 xyz = glm::clamp(glm::dvec3(indexFromWorld * glm::dvec4(pWorld, 1.0)), glm::dvec3(-1e12), glm::dvec3(1e12));
+    clipLo = glm::min(clipLo, xyz);
+    clipHi = glm::max(clipHi, xyz);
+  }
+  const auto insideClip = [&](const glm::ivec3& brick) {
+    const glm::dvec3 lo = glm::dvec3(brick) * 16.0, hi = lo + 16.0;
+    return !clipEmpty && glm::all(glm::lessThanEqual(lo, clipHi)) && glm::all(glm::greaterThanEqual(hi, clipLo));
+  };
   std::vector<glm::ivec3> needed;
   const float iso = options_.iso;
   const TransferTable* transfer = options_.mode == RenderMode::Dvr ? options_.transfer.get() : nullptr;
   source_.forEachVaryingBrick([&](const glm::ivec3& brick, float lo, float hi) {
     const bool holds = transfer ? !transfer->zeroOn(lo, hi) : (lo <= iso && iso <= hi);
-    if (!options_.skipEmpty || holds) needed.push_back(brick);
+    if ((!options_.skipEmpty || holds) && insideClip(brick)) needed.push_back(brick);
   });
   residency_->setNeeded(needed);
   uploadPageTable();
@@ -309,6 +332,10 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   glProgramUniform1i(p, u.finiteDifferenceNormals, options_.finiteDifferenceNormals ? 1 : 0);
   glProgramUniform3fv(p, u.surfaceColor, 1, &options_.surfaceColor.x);
   glProgramUniform3fv(p, u.lightDir, 1, &lightDir.x);
+  const glm::vec3 clipLo(glm::clamp(options_.clipLo, glm::dvec3(-1e30), glm::dvec3(1e30)));
+  const glm::vec3 clipHi(glm::clamp(options_.clipHi, glm::dvec3(-1e30), glm::dvec3(1e30)));
+  glProgramUniform3fv(p, u.clipLo, 1, &clipLo.x);
+  glProgramUniform3fv(p, u.clipHi, 1, &clipHi.x);
 
   pool_->bind();
   pageTable_->bindBase(GL_SHADER_STORAGE_BUFFER, 1);

@@ -43,6 +43,9 @@ struct RenderOptions {
   // scale applied); bricks and cells whose values it maps to zero extinction are skipped.
   std::shared_ptr<const TransferTable> transfer;
   float terminationOpacity = 0.995f;  // DVR: a ray stops once this opaque (and asks for no brick behind)
+  // The clipping box, world space: rays are cut to it and bricks outside it are never loaded. The
+  // default holds everything.
+  glm::dvec3 clipLo{-1e30}, clipHi{1e30};
   std::size_t gpuCacheBytes = std::size_t(512) << 20;   // the brick pool
   std::size_t hostCacheBytes = std::size_t(512) << 20;  // decoded bricks in host memory
   // How the pool stores bricks (viewer/BrickPool.h); unset: chooseBrickLayout below.
@@ -107,6 +110,8 @@ class Raycaster {
   void setIso(float iso);
   // DVR: another transfer function (the same: bricks needed change, resident ones stay).
   void setTransfer(std::shared_ptr<const TransferTable> transfer);
+  // Another clipping box (world space; lo > hi on an axis: nothing shows). Bricks needed change.
+  void setClip(const glm::dvec3& lo, const glm::dvec3& hi);
   float iso() const { return options_.iso; }
 
   // Renders a complete frame, passes and uploads until no ray waits for a brick.
@@ -206,7 +211,7 @@ class Raycaster {
   // raycast.comp's uniform locations, looked up once.
   struct Uniforms {
     GLint resolution, eye, forward, right, up, indexFromWorld, normalFromIndex, iso, brickMin, brickDims, nodeDims,
-        pass, firstPass, firstColumn, columnOffset, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir;
+        pass, firstPass, firstColumn, columnOffset, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir, clipLo, clipHi;
   } uniforms_{};
   std::unique_ptr<GlReadbackBuffer> passResultsReadback_;
   const uint32_t* passResults_ = nullptr;  // the last pass's header and first requests, as read back

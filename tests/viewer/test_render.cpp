@@ -425,3 +425,64 @@ TEST_F(Render, EveryBrickLayoutGivesTheSameImage) {
 
 }  // namespace
 }  // namespace fcc
+
+namespace fcc {
+namespace {
+
+// The clipping box cuts rays (a hit inside the box is the unclipped hit; every hit lies inside it) and
+// bricks (outside it none is loaded); a box around everything changes no pixel.
+TEST_F(Render, ClippingBoxCutsRaysAndBricks) {
+  TempDir dir;
+  const std::string path = writeSmallBlobs(dir);
+  const render::Camera camera = smallBlobsCamera();
+  const int w = 64, h = 64;
+  const io::BrickStore store(path);
+  glm::dvec3 lo, hi;
+  store.worldBounds(lo, hi);
+  render::RenderOptions options;
+  render::FrameStats fullStats, cutStats;
+  const render::FrameImages full = renderFile(path, camera, w, h, 0.3f, options, &fullStats);
+  options.clipLo = lo - 10.0;
+  options.clipHi = hi + 10.0;
+  const render::FrameImages around = renderFile(path, camera, w, h, 0.3f, options);
+  EXPECT_EQ(full.rgba, around.rgba) << "a box around everything changes no pixel";
+  EXPECT_EQ(full.normalDepth, around.normalDepth);
+
+  const glm::dvec3 mid = 0.5 * (lo + hi);
+  options.clipLo = lo - 10.0;
+  options.clipHi = glm::dvec3(mid.x, hi.y + 10.0, hi.z + 10.0);  // the half x < mid.x
+  const render::FrameImages cut = renderFile(path, camera, w, h, 0.3f, options, &cutStats);
+  EXPECT_LT(cutStats.bricksUploaded, fullStats.bricksUploaded) << "bricks outside the box are not loaded";
+  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+  int kept = 0, inside = 0;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const std::size_t i = std::size_t(py) * w + px;
+      const glm::dvec3 d = render::pixelRay(frame, px, py, w, h);
+      if (cut.rgba[4 * i + 3] > 0.5f) {
+        const glm::dvec3 p = camera.eye + double(cut.normalDepth[4 * i + 3]) * d;
+        EXPECT_LE(p.x, mid.x + 1e-3) << "pixel (" << px << ", " << py << ") hits outside the box";
+        ++inside;
+      }
+      if (full.rgba[4 * i + 3] > 0.5f) {
+        const glm::dvec3 p = camera.eye + double(full.normalDepth[4 * i + 3]) * d;
+        if (p.x < mid.x - 1e-2) {  // the unclipped hit is inside: the clipped ray finds it too
+          ASSERT_GT(cut.rgba[4 * i + 3], 0.5f) << "pixel (" << px << ", " << py << ")";
+          EXPECT_NEAR(cut.normalDepth[4 * i + 3], full.normalDepth[4 * i + 3], 1e-3) << "pixel (" << px << ", " << py << ")";
+          ++kept;
+        }
+      }
+    }
+  EXPECT_GT(kept, w * h / 20);
+  EXPECT_GT(inside, kept) << "the cut opens the blobs: surfaces behind the cut show";
+  std::printf("clip: %d hits kept, %d inside the half box; bricks %llu of %llu\n", kept, inside,
+              (unsigned long long)cutStats.bricksUploaded, (unsigned long long)fullStats.bricksUploaded);
+
+  options.clipLo = glm::dvec3(1.0);
+  options.clipHi = glm::dvec3(0.0);  // empty
+  const render::FrameImages none = renderFile(path, camera, w, h, 0.3f, options);
+  for (std::size_t i = 3; i < none.rgba.size(); i += 4) ASSERT_EQ(none.rgba[i], 0.0f) << "an empty box shows nothing";
+}
+
+}  // namespace
+}  // namespace fcc
