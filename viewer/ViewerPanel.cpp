@@ -125,6 +125,7 @@ void ViewerSession::drawPanel(int windowHeight) {
     row("brick layout", brickLayoutName(*raycaster_.options().layout));
   }
   drawCameraSection();
+  drawClipSection();
   drawCursorSection();
   if (ImGui::CollapsingHeader("Dataset", ImGuiTreeNodeFlags_DefaultOpen)) {
     row("file", summary_.file);
@@ -231,6 +232,32 @@ void ViewerSession::drawCameraSection() {
   const ImVec2 corner = ImGui::GetCursorScreenPos();
   ImGui::Dummy(ImVec2(side, side));
   drawAxes(*ImGui::GetWindowDrawList(), ImVec2(corner.x + 0.5f * side, corner.y + 0.5f * side), 0.4f * side, camera_);
+}
+
+// An axis-aligned box in world space, per axis a range over the data's extent (padded by a tenth):
+// rays are cut to it and bricks outside it are never loaded (Raycaster::setClip). Until a range is
+// dragged the box has no limits (the sliders show the data's extent), so that an unclipped view is
+// the unclipped image, bit for bit.
+void ViewerSession::drawClipSection() {
+  if (!ImGui::CollapsingHeader("Clipping box")) return;
+  glm::dvec3 dataLo, dataHi;
+  raycaster_.source().worldBounds(dataLo, dataHi);
+  const glm::dvec3 pad = 0.1 * (dataHi - dataLo) + 1e-6;
+  const char* const axes[3] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) {
+    const float lo = float(dataLo[a] - pad[a]), hi = float(dataHi[a] + pad[a]);
+    float range[2] = {float(std::clamp(settings_.clipLo[a], double(lo), double(hi))),
+                      float(std::clamp(settings_.clipHi[a], double(lo), double(hi)))};
+    if (ImGui::DragFloatRange2(axes[a], &range[0], &range[1], (hi - lo) / 400.0f, lo, hi, "%.4g", "%.4g",
+                               ImGuiSliderFlags_AlwaysClamp)) {
+      settings_.clipLo[a] = range[0];
+      settings_.clipHi[a] = range[1];
+    }
+  }
+  if (ImGui::Button("no clipping")) {
+    settings_.clipLo = glm::dvec3(-1e30);
+    settings_.clipHi = glm::dvec3(1e30);
+  }
 }
 
 void ViewerSession::drawCursorSection() {

@@ -69,6 +69,8 @@ void ViewerSession::init(const RenderOptions& options) {
   settings_.surfaceColor = options.surfaceColor;
   settings_.skipEmpty = options.skipEmpty;
   settings_.finiteDifferenceNormals = options.finiteDifferenceNormals;
+  settings_.clipLo = options.clipLo;  // +-1e30 (the default): no box
+  settings_.clipHi = options.clipHi;
   if (dvr_) {
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
@@ -218,10 +220,11 @@ bool ViewerSession::applySettings() {
     raycaster_.setFiniteDifferenceNormals(settings_.finiteDifferenceNormals);
   if (settings_.surfaceColor != o.surfaceColor) raycaster_.setSurfaceColor(settings_.surfaceColor);
   if (settings_.lightInCamera != o.lightInCamera) raycaster_.setLightInCamera(settings_.lightInCamera);
+  if (settings_.clipLo != o.clipLo || settings_.clipHi != o.clipHi) raycaster_.setClip(settings_.clipLo, settings_.clipHi);
   const RenderOptions& now = raycaster_.options();
   return raycaster_.iso() != iso || now.transfer != transfer || now.skipEmpty != o.skipEmpty ||
          now.finiteDifferenceNormals != o.finiteDifferenceNormals || now.surfaceColor != o.surfaceColor ||
-         now.lightInCamera != o.lightInCamera;
+         now.lightInCamera != o.lightInCamera || now.clipLo != o.clipLo || now.clipHi != o.clipHi;
 }
 
 void ViewerSession::applyTransfer() {

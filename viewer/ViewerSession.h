@@ -36,6 +36,8 @@ struct ViewerSettings {
   // named, a file) and the density scale; the GPU's table is rebuilt when either changes.
   std::string transferFunction;
   float densityScale = 1.0f;
+  // The clipping box, world space (RenderOptions::clipLo/clipHi); the panel's sliders span the data.
+  glm::dvec3 clipLo{-1e30}, clipHi{1e30};
   bool showPanel = true;
   bool showHelp = false;
 };
@@ -170,6 +172,7 @@ class ViewerSession {
   void drawPanel(int windowHeight);  // viewer/ViewerPanel.cpp
   void drawHelp();
   void drawCameraSection();
+  void drawClipSection();
   void drawHistogram();  // viewer/PanelHistogram.cpp
   void drawAxisIndicator(int windowHeight);
   void drawNotice();

@@ -380,5 +380,26 @@ TEST_F(ViewerSession, DvrShowsTheVolumeAndThePanelChangesTheTransferFunction) {
   EXPECT_NE(h.session->notice().find("density scale"), std::string::npos) << h.session->notice();
 }
 
+// The panel's clipping box: dragging a range cuts the image (fewer pixels show the blobs); "no
+// clipping" gives the unclipped image back, bit for bit.
+TEST_F(ViewerSession, ClippingBoxCutsTheViewAndComesBack) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  ASSERT_TRUE(h.settle());
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  const std::vector<unsigned char> whole = h.pixels();
+  const int shown = pixelsNotBackground(whole, h.session->settings().background, panel);
+  h.session->settings().clipLo = glm::dvec3(-1e30);
+  h.session->settings().clipHi = glm::dvec3(48.0, 1e30, 1e30);  // the blobs' half x < 48
+  ASSERT_TRUE(h.settle());
+  const int cut = pixelsNotBackground(h.pixels(), h.session->settings().background, panel);
+  std::printf("clip: %d pixels show the blobs, %d with the half box\n", shown, cut);
+  EXPECT_LT(cut, shown) << "half the blobs must show fewer pixels";
+  EXPECT_GT(cut, 0);
+  h.session->settings().clipHi = glm::dvec3(1e30);
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(differingChannels(whole, h.pixels(), panel), 0) << "no box: the unclipped image again";
+}
+
 }  // namespace
 }  // namespace fcc
