@@ -152,7 +152,12 @@ std::vector<CartesianBrickStore::BrickRange> CartesianBrickStore::computeBrickRa
   });
   std::vector<BrickRange> ranges;
   if (activeBrickBox_.empty()) return ranges;
-  for (int bz = activeBrickBox_.min().z(); bz <= activeBrickBox_.max().z(); ++bz)
+  // One layer of bricks a task (a 2048^3 grid's box holds 2 M bricks), concatenated in z order.
+  const int zFirst = activeBrickBox_.min().z(), layers = activeBrickBox_.max().z() - zFirst + 1;
+  std::vector<std::vector<BrickRange>> byLayer(static_cast<std::size_t>(layers));
+  tbb::parallel_for(0, layers, [&](int layer) {
+    const int bz = zFirst + layer;
+    std::vector<BrickRange>& out = byLayer[std::size_t(layer)];
     for (int by = activeBrickBox_.min().y(); by <= activeBrickBox_.max().y(); ++by)
       for (int bx = activeBrickBox_.min().x(); bx <= activeBrickBox_.max().x(); ++bx) {
         const glm::ivec3 brick(bx, by, bz);
@@ -176,8 +181,10 @@ std::vector<CartesianBrickStore::BrickRange> CartesianBrickStore::computeBrickRa
           lo = std::min(lo, r.x);
           hi = std::max(hi, r.y);
         });
-        if (varies) ranges.push_back({brick, lo, hi});
+        if (varies) out.push_back({brick, lo, hi});
       }
+  });
+  for (const std::vector<BrickRange>& layer : byLayer) ranges.insert(ranges.end(), layer.begin(), layer.end());
   return ranges;
 }
 
