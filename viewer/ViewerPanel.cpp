@@ -240,12 +240,10 @@ void ViewerSession::drawCameraSection() {
 // the unclipped image, bit for bit.
 void ViewerSession::drawClipSection() {
   if (!ImGui::CollapsingHeader("Clipping box")) return;
-  glm::dvec3 dataLo, dataHi;
-  raycaster_.source().worldBounds(dataLo, dataHi);
-  const glm::dvec3 pad = 0.1 * (dataHi - dataLo) + 1e-6;
+  const glm::dvec3 pad = 0.1 * (dataHi_ - dataLo_) + 1e-6;
   const char* const axes[3] = {"x", "y", "z"};
   for (int a = 0; a < 3; ++a) {
-    const float lo = float(dataLo[a] - pad[a]), hi = float(dataHi[a] + pad[a]);
+    const float lo = float(dataLo_[a] - pad[a]), hi = float(dataHi_[a] + pad[a]);
     float range[2] = {float(std::clamp(settings_.clipLo[a], double(lo), double(hi))),
                       float(std::clamp(settings_.clipHi[a], double(lo), double(hi)))};
     if (ImGui::DragFloatRange2(axes[a], &range[0], &range[1], (hi - lo) / 400.0f, lo, hi, "%.4g", "%.4g",

@@ -64,6 +64,7 @@ ViewerSession::ViewerSession(const BrickSource& source, const io::BrickStore* st
 void ViewerSession::init(const RenderOptions& options) {
   if (store_) splineProbe_.emplace(*store_);
   indexFromWorld_ = glm::inverse(raycaster_.source().worldFromIndex());
+  raycaster_.source().worldBounds(dataLo_, dataHi_);  // a walk of the topology: not once a frame
   settings_.iso = raycaster_.iso();
   settings_.lightInCamera = options.lightInCamera;
   settings_.surfaceColor = options.surfaceColor;

@@ -193,6 +193,7 @@ class ViewerSession {
   PanelLayout layout_;
   std::optional<SplineProbe> splineProbe_;  // with a store
   glm::dmat4 indexFromWorld_{1.0};
+  glm::dvec3 dataLo_{0.0}, dataHi_{0.0};  // the data's world box, once (the clip sliders span it)
   CursorProbe cursor_;
   glm::ivec2 cursorPixel_{-1, -1};  // the framebuffer pixel cursor_ was read at
   double panDepth_ = 0.0;           // along the view, of the point a pan grabbed (0: the look-at point's)
