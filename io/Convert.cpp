@@ -297,9 +297,9 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   const StreamedBuild::Times& t = built.times;
   char text[400];
   std::snprintf(text, sizeof text,
-                "pass 1 %.2f s (blocks %.2f, prepare %.2f, build %.2f, window %.2f, bounds %.2f, prune %.2f); "
-                "pass 2 (rebuild and write) %.2f s",
-                pass1, t.blocks, t.prepare, t.build, t.window, t.bounds, t.prune, pass2);
+                "pass 1 %.2f s (blocks %.2f, prepare %.2f, build %.2f, window %.2f, bounds %.2f of which kernels %.2f, "
+                "prune %.2f); pass 2 (rebuild and write) %.2f s",
+                pass1, t.blocks, t.prepare, t.build, t.window, t.bounds, t.boundsKernels, t.prune, pass2);
   summary.timings = text;
   if (source) {  // the dense input read once, into the slab scratch, before pass 1
     std::snprintf(text, sizeof text, "read into slabs %.2f s; ", slabbing);

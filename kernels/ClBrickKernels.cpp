@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include "embedded_kernels.h"
 #include "sparse/BBDomainPoints.h"
@@ -113,44 +114,62 @@ struct ClBrickKernels::Staged {
     }
   }
 
+  // In parallel (a launch's 4096 bricks read 110 k neighbours: one thread made it most of the host
+  // time on a GPU): each neighbour's leaf or constant, the distinct leaves sorted into slots, then
+  // the table and the copies.
   void stage(const FccGrid& grid, const Coord* bricks, std::size_t count) {
-    neighbours.clear();
-    neighbours.reserve(count * 27);
-    // Slots first (one pass, in order), then the copies into them in parallel.
-    std::unordered_map<const FccLeaf*, cl_int> slots;
-    std::vector<std::pair<openvdb::Vec4f, cl_int>> constantSlots;
-    std::vector<const FccLeaf*> slotLeaves;  // null for a constant's slot
-    auto accessor = grid.getConstAccessor();
-    for (std::size_t i = 0; i < count; ++i)
-      for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const Coord b = bricks[i].offsetBy(dx, dy, dz);
-            const Coord packed(b.x() * kBrickPackedDim, b.y() * kBrickPackedDim, b.z() * kBrickPackedDim);
-            if (const FccLeaf* leaf = accessor.probeConstLeaf(packed)) {
-              auto [it, added] = slots.try_emplace(leaf, cl_int(slotLeaves.size()));
-              if (added) slotLeaves.push_back(leaf);
-              neighbours.push_back(it->second);
-            } else {
-              const openvdb::Vec4f& v = accessor.getValue(packed);
-              auto found = std::find_if(constantSlots.begin(), constantSlots.end(), [&](const auto& c) { return c.first == v; });
-              if (found == constantSlots.end()) {
-                constantSlots.emplace_back(v, cl_int(slotLeaves.size()));
-                slotLeaves.push_back(nullptr);
-                found = constantSlots.end() - 1;
-              }
-              neighbours.push_back(found->second);
+    const std::size_t entries = count * 27;
+    neighbourLeaves.resize(entries);
+    neighbourValues.resize(entries);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 16), [&](const tbb::blocked_range<size_t>& r) {
+      auto accessor = grid.getConstAccessor();
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        std::size_t k = i * 27;
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx, ++k) {
+              const Coord b = bricks[i].offsetBy(dx, dy, dz);
+              const Coord packed(b.x() * kBrickPackedDim, b.y() * kBrickPackedDim, b.z() * kBrickPackedDim);
+              neighbourLeaves[k] = accessor.probeConstLeaf(packed);
+              if (!neighbourLeaves[k]) neighbourValues[k] = accessor.getValue(packed);
             }
-          }
-    pool.resize(slotLeaves.size() * FccLeaf::SIZE);
-    for (const auto& [value, slot] : constantSlots)
-      std::fill(pool.begin() + std::ptrdiff_t(slot) * FccLeaf::SIZE, pool.begin() + std::ptrdiff_t(slot + 1) * FccLeaf::SIZE, value);
+      }
+    });
+    // Leaves first, in address order (any order reads the same: the table says where each is).
+    slotLeaves.clear();
+    for (const FccLeaf* leaf : neighbourLeaves)
+      if (leaf) slotLeaves.push_back(leaf);
+    tbb::parallel_sort(slotLeaves.begin(), slotLeaves.end());
+    slotLeaves.erase(std::unique(slotLeaves.begin(), slotLeaves.end()), slotLeaves.end());
+    const cl_int leafSlots = cl_int(slotLeaves.size());
+    // Then one slot per distinct constant (a tile or the background: a handful).
+    std::vector<openvdb::Vec4f> constants;
+    neighbours.resize(entries);
+    for (std::size_t k = 0; k < entries; ++k) {
+      if (neighbourLeaves[k]) continue;
+      const openvdb::Vec4f& v = neighbourValues[k];
+      const auto found = std::find(constants.begin(), constants.end(), v);
+      neighbours[k] = leafSlots + cl_int(found - constants.begin());
+      if (found == constants.end()) constants.push_back(v);
+    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, entries, 1024), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t k = r.begin(); k != r.end(); ++k)
+        if (const FccLeaf* leaf = neighbourLeaves[k])
+          neighbours[k] = cl_int(std::lower_bound(slotLeaves.begin(), slotLeaves.end(), leaf) - slotLeaves.begin());
+    });
+    pool.resize((slotLeaves.size() + constants.size()) * FccLeaf::SIZE);
+    for (std::size_t c = 0; c < constants.size(); ++c)
+      std::fill_n(pool.begin() + std::ptrdiff_t(leafSlots + c) * FccLeaf::SIZE, FccLeaf::SIZE, constants[c]);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, slotLeaves.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t slot = r.begin(); slot != r.end(); ++slot)
-        if (const FccLeaf* leaf = slotLeaves[slot])
-          std::copy(leaf->buffer().data(), leaf->buffer().data() + FccLeaf::SIZE, pool.begin() + std::ptrdiff_t(slot) * FccLeaf::SIZE);
+        std::copy_n(slotLeaves[slot]->buffer().data(), FccLeaf::SIZE, pool.begin() + std::ptrdiff_t(slot) * FccLeaf::SIZE);
     });
   }
+
+ private:
+  std::vector<const FccLeaf*> neighbourLeaves;  // per brick and neighbour: its leaf, or null
+  std::vector<openvdb::Vec4f> neighbourValues;  // where null: the neighbour's constant value
+  std::vector<const FccLeaf*> slotLeaves;       // the pool's leaf slots, sorted by address
 };
 
 ClBrickKernels::ClBrickKernels(std::string_view selector) : runner_(std::make_unique<ClRunner>(selector)) {

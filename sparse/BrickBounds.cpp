@@ -40,12 +40,13 @@ Coord packedOfBrick(const Coord& brick) { return Coord(brick.x() * kBrickPackedD
 // The leaves' bricks and their 26 neighbours inside `region`: the bricks whose halo holds a leaf value.
 std::vector<Coord> leafBricksDilated(const FccTree& tree, const CoordBBox& region) {
   openvdb::MaskTree mask;
+  openvdb::tree::ValueAccessor<openvdb::MaskTree> marked(mask);
   for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
     const Coord b = brickOfPacked(leaf->origin());
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx)
-          if (region.isInside(b.offsetBy(dx, dy, dz))) mask.setValueOn(b.offsetBy(dx, dy, dz));
+          if (region.isInside(b.offsetBy(dx, dy, dz))) marked.setValueOn(b.offsetBy(dx, dy, dz));
   }
   std::vector<Coord> bricks;
   bricks.reserve(mask.activeVoxelCount());
@@ -210,11 +211,6 @@ Vec2f boundsBackground(const Vec4f& fccBackground) { return hullOf(fccBackground
 void computeBrickBoundsIn(const FccGrid& coefficients, const CoordBBox& region, BrickKernels& kernels,
                           openvdb::Vec2STree& tree) {
   const FccTree& fccTree = coefficients.tree();
-  auto set = [&](const Coord& brick, const Vec2f& b) {
-    if (b[0] < b[1]) tree.setValueOn(brick, b);
-    else tree.setValueOff(brick, b);
-  };
-
   // Constant regions first, then the bricks at their borders, then the exact bricks, each
   // overwriting what came before where they overlap.
   const std::vector<Coord> exact = leafBricksDilated(fccTree, region);
@@ -225,29 +221,50 @@ void computeBrickBoundsIn(const FccGrid& coefficients, const CoordBBox& region, 
     inside.intersect(region);
     if (!inside.empty()) tree.fill(inside, b, b[0] < b[1]);
   }
+  // After the fills (an accessor caches nodes a fill may replace).
+  openvdb::tree::ValueAccessor<openvdb::Vec2STree> bounds(tree);
+  auto set = [&](const Coord& brick, const Vec2f& b) {
+    if (b[0] < b[1]) bounds.setValueOn(brick, b);
+    else bounds.setValueOff(brick, b);
+  };
   if (!tiles.empty()) {
     openvdb::MaskTree exactMask;
-    for (const Coord& b : exact) exactMask.setValueOn(b);
+    {
+      openvdb::tree::ValueAccessor<openvdb::MaskTree> marked(exactMask);
+      for (const Coord& b : exact) marked.setValueOn(b);
+    }
     // The border bricks, each once (neighbouring tiles share most of theirs: a level set's inside is
-    // thousands of leaf-sized tiles), from the tiles that reach the region.
+    // thousands of leaf-sized tiles), from the tiles that reach the region. Accessors: these are
+    // millions of lookups per slab of a large level set.
     openvdb::MaskTree border;
-    for (const Tile& t : tiles) {
-      if (!touchesRegion(t.bricks, region)) continue;
-      forEachShellBrick(t.bricks, [&](const Coord& brick) {
-        if (region.isInside(brick) && !exactMask.isValueOn(brick)) border.setValueOn(brick);
-      });
+    {
+      openvdb::tree::ValueAccessor<const openvdb::MaskTree> isExact(exactMask);
+      openvdb::tree::ValueAccessor<openvdb::MaskTree> marked(border);
+      for (const Tile& t : tiles) {
+        if (!touchesRegion(t.bricks, region)) continue;
+        forEachShellBrick(t.bricks, [&](const Coord& brick) {
+          if (region.isInside(brick) && !isExact.isValueOn(brick)) marked.setValueOn(brick);
+        });
+      }
     }
-    openvdb::tree::ValueAccessor<const FccTree> values(fccTree);
-    for (auto it = border.cbeginValueOn(); it; ++it) {
-      const Coord brick = it.getCoord();
-      // No leaf in the neighbourhood: each neighbour brick is one constant value (a tile, or the
-      // background), and the spline is a convex combination of them.
-      Vec2f b(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity());
-      for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) b = hullOf(b, hullOf(values.getValue(packedOfBrick(brick.offsetBy(dx, dy, dz)))));
-      set(brick, b);
-    }
+    std::vector<Coord> borderBricks;
+    borderBricks.reserve(border.activeVoxelCount());
+    for (auto it = border.cbeginValueOn(); it; ++it) borderBricks.push_back(it.getCoord());
+    std::vector<Vec2f> borderBounds(borderBricks.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, borderBricks.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+      openvdb::tree::ValueAccessor<const FccTree> values(fccTree);
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        // No leaf in the neighbourhood: each neighbour brick is one constant value (a tile, or the
+        // background), and the spline is a convex combination of them.
+        Vec2f b(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity());
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+              b = hullOf(b, hullOf(values.getValue(packedOfBrick(borderBricks[i].offsetBy(dx, dy, dz)))));
+        borderBounds[i] = b;
+      }
+    });
+    for (size_t i = 0; i < borderBricks.size(); ++i) set(borderBricks[i], borderBounds[i]);
   }
   std::vector<Vec2f> results;
   for (size_t first = 0; first < exact.size(); first += kBatchBricks) {

@@ -64,6 +64,7 @@ class FccBlockBuilder {
 
   // The blocks of x-slab `x` (block coordinates) that may hold active voxels, sorted: where the
   // field has data (SampleField::forEachDataBox), else every block of blocks() in the slab.
+  // Thread-safe: the streamed build finds several slabs' blocks at once.
   std::vector<openvdb::Coord> blocksInSlab(int x) const;
 
   // Makes the field's samples for these blocks (with the prefilter's halo) readable (SampleField::prepare).

@@ -48,7 +48,8 @@ class SampleField {
 
   // Sparse sources: calls `visit` with boxes that together cover every site of `region` that may hold
   // a non-background sample (boxes may reach outside `region`), and returns true. False: the field
-  // cannot tell, and every block of the region is built.
+  // cannot tell, and every block of the region is built. Called from several threads at once (on
+  // different regions): it must only read.
   virtual bool forEachDataBox(const SiteBox& region, const std::function<void(const SiteBox&)>& visit) const {
     return false;
   }

@@ -36,6 +36,7 @@ struct StreamedBuild {
   // preparing the field for them, building them (in parallel), the slab window, the bounds, the prune.
   struct Times {
     double blocks = 0, prepare = 0, build = 0, window = 0, bounds = 0, prune = 0;
+    double boundsKernels = 0;  // of `bounds`: the kernels proper (BrickKernels::computeSeconds)
   } times;
 };
 

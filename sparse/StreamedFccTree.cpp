@@ -4,7 +4,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
+#include <openvdb/io/io.h>
+
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "Error.h"
@@ -14,8 +17,9 @@ namespace {
 
 using Leaf = FccBlockBuilder::Leaf;
 
-// Leaves rebuilt at once: 2 MiB of values; the next batch is built while one is written.
-constexpr size_t kBatchLeaves = 256;
+// Leaves rebuilt and encoded at once (8 MiB of values at most); the next batch is built while one
+// is written.
+constexpr size_t kBatchLeaves = 1024;
 
 openvdb::Coord blockOf(const Leaf& leaf) {
   const openvdb::Coord o = leaf.origin();
@@ -34,40 +38,50 @@ void StreamedFccTree::writeBuffers(std::ostream& os, bool saveFloatAsHalf) const
   topology.reserve(leafCount());
   for (auto it = cbeginLeaf(); it; ++it) topology.push_back(it.getLeaf());
 
+  // What LeafNode::writeBuffers reads of the stream besides the bytes it writes: the compression
+  // flags and the grid's background (for the active-mask compression). Each leaf is encoded into a
+  // stream of its own carrying the same two, in parallel (compression was most of pass 2, on one
+  // thread), and the bytes are written in the tree's order: the file is the same, byte for byte.
+  const uint32_t compression = openvdb::io::getDataCompression(os);
+  const void* background = openvdb::io::getGridBackgroundValuePtr(os);
   tbb::enumerable_thread_specific<FccBlockBuilder::Scratch> scratch;
-  auto build = [&](size_t first, std::vector<std::unique_ptr<Leaf>>& out) {
+  auto build = [&](size_t first, std::vector<std::string>& out) {
     out.clear();
     out.resize(std::min(kBatchLeaves, topology.size() - first));
     std::vector<openvdb::Coord> blocks(out.size());
     for (size_t i = 0; i < out.size(); ++i) blocks[i] = blockOf(*topology[first + i]);
     builder_.prepare(blocks);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t i = r.begin(); i != r.end(); ++i)
-        out[i] = builder_.build(blocks[i], scratch.local(), nullptr);
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        const std::unique_ptr<Leaf> leaf = builder_.build(blocks[i], scratch.local(), nullptr);
+        const Leaf& expected = *topology[first + i];
+        if (!leaf || leaf->valueMask() != expected.valueMask()) {
+          std::ostringstream where;
+          where << expected.origin();
+          throw Error("streamed FCC grid: the leaf at packed voxel " + where.str() +
+                      " was rebuilt with another active mask than its topology's");
+        }
+        std::ostringstream bytes(std::ios_base::binary);
+        openvdb::io::setDataCompression(bytes, compression);
+        openvdb::io::setGridBackgroundValuePtr(bytes, background);
+        leaf->writeBuffers(bytes, saveFloatAsHalf);
+        out[i] = bytes.str();
+      }
     });
   };
-  auto write = [&](size_t first, const std::vector<std::unique_ptr<Leaf>>& leaves) {
-    for (size_t i = 0; i < leaves.size(); ++i) {
-      const Leaf& expected = *topology[first + i];
-      if (!leaves[i] || leaves[i]->valueMask() != expected.valueMask()) {
-        std::ostringstream where;
-        where << expected.origin();
-        throw Error("streamed FCC grid: the leaf at packed voxel " + where.str() +
-                    " was rebuilt with another active mask than its topology's");
-      }
-      leaves[i]->writeBuffers(os, saveFloatAsHalf);
-    }
+  auto write = [&](const std::vector<std::string>& leaves) {
+    for (const std::string& bytes : leaves) os.write(bytes.data(), std::streamsize(bytes.size()));
   };
 
   if (progress_) progress_->start("writing FCC grid");
-  std::vector<std::unique_ptr<Leaf>> current, next;
+  std::vector<std::string> current, next;
   if (!topology.empty()) build(0, current);
   for (size_t first = 0; first < topology.size(); first += kBatchLeaves) {
     const size_t following = first + kBatchLeaves;
     tbb::task_group group;
     if (following < topology.size()) group.run([&] { build(following, next); });
     try {
-      write(first, current);
+      write(current);
       if (progress_ && progress_->wasInterrupted(int(100.0 * double(first + current.size()) / double(topology.size()))))
         throw Error("interrupted");
     } catch (...) {

@@ -6,8 +6,10 @@
 // Writing a grid, OpenVDB's Archive calls Grid::writeTopology (masks and tiles: no leaf values), then
 // Grid::writeBuffers -> TreeBase::writeBuffers, virtual, which this tree overrides: it rebuilds the
 // leaves (FccBlockBuilder, in parallel batches) in the order the tree's own writeBuffers would visit
-// them (root children by key, internal children by mask bit: the order of cbeginLeaf) and writes
-// each with LeafNode::writeBuffers, so the bytes are those of the in-memory grid. Archive's grid
+// them (root children by key, internal children by mask bit: the order of cbeginLeaf), encodes
+// each with LeafNode::writeBuffers into a buffer of its own (in parallel, with the stream's
+// compression flags and background) and writes the buffers in that order, so the bytes are those
+// of the in-memory grid. Archive's grid
 // statistics read masks and memUsage, which this tree reports as if its leaves were loaded. Nothing
 // but writing it (io::writeVdbAtomically) may read its values: they are not there.
 #pragma once
