@@ -172,7 +172,8 @@ struct ClBrickKernels::Staged {
   std::vector<const FccLeaf*> slotLeaves;       // the pool's leaf slots, sorted by address
 };
 
-ClBrickKernels::ClBrickKernels(std::string_view selector) : runner_(std::make_unique<ClRunner>(selector)) {
+ClBrickKernels::ClBrickKernels(std::string_view selector)
+    : runner_(std::make_unique<ClRunner>(selector)), staged_(std::make_unique<Staged>()) {
   std::size_t maxGroup = kMaxGroupSize;
   try {
     maxGroup = runner_->device().getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
@@ -194,7 +195,7 @@ std::string ClBrickKernels::describe() const { return "OpenCL: " + runner_->desc
 void ClBrickKernels::bounds(const FccGrid& coefficients, const std::vector<Coord>& bricks,
                             std::vector<openvdb::Vec2f>& out) {
   out.resize(bricks.size());
-  Staged staged;
+  Staged& staged = *staged_;
   for (std::size_t first = 0; first < bricks.size(); first += kLaunchBricks) {
     const std::size_t count = std::min(kLaunchBricks, bricks.size() - first);
     staged.stage(coefficients, bricks.data() + first, count);
@@ -213,7 +214,7 @@ void ClBrickKernels::bounds(const FccGrid& coefficients, const std::vector<Coord
 void ClBrickKernels::prefilter(const FccGrid& samples, const std::vector<Coord>& bricks,
                                std::vector<openvdb::Vec4f>& out) {
   out.resize(bricks.size() * FccLeaf::SIZE);
-  Staged staged;
+  Staged& staged = *staged_;
   for (std::size_t first = 0; first < bricks.size(); first += kLaunchBricks) {
     const std::size_t count = std::min(kLaunchBricks, bricks.size() - first);
     staged.stage(samples, bricks.data() + first, count);

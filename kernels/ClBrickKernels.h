@@ -30,6 +30,9 @@ class ClBrickKernels : public BrickKernels {
  private:
   struct Staged;
   std::unique_ptr<ClRunner> runner_;
+  // Kept between calls: a streamed conversion calls once per slab, and fresh staging memory each
+  // time cost as much in page faults as the copies themselves.
+  std::unique_ptr<Staged> staged_;
   std::size_t groupSize_ = 0;
   cl::Kernel boundsKernel_, prefilterKernel_;
 };

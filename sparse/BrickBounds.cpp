@@ -4,6 +4,7 @@
 #include "BrickBounds.h"
 
 #include <openvdb/tools/Prune.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -37,21 +38,39 @@ Vec2f hullOf(const Vec2f& a, const Vec2f& b) { return Vec2f(std::min(a[0], b[0])
 Coord brickOfPacked(const Coord& packed) { return Coord(packed.x() >> 3, packed.y() >> 3, packed.z() >> 3); }
 Coord packedOfBrick(const Coord& brick) { return Coord(brick.x() * kBrickPackedDim, brick.y() * kBrickPackedDim, brick.z() * kBrickPackedDim); }
 
+// Marks bricks from `count` work items in parallel, each thread into a mask of its own (through an
+// accessor: these are millions of bricks per slab of a large level set), merged at the end (a
+// union of bit masks, node by node). mark(i, accessor) marks what item i marks.
+template <class Mark>
+openvdb::MaskTree markInParallel(std::size_t count, std::size_t grain, Mark&& mark) {
+  tbb::enumerable_thread_specific<openvdb::MaskTree> masks;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, grain), [&](const tbb::blocked_range<size_t>& r) {
+    openvdb::tree::ValueAccessor<openvdb::MaskTree> marked(masks.local());
+    for (size_t i = r.begin(); i != r.end(); ++i) mark(i, marked);
+  });
+  openvdb::MaskTree all;
+  for (openvdb::MaskTree& m : masks) all.topologyUnion(m);
+  return all;
+}
+
+std::vector<Coord> activeCoords(const openvdb::MaskTree& mask) {
+  std::vector<Coord> coords;
+  coords.reserve(mask.activeVoxelCount());
+  for (auto it = mask.cbeginValueOn(); it; ++it) coords.push_back(it.getCoord());
+  return coords;
+}
+
 // The leaves' bricks and their 26 neighbours inside `region`: the bricks whose halo holds a leaf value.
 std::vector<Coord> leafBricksDilated(const FccTree& tree, const CoordBBox& region) {
-  openvdb::MaskTree mask;
-  openvdb::tree::ValueAccessor<openvdb::MaskTree> marked(mask);
-  for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
-    const Coord b = brickOfPacked(leaf->origin());
+  std::vector<const FccLeaf*> leaves;
+  tree.getNodes(leaves);
+  return activeCoords(markInParallel(leaves.size(), 64, [&](size_t i, auto& marked) {
+    const Coord b = brickOfPacked(leaves[i]->origin());
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx)
           if (region.isInside(b.offsetBy(dx, dy, dz))) marked.setValueOn(b.offsetBy(dx, dy, dz));
-  }
-  std::vector<Coord> bricks;
-  bricks.reserve(mask.activeVoxelCount());
-  for (auto it = mask.cbeginValueOn(); it; ++it) bricks.push_back(it.getCoord());
-  return bricks;
+  }));
 }
 
 // A tile of the FCC tree (a region of one constant Vec4 value) that differs from the background.
@@ -62,13 +81,26 @@ struct Tile {
 
 std::vector<Tile> nonBackgroundTiles(const FccTree& tree) {
   std::vector<Tile> tiles;
+  auto add = [&](std::vector<Tile>& out, const CoordBBox& packed, const Vec4f& value) {
+    // Active or not, the background is the same constant spline as outside.
+    if (value != tree.background()) out.push_back({CoordBBox(brickOfPacked(packed.min()), brickOfPacked(packed.max())), value});
+  };
+  // The root's and the upper internal nodes' tiles (few), then the lower internal nodes' (leaf-sized
+  // tiles: a level set's inside is thousands of them; 4096 entries a node to look at) in parallel,
+  // in node order.
   auto it = tree.cbeginValueAll();
-  it.setMaxDepth(FccTree::ValueAllCIter::LEAF_DEPTH - 1);  // tiles only, not the leaves' voxels
-  for (; it; ++it) {
-    if (*it == tree.background()) continue;  // active or not, the same constant spline as outside
-    const CoordBBox packed = it.getBoundingBox();
-    tiles.push_back({CoordBBox(brickOfPacked(packed.min()), brickOfPacked(packed.max())), *it});
-  }
+  it.setMaxDepth(FccTree::ValueAllCIter::LEAF_DEPTH - 2);
+  for (; it; ++it) add(tiles, it.getBoundingBox(), *it);
+  using Lower = FccTree::RootNodeType::ChildNodeType::ChildNodeType;
+  std::vector<const Lower*> nodes;
+  tree.getNodes(nodes);
+  std::vector<std::vector<Tile>> perNode(nodes.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 4), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t n = r.begin(); n != r.end(); ++n)
+      for (auto v = nodes[n]->cbeginValueAll(); v; ++v)
+        add(perNode[n], CoordBBox::createCube(v.getCoord(), int(FccLeaf::DIM)), *v);
+  });
+  for (const std::vector<Tile>& t : perNode) tiles.insert(tiles.end(), t.begin(), t.end());
   return tiles;
 }
 
@@ -215,11 +247,22 @@ void computeBrickBoundsIn(const FccGrid& coefficients, const CoordBBox& region, 
   // overwriting what came before where they overlap.
   const std::vector<Coord> exact = leafBricksDilated(fccTree, region);
   const std::vector<Tile> tiles = nonBackgroundTiles(fccTree);
-  for (const Tile& t : tiles) {
-    const Vec2f b = hullOf(t.value);
-    CoordBBox inside = t.bricks;
-    inside.intersect(region);
-    if (!inside.empty()) tree.fill(inside, b, b[0] < b[1]);
+  {
+    // Most tiles are one brick (a uniform leaf): set through an accessor, the rest filled.
+    openvdb::tree::ValueAccessor<openvdb::Vec2STree> single(tree);
+    for (const Tile& t : tiles) {
+      const Vec2f b = hullOf(t.value);
+      CoordBBox inside = t.bricks;
+      inside.intersect(region);
+      if (inside.empty()) continue;
+      if (inside.volume() == 1) {
+        if (b[0] < b[1]) single.setValueOn(inside.min(), b);
+        else single.setValueOff(inside.min(), b);
+      } else {
+        tree.fill(inside, b, b[0] < b[1]);
+        single.clear();  // a fill may replace nodes the accessor holds
+      }
+    }
   }
   // After the fills (an accessor caches nodes a fill may replace).
   openvdb::tree::ValueAccessor<openvdb::Vec2STree> bounds(tree);
@@ -234,22 +277,16 @@ void computeBrickBoundsIn(const FccGrid& coefficients, const CoordBBox& region, 
       for (const Coord& b : exact) marked.setValueOn(b);
     }
     // The border bricks, each once (neighbouring tiles share most of theirs: a level set's inside is
-    // thousands of leaf-sized tiles), from the tiles that reach the region. Accessors: these are
-    // millions of lookups per slab of a large level set.
-    openvdb::MaskTree border;
-    {
-      openvdb::tree::ValueAccessor<const openvdb::MaskTree> isExact(exactMask);
-      openvdb::tree::ValueAccessor<openvdb::MaskTree> marked(border);
-      for (const Tile& t : tiles) {
-        if (!touchesRegion(t.bricks, region)) continue;
-        forEachShellBrick(t.bricks, [&](const Coord& brick) {
-          if (region.isInside(brick) && !isExact.isValueOn(brick)) marked.setValueOn(brick);
-        });
-      }
-    }
-    std::vector<Coord> borderBricks;
-    borderBricks.reserve(border.activeVoxelCount());
-    for (auto it = border.cbeginValueOn(); it; ++it) borderBricks.push_back(it.getCoord());
+    // thousands of leaf-sized tiles), from the tiles that reach the region.
+    using ExactAccessor = openvdb::tree::ValueAccessor<const openvdb::MaskTree>;
+    tbb::enumerable_thread_specific<ExactAccessor> isExact([&] { return ExactAccessor(exactMask); });
+    const std::vector<Coord> borderBricks = activeCoords(markInParallel(tiles.size(), 256, [&](size_t i, auto& marked) {
+      if (!touchesRegion(tiles[i].bricks, region)) return;
+      ExactAccessor& exactHere = isExact.local();
+      forEachShellBrick(tiles[i].bricks, [&](const Coord& brick) {
+        if (region.isInside(brick) && !exactHere.isValueOn(brick)) marked.setValueOn(brick);
+      });
+    }));
     std::vector<Vec2f> borderBounds(borderBricks.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, borderBricks.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
       openvdb::tree::ValueAccessor<const FccTree> values(fccTree);

@@ -173,28 +173,46 @@ StreamedBuild buildFccGridStreamed(const FccBlockBuilder& builder, const Streame
   FccSlabWindow window(background);
   const int first = blocks.min().x() - reach, last = blocks.max().x() + reach;
   int nextSlab = blocks.min().x();
+  // Bounds are computed for a run of slabs at once: each call reads the whole window (its leaves,
+  // its tiles, their borders), so one slab a call read every slab 2 reach + 1 times. Runs of up to
+  // 8 slabs, fewer where slabs are full (the window holds run + 2 reach slabs; about kWindowLeaves
+  // leaves, 256 MiB, unless one slab is more) and no more than a sixteenth of the slabs, so that the
+  // window stays a small part of any dataset.
+  constexpr std::size_t kWindowLeaves = 32768;
+  const int mostRun = std::clamp((blocks.max().x() - blocks.min().x() + 1) / 16, 1, 8);
+  std::size_t mostSlabLeaves = 0;
+  auto addSlabsThrough = [&](int x, StreamedBuild::Times& times) {
+    for (; nextSlab <= std::min(x, blocks.max().x()); ++nextSlab) {
+      FccSlabWindow::Slab slab = slabs.build(nextSlab, times);
+      mostSlabLeaves = std::max(mostSlabLeaves, slab.leaves.size());
+      const auto start = Clock::now();
+      window.add(nextSlab, std::move(slab));
+      times.window += std::chrono::duration<double>(Clock::now() - start).count();
+    }
+  };
   if (progress) progress->start("building FCC topology and bounds");
   StreamedBuild::Times& times = result.times;
-  for (int x = first; x <= last; ++x) {
+  for (int x = first; x <= last;) {
     auto start = Clock::now();
-    window.dropBelow(x - reach);  // first: never more than 2 reach + 1 slabs at once
+    window.dropBelow(x - reach);  // first: never more than the run and 2 reach slabs at once
     times.window += lap(start);
-    for (; nextSlab <= std::min(x + reach, blocks.max().x()); ++nextSlab) {
-      FccSlabWindow::Slab slab = slabs.build(nextSlab, times);
-      start = Clock::now();
-      window.add(nextSlab, std::move(slab));
-      times.window += lap(start);
-    }
+    addSlabsThrough(x + reach, times);  // what a run of one slab needs; then as many as fit
+    const std::size_t fit = kWindowLeaves / std::max<std::size_t>(mostSlabLeaves, 1);
+    const int run = int(std::clamp<std::size_t>(fit > std::size_t(2 * reach) ? fit - 2 * reach : 1, 1, std::size_t(mostRun)));
+    const int xEnd = std::min(x + run - 1, last);
+    addSlabsThrough(xEnd + reach, times);
+    start = Clock::now();
     const double kernelSecondsBefore = kernels.computeSeconds;
     if (rawSamples) {
-      const FccGrid::Ptr coefficients = prefilterGrid(window.grid(), &kernels, slabBricks(x - 1, x + 1));
-      computeBrickBoundsIn(*coefficients, slabBricks(x, x), kernels, *result.bounds);
+      const FccGrid::Ptr coefficients = prefilterGrid(window.grid(), &kernels, slabBricks(x - 1, xEnd + 1));
+      computeBrickBoundsIn(*coefficients, slabBricks(x, xEnd), kernels, *result.bounds);
     } else {
-      computeBrickBoundsIn(window.grid(), slabBricks(x, x), kernels, *result.bounds);
+      computeBrickBoundsIn(window.grid(), slabBricks(x, xEnd), kernels, *result.bounds);
     }
     times.bounds += lap(start);
     times.boundsKernels += kernels.computeSeconds - kernelSecondsBefore;
-    if (progress && progress->wasInterrupted(int(100.0 * double(x - first + 1) / double(last - first + 1))))
+    x = xEnd + 1;
+    if (progress && progress->wasInterrupted(int(100.0 * double(x - first) / double(last - first + 1))))
       throw Error("interrupted");
   }
   if (progress) progress->end();
