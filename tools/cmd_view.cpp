@@ -13,6 +13,7 @@
 #include "sparse/Error.h"
 #include "viewer/CameraFile.h"
 #include "viewer/DatasetSummary.h"
+#include "viewer/OpenAnotherFile.h"
 #include "viewer/ViewerWindow.h"
 
 namespace fcc::cli {
@@ -118,21 +119,18 @@ Command addViewCommand(CLI::App& parent) {
             std::unique_ptr<render::ViewerSession> session = newSession(args->flags, data);
             // Another file dropped on the window or typed after O replaces the dataset; the window,
             // budgets and layout stay. One that does not open leaves the old one, and says why.
-            while (std::optional<std::string> next = window.run(*session)) {
-              const RenderFlags nextFlags = flagsForAnotherFile(args->flags, *next);
-              Dataset opened;
-              try {
-                opened = openDataset(nextFlags, budgets.hostCacheBytes);  // a Cartesian file is converted first
-              } catch (const std::exception& e) {  // fcc::Error's one line, or anything a reader threw
-                session->notify(std::string("cannot open it: ") + e.what());
-                continue;
-              }
-              session.reset();  // before the data it reads
-              data = std::move(opened);
-              session = newSession(nextFlags, data);
-              window.setTitle("fccvdb — " + *next);
-              print("opened " + *next);
-            }
+            std::string nextPath;
+            render::runOpeningFiles(
+                data, session, [&](render::ViewerSession& s) { return window.run(s); },
+                [&](const std::string& path) {
+                  nextPath = path;
+                  return openDataset(flagsForAnotherFile(args->flags, path), budgets.hostCacheBytes);
+                },
+                [&](const Dataset& d) { return newSession(flagsForAnotherFile(args->flags, nextPath), d); },
+                [&](const std::string& path) {
+                  window.setTitle("fccvdb — " + path);
+                  print("opened " + path);
+                });
             return 0;
           }};
 }

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "tests/tools/ExrRead.h"
 #include "viewer/CameraFile.h"
 #include "viewer/HistogramAxis.h"
+#include "viewer/OpenAnotherFile.h"
 #include "viewer/OrbitControls.h"
 #include "viewer/Srgb.h"
 
@@ -324,6 +327,123 @@ TEST_F(ViewerSession, OpenFieldAsksForAnotherFile) {
 
   h.session->requestOpen("/dropped.vdb");
   EXPECT_EQ(h.session->takeOpenRequest().value_or(""), "/dropped.vdb");
+}
+
+// `fccvdb view`'s loop over files (viewer/OpenAnotherFile.h, the code cmd_view runs): a path typed after
+// O that does not open leaves the session and its file, with a notice naming why; a file dropped on the
+// window then replaces the session: the new file is shown (its summary, its image), the old session
+// and its file are released, and the loop ends when the window closes.
+TEST_F(ViewerSession, OpeningAnotherFileShowsItAndReleasesTheOldOne) {
+  TempDir dir;
+  const std::string first = test::writeSmallBlobs(dir), second = dir / "other-blobs.vdb";
+  ASSERT_EQ(test::runFccvdb("synth blobs " + second + " --dims 96,96,96 --seed 7 --quiet").status, 0);
+  SessionHarness h(first, 0.3f, SessionHarness::kLargePoolBytes);
+  render::RenderOptions options;
+  options.iso = 0.3f;
+  options.gpuCacheBytes = SessionHarness::kLargePoolBytes;
+  const auto makeSession = [&](const std::shared_ptr<io::BrickStore>& store) {
+    return std::make_unique<render::ViewerSession>(*store, options, test::smallBlobsCamera(),
+                                                   render::summarizeDataset(*store));
+  };
+  std::shared_ptr<io::BrickStore> data = std::make_shared<io::BrickStore>(first);
+  const std::weak_ptr<io::BrickStore> firstData = data;
+  h.session = makeSession(data);  // the harness's frames draw whichever session the loop holds
+
+  const std::string missing = dir / "missing.vdb";
+  std::vector<unsigned char> firstImage;
+  const render::ViewerSession* firstSession = h.session.get();
+  std::vector<std::string> opened;
+  int runs = 0;
+  const auto run = [&](render::ViewerSession& s) -> std::optional<std::string> {
+    EXPECT_EQ(&s, h.session.get());
+    switch (runs++) {
+      case 0:  // the first file: shown; then O, a path that does not open, Enter
+        EXPECT_TRUE(h.settle());
+        firstImage = h.pixels();
+        h.press(GLFW_KEY_O);
+        h.frame();
+        h.type(missing);
+        h.press(GLFW_KEY_ENTER);
+        return s.takeOpenRequest();
+      case 1:  // still the first session, saying why; then a file dropped on the window
+        EXPECT_EQ(&s, firstSession) << "a file that does not open replaced the session";
+        EXPECT_FALSE(firstData.expired()) << "a file that does not open released the open one";
+        EXPECT_EQ(s.notice().rfind("cannot open it: ", 0), 0u) << s.notice();
+        EXPECT_NE(s.notice().find("missing.vdb"), std::string::npos) << s.notice();
+        s.requestOpen(second);
+        h.frame();
+        return s.takeOpenRequest();
+      default:  // the second file; then the window closes
+        EXPECT_TRUE(firstData.expired()) << "the first file is still held";
+        EXPECT_EQ(s.summary().file, second);
+        EXPECT_TRUE(h.settle());
+        return std::nullopt;
+    }
+  };
+  render::runOpeningFiles(data, h.session, run, [](const std::string& path) { return std::make_shared<io::BrickStore>(path); },
+                          makeSession, [&](const std::string& path) { opened.push_back(path); });
+  EXPECT_EQ(runs, 3);
+  EXPECT_EQ(opened, std::vector<std::string>{second});
+  ASSERT_TRUE(h.session);
+  EXPECT_EQ(data->path(), second);
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  EXPECT_GT(differingChannels(firstImage, h.pixels(), panel), 1000) << "the window still shows the first file";
+}
+
+// At `view`'s default window (1280 x 800, font scale 1) the panel, its sections as they open, is taller
+// than the window: the wheel over it scrolls it (and does not zoom the camera) until its last line is in view,
+// so every section is reachable.
+TEST_F(ViewerSession, PanelScrollsToItsLastSectionAt1280x800) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes, {1280, 800}, 1.0f);
+  for (int i = 0; i < 3; ++i) h.frame();  // the panel's scroll bar appears on its second frame
+  const render::PanelLayout& l = h.session->panelLayout();
+  ASSERT_GT(l.panelScrollMax, 0.0f) << "everything fits: nothing to scroll (the test tests nothing)";
+  EXPECT_GT(l.panelEnd.y1, float(h.height)) << "the last line is in view before scrolling";
+  const render::Camera before = h.session->camera();
+  for (int i = 0; i < 60 && l.panelEnd.y1 > float(h.height); ++i) {
+    h.frame([](ImGuiIO& io) {
+      io.MousePos = ImVec2(100.0f, 400.0f);
+      io.MouseWheel = -1.0f;
+    });
+    h.frame([](ImGuiIO& io) { io.MouseWheel = 0.0f; });
+  }
+  EXPECT_LE(l.panelEnd.y1, float(h.height)) << "the panel's end cannot be scrolled into view";
+  EXPECT_GE(l.panelEnd.y0, 0.0f);
+  EXPECT_EQ(h.session->camera().eye, before.eye) << "the wheel over the panel zoomed the camera";
+}
+
+// The help lists the keys that apply to the mode: the isovalue's in isosurface mode, not in DVR mode
+// (where they do nothing).
+TEST_F(ViewerSession, HelpListsTheKeysOfTheMode) {
+  TempDir dir;
+  const std::string path = test::writeSmallBlobs(dir);
+  const auto helpKeys = [](SessionHarness& h) {
+    h.press(GLFW_KEY_H);
+    EXPECT_TRUE(h.session->settings().showHelp);
+    return h.session->panelLayout().helpKeys;
+  };
+  const auto lists = [](const std::vector<std::string>& keys, const std::string& key) {
+    return std::find(keys.begin(), keys.end(), key) != keys.end();
+  };
+  std::vector<std::string> iso, dvr;
+  {
+    SessionHarness h(path, 0.3f, SessionHarness::kLargePoolBytes);
+    iso = helpKeys(h);
+  }
+  {
+    SessionHarness h(path, std::string("grayscale"));
+    ASSERT_TRUE(h.session->dvr());
+    dvr = helpKeys(h);
+  }
+  for (const char* key : {"+, - (or keypad)", "Page Up, Page Down"}) {
+    EXPECT_TRUE(lists(iso, key)) << key;
+    EXPECT_FALSE(lists(dvr, key)) << key << " in DVR mode";
+  }
+  for (const char* key : {"left drag", "S, F12", "O, or drop a file"}) {
+    EXPECT_TRUE(lists(iso, key)) << key;
+    EXPECT_TRUE(lists(dvr, key)) << key << " in DVR mode";
+  }
 }
 
 // Pixels right of `firstColumn` that differ from the background (as drawn: sRGB, 8 bits) by more than a level.
