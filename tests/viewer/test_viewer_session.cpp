@@ -142,7 +142,8 @@ std::vector<std::string> filesWith(const TempDir& dir, const std::string& extens
 }
 
 // S works while the panel holds the keyboard (here: the mouse held on the iso slider, which makes
-// ImGui want the keyboard), writes both files into the output directory and says so on screen.
+// ImGui want the keyboard), writes both files into the output directory and says so on screen; R
+// resets the camera there too.
 TEST_F(ViewerSession, ScreenshotKeyWorksWhileThePanelHasFocusAndIsConfirmed) {
   TempDir dir;
   SessionHarness h(test::writeSmallBlobs(dir));
@@ -155,6 +156,12 @@ TEST_F(ViewerSession, ScreenshotKeyWorksWhileThePanelHasFocusAndIsConfirmed) {
   h.frame();
   ASSERT_TRUE(ImGui::GetIO().WantCaptureKeyboard) << "the panel does not hold the keyboard: nothing is tested";
   h.press(GLFW_KEY_S);
+  // R too: the camera moved away comes back to the opening view.
+  render::Camera moved = h.session->camera();
+  moved.eye += glm::dvec3(30.0, -20.0, 10.0);
+  h.session->setCamera(moved);
+  h.press(GLFW_KEY_R);
+  EXPECT_EQ(h.session->camera().eye, test::smallBlobsCamera().eye) << "R did nothing while the panel had focus";
   h.frame([&](ImGuiIO& io) { io.MouseDown[0] = false; });
   const std::vector<std::string> pngs = filesWith(dir, ".png"), exrs = filesWith(dir, ".exr");
   ASSERT_EQ(pngs.size(), 1u) << "S wrote no PNG while the panel had focus";
@@ -163,8 +170,8 @@ TEST_F(ViewerSession, ScreenshotKeyWorksWhileThePanelHasFocusAndIsConfirmed) {
       << h.session->notice();
 }
 
-// Ctrl + click on the iso slider types its value (as the help says); S there is a letter for the
-// field, not a screenshot.
+// Ctrl + click on the iso slider types its value (as the help says); S and R there are letters for the
+// field, not a screenshot or a camera reset.
 TEST_F(ViewerSession, TextFieldKeepsItsKeysAndCtrlClickTypesAValue) {
   TempDir dir;
   SessionHarness h(test::writeSmallBlobs(dir));
@@ -173,9 +180,13 @@ TEST_F(ViewerSession, TextFieldKeepsItsKeysAndCtrlClickTypesAValue) {
   const render::ImRectF slider = h.session->panelLayout().isoSlider;
   h.click(slider.centreX(), slider.centreY(), /*ctrl=*/true);
   ASSERT_TRUE(ImGui::GetIO().WantTextInput) << "ctrl + click did not open the slider's text field";
+  render::Camera moved = h.session->camera();
+  moved.eye += glm::dvec3(30.0, -20.0, 10.0);
+  h.session->setCamera(moved);
   h.press(GLFW_KEY_S);
   h.press(GLFW_KEY_R);
   EXPECT_TRUE(filesWith(dir, ".png").empty()) << "S in a text field wrote a screenshot";
+  EXPECT_EQ(h.session->camera().eye, moved.eye) << "R in a text field reset the camera";
   h.type("0.25");
   h.press(GLFW_KEY_ENTER);
   h.frame();  // ImGui tells whether it wants text at the start of a frame, from the frame before
