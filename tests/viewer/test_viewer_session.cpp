@@ -412,13 +412,11 @@ TEST_F(ViewerSession, PanelScrollsToItsLastSectionAt1280x800) {
   ASSERT_GT(l.panelScrollMax, 0.0f) << "everything fits: nothing to scroll (the test tests nothing)";
   EXPECT_GT(l.panelEnd.y1, float(h.height)) << "the last line is in view before scrolling";
   const render::Camera before = h.session->camera();
-  for (int i = 0; i < 60 && l.panelEnd.y1 > float(h.height); ++i) {
+  for (int i = 0; i < 30 && l.panelEnd.y1 > float(h.height); ++i)  // (each frame casts rays: llvmpipe is slow)
     h.frame([](ImGuiIO& io) {
       io.MousePos = ImVec2(100.0f, 400.0f);
-      io.MouseWheel = -1.0f;
+      io.MouseWheel = -4.0f;  // ImGui clears it after the frame
     });
-    h.frame([](ImGuiIO& io) { io.MouseWheel = 0.0f; });
-  }
   EXPECT_LE(l.panelEnd.y1, float(h.height)) << "the panel's end cannot be scrolled into view";
   EXPECT_GE(l.panelEnd.y0, 0.0f);
   EXPECT_EQ(h.session->camera().eye, before.eye) << "the wheel over the panel zoomed the camera";
