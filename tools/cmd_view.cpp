@@ -22,6 +22,7 @@ namespace {
 // One file open in the viewer (tools/RenderData.h): an FCC .vdb (itself, or a Cartesian input's
 // cached or temporary conversion), or with a Cartesian --reconstruction a Cartesian .vdb as it is.
 struct Dataset {
+  RenderFlags flags;  // what it was opened with (the camera and termination opacity read them)
   std::unique_ptr<RenderData> data;
   float iso = 0.0f;
   std::optional<render::DvrTransfer> dvr;  // --mode dvr
@@ -29,6 +30,7 @@ struct Dataset {
 
 Dataset openDataset(const RenderFlags& flags, std::size_t hostCacheBytes) {
   Dataset d;
+  d.flags = flags;
   d.data = std::make_unique<RenderData>(flags, hostCacheBytes, false);
   if (render::parseRenderMode(flags.mode) == render::RenderMode::Dvr) {
     render::RenderOptions options;
@@ -105,7 +107,8 @@ Command addViewCommand(CLI::App& parent) {
             windowOptions.frames = args->frames;
             render::ViewerWindow window(windowOptions);
             const auto print = [](const std::string& line) { std::printf("%s\n", line.c_str()); };
-            auto newSession = [&](const RenderFlags& flags, const Dataset& d) {
+            auto newSession = [&](const Dataset& d) {
+              const RenderFlags& flags = d.flags;
               render::RenderOptions options = budgets;
               options.iso = d.iso;
               options.terminationOpacity = float(flags.terminationOpacity);
@@ -116,17 +119,15 @@ Command addViewCommand(CLI::App& parent) {
               session->setReport(print);
               return session;
             };
-            std::unique_ptr<render::ViewerSession> session = newSession(args->flags, data);
+            std::unique_ptr<render::ViewerSession> session = newSession(data);
             // Another file dropped on the window or typed after O replaces the dataset; the window,
             // budgets and layout stay. One that does not open leaves the old one, and says why.
-            std::string nextPath;
             render::runOpeningFiles(
                 data, session, [&](render::ViewerSession& s) { return window.run(s); },
                 [&](const std::string& path) {
-                  nextPath = path;
                   return openDataset(flagsForAnotherFile(args->flags, path), budgets.hostCacheBytes);
                 },
-                [&](const Dataset& d) { return newSession(flagsForAnotherFile(args->flags, nextPath), d); },
+                newSession,
                 [&](const std::string& path) {
                   window.setTitle("fccvdb — " + path);
                   print("opened " + path);
