@@ -18,6 +18,7 @@
 #include "viewer/OpenAnotherFile.h"
 #include "viewer/OrbitControls.h"
 #include "viewer/Srgb.h"
+#include "viewer/ViewerOverlays.h"
 
 namespace fcc {
 namespace {
@@ -420,6 +421,34 @@ TEST_F(ViewerSession, PanelScrollsToItsLastSectionAt1280x800) {
   EXPECT_LE(l.panelEnd.y1, float(h.height)) << "the panel's end cannot be scrolled into view";
   EXPECT_GE(l.panelEnd.y0, 0.0f);
   EXPECT_EQ(h.session->camera().eye, before.eye) << "the wheel over the panel zoomed the camera";
+}
+
+// With the panel hidden (P), the axis indicator is drawn in the image's bottom-left corner: world x red,
+// y green, z blue (viewer/ViewerOverlays.cpp), each axis of the oblique view a visible line there.
+TEST_F(ViewerSession, AxisIndicatorShowsInTheCornerWithThePanelHidden) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes);
+  const auto axisPixels = [&](const std::vector<unsigned char>& rgba, const glm::ivec3& colour) {
+    const int side = int(std::ceil(render::kAxisIndicatorSide * ImGui::GetIO().FontGlobalScale)) + 16;
+    int n = 0;
+    for (int y = SessionHarness::kHeight - side; y < SessionHarness::kHeight; ++y)
+      for (int x = 0; x < side; ++x) {
+        const unsigned char* p = rgba.data() + (std::size_t(y) * SessionHarness::kWidth + x) * 4;
+        n += std::abs(p[0] - colour.r) < 30 && std::abs(p[1] - colour.g) < 30 && std::abs(p[2] - colour.b) < 30;
+      }
+    return n;
+  };
+  const glm::ivec3 red(230, 70, 60), green(90, 200, 80), blue(80, 140, 255);
+  h.frame();
+  h.frame();
+  const std::vector<unsigned char> withPanel = h.pixels();  // the panel covers the corner (its widgets are bluish)
+  h.press(GLFW_KEY_P);
+  ASSERT_FALSE(h.session->settings().showPanel);
+  ASSERT_TRUE(h.settle());
+  const std::vector<unsigned char> hidden = h.pixels();
+  EXPECT_GE(axisPixels(hidden, red) - axisPixels(withPanel, red), 3) << "no x axis";
+  EXPECT_GE(axisPixels(hidden, green) - axisPixels(withPanel, green), 3) << "no y axis";
+  EXPECT_GE(axisPixels(hidden, blue) - axisPixels(withPanel, blue), 3) << "no z axis";
 }
 
 // The help lists the keys that apply to the mode: the isovalue's in isosurface mode, not in DVR mode
