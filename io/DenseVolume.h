@@ -16,7 +16,7 @@ namespace fcc::io {
 
 // Where a patient's superior (head) and anterior (face) sides point in a volume's world frame, as unit
 // world directions: known for formats that tie the world to a patient (NIfTI: RAS; DICOM: LPS; NRRD with
-// an anatomical "space"). `convert` records them (io/PatientMetadata.h) and the default camera shows
+// an anatomical "space"; MetaImage with an AnatomicalOrientation: LPS). `convert` records them (io/PatientMetadata.h) and the default camera shows
 // such data upright, anterior towards the viewer.
 struct PatientAxes {
   glm::dvec3 superior{0.0, 0.0, 1.0};

@@ -46,7 +46,7 @@ DenseVolume geometryOf(const Image& image, const std::string& path) {
   return v;
 }
 
-// A DICOM series' world is the patient's LPS frame (ITK's physical space: the slices' positions and
+// A DICOM series' world (and a MetaImage's with an AnatomicalOrientation) is the patient's LPS frame (ITK's physical space: the slices' positions and
 // orientation as DICOM gives them).
 PatientAxes lpsPatientAxes() { return {kSuperiorInPatient, kAnteriorInLps}; }
 
@@ -217,6 +217,52 @@ itk::MetaImageIO::Pointer openMetaImageIO(const std::string& path) {
   return io;
 }
 
+// MetaImage's AnatomicalOrientation: one code per index axis, each naming the side the axis runs *from*
+// (MetaIO's MET_ORIENTATION_RL is "R", right to left; ITK writes an identity direction, LPS, as "RAI").
+// The index axis's direction in ITK's LPS patient frame, or zero for an unknown code.
+glm::dvec3 lpsDirectionOf(MET_OrientationEnumType code) {
+  switch (code) {
+    case MET_ORIENTATION_RL: return {1, 0, 0};
+    case MET_ORIENTATION_LR: return {-1, 0, 0};
+    case MET_ORIENTATION_AP: return {0, 1, 0};
+    case MET_ORIENTATION_PA: return {0, -1, 0};
+    case MET_ORIENTATION_IS: return {0, 0, 1};
+    case MET_ORIENTATION_SI: return {0, 0, -1};
+    default: return glm::dvec3(0.0);
+  }
+}
+
+// The patient's axes of a MetaImage in ITK's world (origin + direction * spacing * ijk), or none where the
+// header has no AnatomicalOrientation (data that need not be a patient's). ITK's world is the patient's
+// LPS frame, and the TransformMatrix the index axes' directions in it: where the orientation codes agree
+// with the matrix (ITK writes them from it), the matrix gives the exact axes, as for DICOM. Where they
+// disagree (a writer that left the matrix at the identity and said the orientation in the codes), the
+// codes say where each index axis points. Codes that do not name three different body axes give none.
+std::optional<PatientAxes> metaImagePatientAxes(itk::MetaImageIO& io) {
+  const MetaImage* meta = io.GetMetaImagePointer();
+  if (!meta || io.GetNumberOfDimensions() != 3) return std::nullopt;
+  glm::dmat3 lpsFromIndexAxes(0.0), worldFromIndexAxes(1.0);  // columns: one index axis each
+  glm::dvec3 covered(0.0);
+  for (int a = 0; a < 3; ++a) {
+    lpsFromIndexAxes[a] = lpsDirectionOf(meta->AnatomicalOrientation(a));
+    covered += glm::abs(lpsFromIndexAxes[a]);
+    const std::vector<double> column = io.GetDirection(unsigned(a));
+    for (int r = 0; r < 3; ++r) worldFromIndexAxes[a][r] = column.at(size_t(r));
+  }
+  if (covered != glm::dvec3(1.0)) return std::nullopt;  // unknown, or one body axis named twice
+  bool agree = true;
+  for (int a = 0; a < 3; ++a) {
+    const glm::dvec3 d = worldFromIndexAxes[a], m = glm::abs(d);
+    const int dominant = m.x >= m.y && m.x >= m.z ? 0 : (m.y >= m.z ? 1 : 2);
+    glm::dvec3 rounded(0.0);
+    rounded[dominant] = d[dominant] < 0.0 ? -1.0 : 1.0;
+    agree = agree && rounded == lpsFromIndexAxes[a];
+  }
+  if (agree) return PatientAxes{kSuperiorInPatient, kAnteriorInLps};
+  // World vectors along the index axes (the matrix's columns) map to the codes' directions.
+  return patientAxesFrom(lpsFromIndexAxes * glm::inverse(worldFromIndexAxes), kSuperiorInPatient, kAnteriorInLps);
+}
+
 }  // namespace
 
 DenseVolume readMetaImage(const std::string& path) {
@@ -226,7 +272,7 @@ DenseVolume readMetaImage(const std::string& path) {
     reader->SetImageIO(io);
     reader->SetFileName(path);
     reader->Update();
-    return toDense(*reader->GetOutput(), path);
+    return toDense(*reader->GetOutput(), path, metaImagePatientAxes(*io));
   } catch (const itk::ExceptionObject& e) {
     throw InputError(path + ": cannot read this MetaImage: " + e.GetDescription());
   }
@@ -254,7 +300,7 @@ std::unique_ptr<DenseSource> openMetaImage(const std::string& path) {
     reader->SetFileName(path);
     reader->UseStreamingOn();
     return std::make_unique<ItkSource<itk::ImageFileReader<Image>>>(reader, path, "cannot read this MetaImage",
-                                                                     !io->CanStreamRead());
+                                                                     !io->CanStreamRead(), metaImagePatientAxes(*io));
   } catch (const itk::ExceptionObject& e) {
     throw InputError(path + ": cannot read this MetaImage: " + e.GetDescription());
   }

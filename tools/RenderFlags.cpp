@@ -79,7 +79,7 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
                  "Camera position X,Y,Z in world space (default: frames the data; medical data from its anterior side)");
   app.add_option("--lookat", flags.lookat, "Point looked at X,Y,Z (default: the data's centre)");
   app.add_option("--up", flags.up,
-                 "Up vector X,Y,Z (default: 0,1,0; for medical data (NIfTI, DICOM, NRRD with an anatomical space) "
+                 "Up vector X,Y,Z (default: 0,1,0; for medical data (NIfTI, DICOM, NRRD with an anatomical space, MetaImage with an AnatomicalOrientation) "
                  "the patient's superior direction, or anterior when --eye looks along it)");
   app.add_option("--fov", flags.fov, "Vertical field of view in degrees (default: 40)");
   app.add_option("--gpu-cache", flags.gpuCacheMiB, "GPU brick pool in MiB (default: 1024, or what the driver allows)")

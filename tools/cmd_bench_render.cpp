@@ -122,6 +122,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
             resolutionFromFlags(args->flags.res, width, height);
             const RenderData data(args->flags, renderOptionsFromFlags(args->flags).hostCacheBytes, false);
             const float iso = data.iso(args->flags).value;
+            if (render::parseRenderMode(args->flags.mode) == render::RenderMode::Iso) data.warnIfIsoOutside(iso);
             const render::Camera camera = data.camera(args->flags, double(width) / height);
             // --layout all: every layout in turn, each with fresh caches; auto: the renderer's choice.
             std::vector<std::optional<render::BrickLayout>> layouts;

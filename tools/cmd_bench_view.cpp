@@ -171,6 +171,7 @@ Command addBenchViewCommand(CLI::App& bench) {
             const io::BrickStore store(input->path(), args->flags.grid);
             render::RenderOptions options = renderOptionsFromFlags(args->flags);
             options.iso = isoFromFlags(args->flags, store).value;
+            warnIfIsoOutside(options.iso, store);
             options.timeGpu = args->gpuTime;
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;

@@ -7,6 +7,7 @@
 
 #include "Command.h"
 #include "JsonText.h"
+#include "RenderFlags.h"
 #include <tbb/parallel_for.h>
 
 #include "io/BrickStore.h"
@@ -152,6 +153,8 @@ Command addInfoCommand(CLI::App& parent) {
               iso = args->iso;
             }
             const io::BrickStore store(args->file, args->grid, /*forRendering=*/false);
+            // As render says it: an isovalue no surface can take keeps no brick (stderr: JSON stays clean).
+            if (iso) warnIfIsoOutside(*iso, store);
             const Summary s = summarize(store);
             const BoundsSummary b =
                 summarizeBounds(store.boundsFromFile() ? &store.bounds() : nullptr, iso);

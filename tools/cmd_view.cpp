@@ -13,6 +13,7 @@
 #include "sparse/Error.h"
 #include "viewer/CameraFile.h"
 #include "viewer/DatasetSummary.h"
+#include "viewer/OpenAnotherFile.h"
 #include "viewer/ViewerWindow.h"
 
 namespace fcc::cli {
@@ -21,6 +22,7 @@ namespace {
 // One file open in the viewer (tools/RenderData.h): an FCC .vdb (itself, or a Cartesian input's
 // cached or temporary conversion), or with a Cartesian --reconstruction a Cartesian .vdb as it is.
 struct Dataset {
+  RenderFlags flags;  // what it was opened with (the camera and termination opacity read them)
   std::unique_ptr<RenderData> data;
   float iso = 0.0f;
   std::optional<render::DvrTransfer> dvr;  // --mode dvr
@@ -28,6 +30,7 @@ struct Dataset {
 
 Dataset openDataset(const RenderFlags& flags, std::size_t hostCacheBytes) {
   Dataset d;
+  d.flags = flags;
   d.data = std::make_unique<RenderData>(flags, hostCacheBytes, false);
   if (render::parseRenderMode(flags.mode) == render::RenderMode::Dvr) {
     render::RenderOptions options;
@@ -104,7 +107,8 @@ Command addViewCommand(CLI::App& parent) {
             windowOptions.frames = args->frames;
             render::ViewerWindow window(windowOptions);
             const auto print = [](const std::string& line) { std::printf("%s\n", line.c_str()); };
-            auto newSession = [&](const RenderFlags& flags, const Dataset& d) {
+            auto newSession = [&](const Dataset& d) {
+              const RenderFlags& flags = d.flags;
               render::RenderOptions options = budgets;
               options.iso = d.iso;
               options.terminationOpacity = float(flags.terminationOpacity);
@@ -115,24 +119,19 @@ Command addViewCommand(CLI::App& parent) {
               session->setReport(print);
               return session;
             };
-            std::unique_ptr<render::ViewerSession> session = newSession(args->flags, data);
+            std::unique_ptr<render::ViewerSession> session = newSession(data);
             // Another file dropped on the window or typed after O replaces the dataset; the window,
             // budgets and layout stay. One that does not open leaves the old one, and says why.
-            while (std::optional<std::string> next = window.run(*session)) {
-              const RenderFlags nextFlags = flagsForAnotherFile(args->flags, *next);
-              Dataset opened;
-              try {
-                opened = openDataset(nextFlags, budgets.hostCacheBytes);  // a Cartesian file is converted first
-              } catch (const std::exception& e) {  // fcc::Error's one line, or anything a reader threw
-                session->notify(std::string("cannot open it: ") + e.what());
-                continue;
-              }
-              session.reset();  // before the data it reads
-              data = std::move(opened);
-              session = newSession(nextFlags, data);
-              window.setTitle("fccvdb — " + *next);
-              print("opened " + *next);
-            }
+            render::runOpeningFiles(
+                data, session, [&](render::ViewerSession& s) { return window.run(s); },
+                [&](const std::string& path) {
+                  return openDataset(flagsForAnotherFile(args->flags, path), budgets.hostCacheBytes);
+                },
+                newSession,
+                [&](const std::string& path) {
+                  window.setTitle("fccvdb — " + path);
+                  print("opened " + path);
+                });
             return 0;
           }};
 }

@@ -178,6 +178,8 @@ void ViewerSession::drawPanel(int windowHeight) {
     row("redrawn", drawn);
   }
   ImGui::TextDisabled("H or F1: help");
+  layout_.panelEnd = lastItemRect();
+  layout_.panelScrollMax = ImGui::GetScrollMaxY();  // ImGui scrolls a window taller than its content fits
   ImGui::PopItemWidth();
   ImGui::End();
 }
@@ -289,15 +291,21 @@ void ViewerSession::drawHelp() {
   ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
   ImGui::Begin("Help", &settings_.showHelp,
                ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
-  static const char* const kRows[][2] = {
+  // The keys that apply to the mode: DVR has no isovalue (ViewerSession::handleInput ignores its keys).
+  struct Row {
+    const char* keys;
+    const char* what;
+    bool isoOnly = false;
+  };
+  static const Row kRows[] = {
       {"left drag", "orbit about the look-at point"},
       {"ctrl + left drag", "roll"},
       {"middle drag, shift + left drag", "pan"},
       {"wheel", "zoom"},
       {"R", "reset the camera (frame the data)"},
       {"C", "save the camera as JSON (for --camera) and copy it"},
-      {"+, - (or keypad)", "isovalue up or down by 1% of its range"},
-      {"Page Up, Page Down", "isovalue up or down by 10%"},
+      {"+, - (or keypad)", "isovalue up or down by 1% of its range", true},
+      {"Page Up, Page Down", "isovalue up or down by 10%", true},
       {"S, F12", "screenshot: PNG of the window and EXR of the image, in the current directory"},
       {"O, or drop a file", "open another file (any input `fccvdb view` takes)"},
       {"P", "show or hide the panel"},
@@ -307,15 +315,18 @@ void ViewerSession::drawHelp() {
   };
   // The descriptions start right of the widest key, at any font size.
   float keysWidth = 0.0f;
-  for (const auto& r : kRows) keysWidth = std::max(keysWidth, ImGui::CalcTextSize(r[0]).x);
+  for (const Row& r : kRows) keysWidth = std::max(keysWidth, ImGui::CalcTextSize(r.keys).x);
   const float column = ImGui::GetStyle().WindowPadding.x + keysWidth + ImGui::GetFontSize();
   layout_.helpKeysRight = 0.0f;
   layout_.helpTextLeft = FLT_MAX;
-  for (const auto& r : kRows) {
-    ImGui::TextUnformatted(r[0]);
+  layout_.helpKeys.clear();
+  for (const Row& r : kRows) {
+    if (r.isoOnly && dvr()) continue;
+    ImGui::TextUnformatted(r.keys);
+    layout_.helpKeys.push_back(r.keys);
     layout_.helpKeysRight = std::max(layout_.helpKeysRight, ImGui::GetItemRectMax().x);
     ImGui::SameLine(column);
-    ImGui::TextUnformatted(r[1]);
+    ImGui::TextUnformatted(r.what);
     layout_.helpTextLeft = std::min(layout_.helpTextLeft, ImGui::GetItemRectMin().x);
   }
   ImGui::End();

@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "Camera.h"
 #include "CursorProbe.h"
@@ -54,8 +55,14 @@ struct PanelLayout {
   ImRectF isoLabel, isoSlider, histogram, backgroundSwatch;
   ImRectF transferCombo, densitySlider;  // DVR mode's (empty in isosurface mode, as the iso ones in DVR)
   std::string histogramTooltip;  // the last one shown
-  // The help window's rows: the rightmost end of a key's text and the leftmost start of a description.
+  // The help window's rows: the rightmost end of a key's text and the leftmost start of a description;
+  // the keys it lists (those that apply to the mode).
   float helpKeysRight = 0.0f, helpTextLeft = 0.0f;
+  std::vector<std::string> helpKeys;
+  // The panel's last line (the help hint) where it is drawn now, and how far the panel can scroll
+  // (0 when everything fits): every section is reachable when scrolling brings that line into view.
+  ImRectF panelEnd;
+  float panelScrollMax = 0.0f;
 };
 
 // Live figures for the statistics section, updated every frame.

@@ -213,6 +213,62 @@ TEST(ItkReaders, MetaImageWithDetachedAndLocalData) {
   EXPECT_THROW(readDicom(dir / "v.raw"), InputError);
 }
 
+// A MetaImage's AnatomicalOrientation makes it a patient's: ITK's world is the LPS frame, so codes that
+// agree with the TransformMatrix (ITK writes identity as "RAI": each letter the side an axis runs from)
+// give superior +z, anterior -y, as DICOM; codes that disagree with an identity matrix say where the index
+// axes point; none, "???" or a body axis named twice give no axes. Read whole and streamed alike, and
+// recorded by convert for the default camera.
+TEST(ItkReaders, MetaImageAnatomicalOrientationGivesThePatientAxes) {
+  TempDir dir;
+  const std::vector<int16_t> values(size_t(kNx) * kNy * kNz, 7);
+  const auto write = [&](const std::string& name, const std::string& extra) {
+    std::ofstream out(dir / name, std::ios::binary);
+    out << "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+           "TransformMatrix = 1 0 0 0 1 0 0 0 1\nOffset = 0 0 0\nElementSpacing = 0.7 0.8 1.5\n"
+        << extra << "DimSize = 11 9 7\nElementType = MET_SHORT\nElementDataFile = LOCAL\n";
+    out.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * 2));
+    return dir / name;
+  };
+  struct Case {
+    const char* codes;
+    std::optional<PatientAxes> expected;
+  };
+  const Case cases[] = {
+      {"RAI", PatientAxes{{0, 0, 1}, {0, -1, 0}}},  // ITK's identity: the world is LPS
+      {"LPS", PatientAxes{{0, 0, -1}, {0, 1, 0}}},  // every axis reversed
+      {"RSA", PatientAxes{{0, -1, 0}, {0, 0, -1}}},  // coronal slices: y runs down from the top, z back from the face
+      {"???", std::nullopt},
+      {"RRI", std::nullopt},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.codes);
+    const std::string path = write(std::string(c.codes[0] == '?' ? "unknown" : c.codes) + ".mha",
+                                   std::string("AnatomicalOrientation = ") + c.codes + "\n");
+    const DenseVolume whole = readMetaImage(path);
+    const auto streamed = openMetaImage(path);
+    for (const std::optional<PatientAxes>& got : {whole.patient, streamed->geometry().patient}) {
+      ASSERT_EQ(got.has_value(), c.expected.has_value());
+      if (!got) continue;
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(got->superior[a], c.expected->superior[a], 1e-12) << "superior " << a;
+        EXPECT_NEAR(got->anterior[a], c.expected->anterior[a], 1e-12) << "anterior " << a;
+      }
+    }
+  }
+  EXPECT_FALSE(readMetaImage(write("none.mha", "")).patient.has_value()) << "no AnatomicalOrientation: not a patient's";
+
+  // Recorded by convert, so render and view show it upright.
+  ConvertOptions o;
+  o.prefilter = false;
+  convertToFcc(dir / "RSA.mha", dir / "rsa.vdb", o);
+  const std::optional<PatientAxes> recorded = patientAxesOf(*readFccGrid(dir / "rsa.vdb"), "rsa.vdb");
+  ASSERT_TRUE(recorded.has_value());
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(recorded->superior[a], glm::dvec3(0, -1, 0)[a], 1e-6) << "superior " << a;
+    EXPECT_NEAR(recorded->anterior[a], glm::dvec3(0, 0, -1)[a], 1e-6) << "anterior " << a;
+  }
+}
+
 // `source` read in runs that start and end inside slices, backwards too, gives the whole read's values.
 void expectRunsGiveTheVolume(DenseSource& source, const DenseVolume& whole) {
   ASSERT_EQ(source.geometry().dims, whole.dims);

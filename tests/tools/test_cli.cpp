@@ -2,6 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -207,9 +208,15 @@ TEST(Cli, InfoReportsTheBoundsHierarchyForAnIsovalue) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("bounds:"));
   EXPECT_THAT(r.out, HasSubstr("iso 0.5: keeps"));
-  // Outside the data's range nothing is kept.
+  EXPECT_EQ(r.err, "") << "an isovalue inside the range warns";
+  // Outside the data's range nothing is kept, and info says so in one line with the valid range, as
+  // render does (on stderr: the JSON stays one object).
   r = runFccvdb("info " + vdb + " --iso 1000 --json");
+  EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("\"bricks_kept\": 0, \"nodes1_kept\": 0, \"nodes2_kept\": 0"));
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("isovalue 1000 is outside the values the reconstruction takes in " + vdb + " ("));
+  EXPECT_THAT(r.err, HasSubstr("pick --iso in that range"));
 }
 
 TEST(Cli, BadIsoOrDeviceGivesOneLine) {

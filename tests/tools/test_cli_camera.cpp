@@ -1,5 +1,5 @@
-// The default camera of medical data (issue 16): NIfTI, NRRD with an anatomical space (and DICOM,
-// tests/io/test_itk_readers.cpp) are shown upright, the anterior side towards the viewer, whatever the
+// The default camera of medical data (issue 16): NIfTI, NRRD with an anatomical space, MetaImage with an
+// AnatomicalOrientation (and DICOM, tests/io/test_itk_readers.cpp) are shown upright, the anterior side towards the viewer, whatever the
 // file's storage order; data without patient axes keeps the old default; --up/--eye still win.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -136,8 +136,8 @@ class CliCamera : public ::testing::Test {
   TempDir dir_;
 };
 
-// The phantom stored four ways: RAS order (NIfTI sform), reversed along x and y (NIfTI sform; NRRD in
-// LPS space, which stores exactly that), and turned 90 degrees about z (NIfTI qform). Each file's world
+// The phantom stored five ways: RAS order (NIfTI sform), reversed along x and y (NIfTI sform; NRRD in
+// LPS space and MetaImage "RAI", which store exactly that), and turned 90 degrees about z (NIfTI qform). Each file's world
 // frame differs, yet each default view shows the same picture: the head upright, nose towards the
 // viewer, the ear on the image's right (the patient's left). The same data without orientation (raw)
 // keeps the old default, +y up.
@@ -162,6 +162,15 @@ TEST_F(CliCamera, MedicalDataIsUprightFromTheFrontWhateverTheStorageOrder) {
     nrrd << "NRRD0004\ntype: float\ndimension: 3\nsizes: 41 45 49\nendian: little\nencoding: raw\n"
             "space: left-posterior-superior\nspace directions: (1,0,0) (0,1,0) (0,0,1)\nspace origin: (-20,-22,-24)\n\n";
     nrrd.write(reinterpret_cast<const char*>(reversedValues.data()), std::streamsize(reversedValues.size() * sizeof(float)));
+  }
+  {
+    // The same LPS storage as a MetaImage: ITK's identity orientation, written as "RAI" (each letter
+    // the side an axis runs from).
+    std::ofstream mha(dir_ / "lps.mha", std::ios::binary);
+    mha << "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+           "TransformMatrix = 1 0 0 0 1 0 0 0 1\nOffset = -20 -22 -24\nAnatomicalOrientation = RAI\n"
+           "ElementSpacing = 1 1 1\nDimSize = 41 45 49\nElementType = MET_FLOAT\nElementDataFile = LOCAL\n";
+    mha.write(reinterpret_cast<const char*>(reversedValues.data()), std::streamsize(reversedValues.size() * sizeof(float)));
   }
 
   NiftiOrientation turned;  // index i runs anterior (+y), j to the patient's left (-x)
@@ -209,6 +218,7 @@ TEST_F(CliCamera, MedicalDataIsUprightFromTheFrontWhateverTheStorageOrder) {
   const Variant variants[] = {
       {"reversed.nii", [](const glm::dvec3& p) { return glm::dvec3(40 - p.x, 44 - p.y, p.z); }, {0, 0, 1}, {0, -1, 0}},
       {"lps.nrrd", [](const glm::dvec3& p) { return glm::dvec3(-p.x, -p.y, p.z); }, {0, 0, 1}, {0, -1, 0}},
+      {"lps.mha", [](const glm::dvec3& p) { return glm::dvec3(-p.x, -p.y, p.z); }, {0, 0, 1}, {0, -1, 0}},
       {"turned.nii", [](const glm::dvec3& p) { return glm::dvec3(p.y + 42, -2 - p.x, p.z); }, {0, 0, 1}, {1, 0, 0}},
   };
   for (const Variant& v : variants) {

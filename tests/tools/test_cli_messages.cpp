@@ -1,13 +1,15 @@
 // The messages and policies a user meets in the first hour (issue 16): what to try for a raw file
 // with extra bytes, raw-only flags refused for other formats, one wording for an unwritable output,
 // "did you mean" and the subcommand's own --help, render's positional output, --force for every
-// output, and `bench render` (--layout auto, its progress bar, less work on a CPU renderer).
+// output, and `bench render` (--layout auto, its progress bar, less work on a CPU renderer); statistics
+// named for what they count.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 
 #include "RunCommand.h"
@@ -169,6 +171,55 @@ TEST(CliMessages, BenchRenderOnACpuRendererScalesDownAndShowsProgress) {
   EXPECT_EQ(tty.status, 0) << tty.out << tty.err;
   EXPECT_THAT(tty.out, HasSubstr("timing frames ["));
   EXPECT_THAT(tty.out, HasSubstr("100%"));
+}
+
+// Each figure says what it counts (issue 16, item 5), and the figures agree: convert's stored values are
+// info's samples, bounds bricks (the spline may vary: the bricks with data and their neighbours) are
+// at least the bricks with data, info's dims are the active data's box, and render's bricks loaded (the
+// rays reached them) are at most those that hold the isovalue, as info --iso counts them.
+TEST(CliMessages, StatisticsSayWhatTheyCountAndAgree) {
+  TempDir dir;
+  const std::string raw = dir / "ball.raw", vdb = dir / "ball.vdb";
+  {
+    std::ofstream out(raw, std::ios::binary);
+    for (int k = 0; k < 24; ++k)
+      for (int j = 0; j < 24; ++j)
+        for (int i = 0; i < 24; ++i)
+          out.put(char((i - 12) * (i - 12) + (j - 12) * (j - 12) + (k - 12) * (k - 12) < 64 ? 200 : 0));
+  }
+  const CommandResult convert = runFccvdb("convert " + raw + " " + vdb + " --dims 24,24,24 --type u8");
+  ASSERT_EQ(convert.status, 0) << convert.err;
+  std::smatch m;
+  const std::string line = convert.err.substr(convert.err.find("wrote "));
+  ASSERT_TRUE(std::regex_search(line, m,
+                                std::regex("(\\d+) stored values in (\\d+) bricks \\(4 per active packed voxel: the "
+                                           "coefficients of the FCC sites with data and the sites next to them\\), from "
+                                           "(\\d+) input voxels; bounds: (\\d+) bricks where the spline may vary "
+                                           "\\(those with data and their neighbours\\)")))
+      << convert.err;
+  const long long stored = std::stoll(m[1]), bricks = std::stoll(m[2]), input = std::stoll(m[3]), bounds = std::stoll(m[4]);
+  EXPECT_EQ(input, 24 * 24 * 24);
+  EXPECT_GE(bounds, bricks);
+  EXPECT_EQ(stored % 4, 0);
+
+  const CommandResult info = runFccvdb("info " + vdb + " --iso 100");
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_THAT(info.out, HasSubstr("samples:       " + std::to_string(stored) + " stored values (4 per active packed voxel)"));
+  EXPECT_THAT(info.out, HasSubstr("lattice points: the box of the active (stored) data, from ("));
+  EXPECT_THAT(info.out, HasSubstr("bricks:        " + std::to_string(bricks) + " (8^3 packed voxels each)"));
+  ASSERT_TRUE(std::regex_search(info.out, m, std::regex("iso 100: keeps (\\d+) bricks"))) << info.out;
+  const long long kept = std::stoll(m[1]);
+
+  const CommandResult render = runFccvdb("render " + vdb + " " + (dir / "b.png") + " --res 48x48 --iso 100");
+  if (failedForLackOfGl(render)) GTEST_SKIP() << render.err;
+  ASSERT_EQ(render.status, 0) << render.err;
+  ASSERT_TRUE(std::regex_search(render.err, m,
+                                std::regex("(\\d+) bricks loaded \\(the rays reached them; (\\d+) bricks hold the isovalue\\)")))
+      << render.err;
+  const long long loaded = std::stoll(m[1]), hold = std::stoll(m[2]);
+  EXPECT_GT(loaded, 0);
+  EXPECT_LE(loaded, hold) << "more loaded than needed";
+  EXPECT_EQ(hold, kept) << "render and info count the bricks at the isovalue differently";
 }
 
 }  // namespace

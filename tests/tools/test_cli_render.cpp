@@ -151,7 +151,8 @@ TEST(CliRender, BenchRenderJsonHasTheDocumentedKeys) {
   EXPECT_EQ(checkJsonWithPython(dir, r.out, check), 0) << r.out;
 }
 
-// An isovalue outside the values the spline takes renders an empty image, exit 0, and says so once.
+// An isovalue outside the values the spline takes renders an empty image, exit 0, and says so once
+// (bench render too; info, tests/tools/test_cli.cpp).
 TEST(CliRender, IsoOutsideTheRangeWarnsInOneLine) {
   TempDir dir;
   const std::string vdb = dir / "s.vdb";
@@ -164,6 +165,11 @@ TEST(CliRender, IsoOutsideTheRangeWarnsInOneLine) {
   const auto inside = runFccvdb("render " + vdb + " -o " + (dir / "b.png") + " --res 32x32 --iso 0.5 --quiet");
   EXPECT_EQ(inside.status, 0) << inside.err;
   EXPECT_EQ(inside.err, "");
+  // bench render times what it was given, and says the same.
+  const auto bench = runFccvdb("bench render " + vdb + " --res 16x16 --iso 1000 --frames 1 --warmup 0 --layout auto "
+                               "--variants skip+analytic --json");
+  EXPECT_EQ(bench.status, 0) << bench.err;
+  EXPECT_THAT(bench.err, HasSubstr("isovalue 1000 is outside the values the reconstruction takes in " + vdb));
 }
 
 // Any input convert takes renders directly: converted once into the cache, then reused; a changed

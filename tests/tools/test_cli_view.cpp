@@ -220,5 +220,32 @@ TEST(CliView, CartesianInputIsConvertedIntoTheCache) {
   EXPECT_FALSE(std::filesystem::is_empty(cache));
 }
 
+// `view` takes a raw file's layout as `convert` does (--dims, --type), and keeps an existing screenshot
+// unless --force, as every output of fccvdb, saying so in one line before a window opens.
+TEST(CliView, RawInputTakesDimsAndTypeAndScreenshotNeedsForce) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
+  TempDir dir;
+  const std::string raw = dir / "ball.raw", shot = dir / "shot.png";
+  {
+    std::ofstream out(raw, std::ios::binary);
+    for (int k = 0; k < 16; ++k)
+      for (int j = 0; j < 16; ++j)
+        for (int i = 0; i < 16; ++i) out.put(char((i - 8) * (i - 8) + (j - 8) * (j - 8) + (k - 8) * (k - 8) < 30 ? 200 : 0));
+  }
+  const std::string env = "FCCVDB_CACHE_DIR=" + (dir / "cache") + " ";
+  const std::string args = raw + " --dims 16,16,16 --type u8 --res 320x240 --frames 2 --screenshot " + shot;
+  const CommandResult r = runShell(env + "xvfb-run -a -s '-screen 0 1280x1024x24' " + FCC_FCCVDB_EXE + " view " + args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  Rgb8 image;
+  ASSERT_TRUE(readPng(shot, image));
+  EXPECT_EQ(image.width, 320);
+  const auto written = std::filesystem::last_write_time(shot);
+  const CommandResult again = runShell(env + "xvfb-run -a -s '-screen 0 1280x1024x24' " + FCC_FCCVDB_EXE + " view " + args);
+  EXPECT_EQ(again.status, 1);
+  EXPECT_EQ(lineCount(again.err), 1) << again.err;
+  EXPECT_NE(again.err.find("exists; pass --force to overwrite it"), std::string::npos) << again.err;
+  EXPECT_EQ(std::filesystem::last_write_time(shot), written) << "overwritten without --force";
+}
+
 }  // namespace
 }  // namespace fcc

@@ -23,16 +23,21 @@ struct SessionHarness {
   static constexpr int kWidth = 400, kHeight = 240;
   // A pool that holds every brick of the small blobs: one load, no eviction (tests not of streaming).
   static constexpr std::size_t kLargePoolBytes = std::size_t(64) << 20;
+  // The window's size (the tests' pixel helpers assume kWidth x kHeight).
+  int width = kWidth, height = kHeight;
   io::BrickStore store;
   std::unique_ptr<render::FccBrickSource> source;  // DVR sessions' (the other constructor)
-  render::HeadlessImGui imgui{kWidth, kHeight};
-  render::OffscreenTarget target{kWidth, kHeight};
+  render::HeadlessImGui imgui{width, height};
+  render::OffscreenTarget target{width, height};
   std::unique_ptr<render::ViewerSession> session;
 
-  explicit SessionHarness(const std::string& path, float iso = 0.3f, std::size_t gpuCacheBytes = kSmallPoolBytes)
-      : store(path) {
+  // `size` and `fontScale`: another window than the small default (a font of half size: a narrower
+  // panel, more image, fewer rays on llvmpipe); `view`'s own window is 1280 x 800 at font scale 1.
+  explicit SessionHarness(const std::string& path, float iso = 0.3f, std::size_t gpuCacheBytes = kSmallPoolBytes,
+                          glm::ivec2 size = {kWidth, kHeight}, float fontScale = 0.5f)
+      : width(size.x), height(size.y), store(path) {
     ImGuiIO& io = ImGui::GetIO();
-    io.FontGlobalScale = 0.5f;  // a narrower panel: more image, fewer rays on llvmpipe
+    io.FontGlobalScale = fontScale;
     // The keys text fields use, mapped as GLFW's backend maps them.
     io.KeyMap[ImGuiKey_Enter] = GLFW_KEY_ENTER;
     io.KeyMap[ImGuiKey_Escape] = GLFW_KEY_ESCAPE;
@@ -61,7 +66,7 @@ struct SessionHarness {
     input(ImGui::GetIO());
     render::HeadlessImGui::newFrame();
     target.bind();
-    session->frame(kWidth, kHeight, kHeight, 0);
+    session->frame(width, height, height, 0);
   }
   void frame() {
     frame([](ImGuiIO&) {});
@@ -108,9 +113,9 @@ struct SessionHarness {
   // RGBA pixels of the target, row 0 at the top.
   std::vector<unsigned char> pixels() const {
     std::vector<unsigned char> bottomUp = target.readRgba(), topDown(bottomUp.size());
-    const std::size_t row = std::size_t(kWidth) * 4;
-    for (int y = 0; y < kHeight; ++y)
-      std::copy_n(bottomUp.data() + std::size_t(kHeight - 1 - y) * row, row, topDown.data() + std::size_t(y) * row);
+    const std::size_t row = std::size_t(width) * 4;
+    for (int y = 0; y < height; ++y)
+      std::copy_n(bottomUp.data() + std::size_t(height - 1 - y) * row, row, topDown.data() + std::size_t(y) * row);
     return topDown;
   }
 };

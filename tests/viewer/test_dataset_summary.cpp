@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "RenderTestSupport.h"
+#include "io/DefaultIsovalue.h"
 #include "tests/tools/RunCommand.h"
 #include "sparse/SynthFields.h"
 #include "sparse/SampleHistogram.h"
@@ -77,6 +79,30 @@ TEST(DatasetSummary, RecordedSampleHistogramIsPreferred) {
   EXPECT_FALSE(coefficients.histogramOfSamples);
   EXPECT_GT(coefficients.histogramBricks, 0u);
   EXPECT_EQ(coefficients.histogramMin, coefficients.valueMin);
+}
+
+// One figure for each range everywhere (issue 16, item 1): the panel's "data range" (the samples') and
+// "surface range" (the spline's, the slider's) are info --json's sample_min/max and min/max, and the
+// isovalue render, view and bench render start at is info's suggested_iso (io/DefaultIsovalue.h).
+TEST(DatasetSummary, RangesAndDefaultIsovalueAreThoseInfoPrints) {
+  test::TempDir dir;
+  const std::string path = test::writeSmallBlobs(dir);
+  const test::CommandResult info = test::runFccvdb("info " + path + " --json");
+  ASSERT_EQ(info.status, 0) << info.err;
+  const auto number = [&](const std::string& key) {
+    const std::size_t at = info.out.find("\"" + key + "\": ");
+    EXPECT_NE(at, std::string::npos) << key << " in " << info.out;
+    return at == std::string::npos ? std::nan("") : std::stod(info.out.substr(at + key.size() + 4));
+  };
+  const io::BrickStore store(path);
+  const render::DatasetSummary s = render::summarizeDataset(store);
+  ASSERT_TRUE(s.hasDataRange);
+  EXPECT_EQ(s.dataMin, float(number("sample_min")));  // info prints floats with the 9 digits that round-trip them
+  EXPECT_EQ(s.dataMax, float(number("sample_max")));
+  EXPECT_EQ(s.valueMin, float(number("min")));
+  EXPECT_EQ(s.valueMax, float(number("max")));
+  EXPECT_LT(s.valueMin, s.dataMin) << "the spline overshoots the samples: two ranges, so the test can tell them apart";
+  EXPECT_EQ(io::defaultIsovalue(store).value, float(number("suggested_iso")));
 }
 
 TEST(HistogramAxis, BinsAndPositions) {

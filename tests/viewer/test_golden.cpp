@@ -38,6 +38,9 @@ const Golden kGoldens[] = {
     {"engine_iso100", "--dims 256,256,128 --type u8", "engine_256x256x128_uint8.raw.gz",
      "--res 128x128 --iso 100", 0.5, 0.004},
     {"sphere_levelset_iso0", "", "sphere.vdb", "--res 128x128 --iso 0", 0.5, 0.004},
+    // The default camera and isovalue of a NIfTI head (issue 16): upright, the face towards the viewer
+    // (the patient axes convert records), at Otsu's threshold of the samples.
+    {"ch2better_upright_default", "", "ch2better.nii.gz", "--res 128x128", 0.5, 0.004},
 };
 
 class GoldenImage : public ::testing::TestWithParam<Golden> {};

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,8 +15,10 @@
 #include "tests/tools/ExrRead.h"
 #include "viewer/CameraFile.h"
 #include "viewer/HistogramAxis.h"
+#include "viewer/OpenAnotherFile.h"
 #include "viewer/OrbitControls.h"
 #include "viewer/Srgb.h"
+#include "viewer/ViewerOverlays.h"
 
 namespace fcc {
 namespace {
@@ -139,7 +143,8 @@ std::vector<std::string> filesWith(const TempDir& dir, const std::string& extens
 }
 
 // S works while the panel holds the keyboard (here: the mouse held on the iso slider, which makes
-// ImGui want the keyboard), writes both files into the output directory and says so on screen.
+// ImGui want the keyboard), writes both files into the output directory and says so on screen; R
+// resets the camera there too.
 TEST_F(ViewerSession, ScreenshotKeyWorksWhileThePanelHasFocusAndIsConfirmed) {
   TempDir dir;
   SessionHarness h(test::writeSmallBlobs(dir));
@@ -152,6 +157,12 @@ TEST_F(ViewerSession, ScreenshotKeyWorksWhileThePanelHasFocusAndIsConfirmed) {
   h.frame();
   ASSERT_TRUE(ImGui::GetIO().WantCaptureKeyboard) << "the panel does not hold the keyboard: nothing is tested";
   h.press(GLFW_KEY_S);
+  // R too: the camera moved away comes back to the opening view.
+  render::Camera moved = h.session->camera();
+  moved.eye += glm::dvec3(30.0, -20.0, 10.0);
+  h.session->setCamera(moved);
+  h.press(GLFW_KEY_R);
+  EXPECT_EQ(h.session->camera().eye, test::smallBlobsCamera().eye) << "R did nothing while the panel had focus";
   h.frame([&](ImGuiIO& io) { io.MouseDown[0] = false; });
   const std::vector<std::string> pngs = filesWith(dir, ".png"), exrs = filesWith(dir, ".exr");
   ASSERT_EQ(pngs.size(), 1u) << "S wrote no PNG while the panel had focus";
@@ -160,8 +171,8 @@ TEST_F(ViewerSession, ScreenshotKeyWorksWhileThePanelHasFocusAndIsConfirmed) {
       << h.session->notice();
 }
 
-// Ctrl + click on the iso slider types its value (as the help says); S there is a letter for the
-// field, not a screenshot.
+// Ctrl + click on the iso slider types its value (as the help says); S and R there are letters for the
+// field, not a screenshot or a camera reset.
 TEST_F(ViewerSession, TextFieldKeepsItsKeysAndCtrlClickTypesAValue) {
   TempDir dir;
   SessionHarness h(test::writeSmallBlobs(dir));
@@ -170,9 +181,13 @@ TEST_F(ViewerSession, TextFieldKeepsItsKeysAndCtrlClickTypesAValue) {
   const render::ImRectF slider = h.session->panelLayout().isoSlider;
   h.click(slider.centreX(), slider.centreY(), /*ctrl=*/true);
   ASSERT_TRUE(ImGui::GetIO().WantTextInput) << "ctrl + click did not open the slider's text field";
+  render::Camera moved = h.session->camera();
+  moved.eye += glm::dvec3(30.0, -20.0, 10.0);
+  h.session->setCamera(moved);
   h.press(GLFW_KEY_S);
   h.press(GLFW_KEY_R);
   EXPECT_TRUE(filesWith(dir, ".png").empty()) << "S in a text field wrote a screenshot";
+  EXPECT_EQ(h.session->camera().eye, moved.eye) << "R in a text field reset the camera";
   h.type("0.25");
   h.press(GLFW_KEY_ENTER);
   h.frame();  // ImGui tells whether it wants text at the start of a frame, from the frame before
@@ -324,6 +339,149 @@ TEST_F(ViewerSession, OpenFieldAsksForAnotherFile) {
 
   h.session->requestOpen("/dropped.vdb");
   EXPECT_EQ(h.session->takeOpenRequest().value_or(""), "/dropped.vdb");
+}
+
+// `fccvdb view`'s loop over files (viewer/OpenAnotherFile.h, the code cmd_view runs): a path typed after
+// O that does not open leaves the session and its file, with a notice naming why; a file dropped on the
+// window then replaces the session: the new file is shown (its summary, its image), the old session
+// and its file are released, and the loop ends when the window closes.
+TEST_F(ViewerSession, OpeningAnotherFileShowsItAndReleasesTheOldOne) {
+  TempDir dir;
+  const std::string first = test::writeSmallBlobs(dir), second = dir / "other-blobs.vdb";
+  ASSERT_EQ(test::runFccvdb("synth blobs " + second + " --dims 96,96,96 --seed 7 --quiet").status, 0);
+  SessionHarness h(first, 0.3f, SessionHarness::kLargePoolBytes);
+  render::RenderOptions options;
+  options.iso = 0.3f;
+  options.gpuCacheBytes = SessionHarness::kLargePoolBytes;
+  const auto makeSession = [&](const std::shared_ptr<io::BrickStore>& store) {
+    return std::make_unique<render::ViewerSession>(*store, options, test::smallBlobsCamera(),
+                                                   render::summarizeDataset(*store));
+  };
+  std::shared_ptr<io::BrickStore> data = std::make_shared<io::BrickStore>(first);
+  const std::weak_ptr<io::BrickStore> firstData = data;
+  h.session = makeSession(data);  // the harness's frames draw whichever session the loop holds
+
+  const std::string missing = dir / "missing.vdb";
+  std::vector<unsigned char> firstImage;
+  const render::ViewerSession* firstSession = h.session.get();
+  std::vector<std::string> opened;
+  int runs = 0;
+  const auto run = [&](render::ViewerSession& s) -> std::optional<std::string> {
+    EXPECT_EQ(&s, h.session.get());
+    switch (runs++) {
+      case 0:  // the first file: shown; then O, a path that does not open, Enter
+        EXPECT_TRUE(h.settle());
+        firstImage = h.pixels();
+        h.press(GLFW_KEY_O);
+        h.frame();
+        h.type(missing);
+        h.press(GLFW_KEY_ENTER);
+        return s.takeOpenRequest();
+      case 1:  // still the first session, saying why; then a file dropped on the window
+        EXPECT_EQ(&s, firstSession) << "a file that does not open replaced the session";
+        EXPECT_FALSE(firstData.expired()) << "a file that does not open released the open one";
+        EXPECT_EQ(s.notice().rfind("cannot open it: ", 0), 0u) << s.notice();
+        EXPECT_NE(s.notice().find("missing.vdb"), std::string::npos) << s.notice();
+        s.requestOpen(second);
+        h.frame();
+        return s.takeOpenRequest();
+      default:  // the second file; then the window closes
+        EXPECT_TRUE(firstData.expired()) << "the first file is still held";
+        EXPECT_EQ(s.summary().file, second);
+        EXPECT_TRUE(h.settle());
+        return std::nullopt;
+    }
+  };
+  render::runOpeningFiles(data, h.session, run, [](const std::string& path) { return std::make_shared<io::BrickStore>(path); },
+                          makeSession, [&](const std::string& path) { opened.push_back(path); });
+  EXPECT_EQ(runs, 3);
+  EXPECT_EQ(opened, std::vector<std::string>{second});
+  ASSERT_TRUE(h.session);
+  EXPECT_EQ(data->path(), second);
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  EXPECT_GT(differingChannels(firstImage, h.pixels(), panel), 1000) << "the window still shows the first file";
+}
+
+// At `view`'s default window (1280 x 800, font scale 1) the panel, its sections as they open, is taller
+// than the window: the wheel over it scrolls it (and does not zoom the camera) until its last line is in view,
+// so every section is reachable.
+TEST_F(ViewerSession, PanelScrollsToItsLastSectionAt1280x800) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes, {1280, 800}, 1.0f);
+  for (int i = 0; i < 3; ++i) h.frame();  // the panel's scroll bar appears on its second frame
+  const render::PanelLayout& l = h.session->panelLayout();
+  ASSERT_GT(l.panelScrollMax, 0.0f) << "everything fits: nothing to scroll (the test tests nothing)";
+  EXPECT_GT(l.panelEnd.y1, float(h.height)) << "the last line is in view before scrolling";
+  const render::Camera before = h.session->camera();
+  for (int i = 0; i < 30 && l.panelEnd.y1 > float(h.height); ++i)  // (each frame casts rays: llvmpipe is slow)
+    h.frame([](ImGuiIO& io) {
+      io.MousePos = ImVec2(100.0f, 400.0f);
+      io.MouseWheel = -4.0f;  // ImGui clears it after the frame
+    });
+  EXPECT_LE(l.panelEnd.y1, float(h.height)) << "the panel's end cannot be scrolled into view";
+  EXPECT_GE(l.panelEnd.y0, 0.0f);
+  EXPECT_EQ(h.session->camera().eye, before.eye) << "the wheel over the panel zoomed the camera";
+}
+
+// With the panel hidden (P), the axis indicator is drawn in the image's bottom-left corner: world x red,
+// y green, z blue (viewer/ViewerOverlays.cpp), each axis of the oblique view a visible line there.
+TEST_F(ViewerSession, AxisIndicatorShowsInTheCornerWithThePanelHidden) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes);
+  const auto axisPixels = [&](const std::vector<unsigned char>& rgba, const glm::ivec3& colour) {
+    const int side = int(std::ceil(render::kAxisIndicatorSide * ImGui::GetIO().FontGlobalScale)) + 16;
+    int n = 0;
+    for (int y = SessionHarness::kHeight - side; y < SessionHarness::kHeight; ++y)
+      for (int x = 0; x < side; ++x) {
+        const unsigned char* p = rgba.data() + (std::size_t(y) * SessionHarness::kWidth + x) * 4;
+        n += std::abs(p[0] - colour.r) < 30 && std::abs(p[1] - colour.g) < 30 && std::abs(p[2] - colour.b) < 30;
+      }
+    return n;
+  };
+  const glm::ivec3 red(230, 70, 60), green(90, 200, 80), blue(80, 140, 255);
+  h.frame();
+  h.frame();
+  const std::vector<unsigned char> withPanel = h.pixels();  // the panel covers the corner (its widgets are bluish)
+  h.press(GLFW_KEY_P);
+  ASSERT_FALSE(h.session->settings().showPanel);
+  ASSERT_TRUE(h.settle());
+  const std::vector<unsigned char> hidden = h.pixels();
+  EXPECT_GE(axisPixels(hidden, red) - axisPixels(withPanel, red), 3) << "no x axis";
+  EXPECT_GE(axisPixels(hidden, green) - axisPixels(withPanel, green), 3) << "no y axis";
+  EXPECT_GE(axisPixels(hidden, blue) - axisPixels(withPanel, blue), 3) << "no z axis";
+}
+
+// The help lists the keys that apply to the mode: the isovalue's in isosurface mode, not in DVR mode
+// (where they do nothing).
+TEST_F(ViewerSession, HelpListsTheKeysOfTheMode) {
+  TempDir dir;
+  const std::string path = test::writeSmallBlobs(dir);
+  const auto helpKeys = [](SessionHarness& h) {
+    h.press(GLFW_KEY_H);
+    EXPECT_TRUE(h.session->settings().showHelp);
+    return h.session->panelLayout().helpKeys;
+  };
+  const auto lists = [](const std::vector<std::string>& keys, const std::string& key) {
+    return std::find(keys.begin(), keys.end(), key) != keys.end();
+  };
+  std::vector<std::string> iso, dvr;
+  {
+    SessionHarness h(path, 0.3f, SessionHarness::kLargePoolBytes);
+    iso = helpKeys(h);
+  }
+  {
+    SessionHarness h(path, std::string("grayscale"));
+    ASSERT_TRUE(h.session->dvr());
+    dvr = helpKeys(h);
+  }
+  for (const char* key : {"+, - (or keypad)", "Page Up, Page Down"}) {
+    EXPECT_TRUE(lists(iso, key)) << key;
+    EXPECT_FALSE(lists(dvr, key)) << key << " in DVR mode";
+  }
+  for (const char* key : {"left drag", "S, F12", "O, or drop a file"}) {
+    EXPECT_TRUE(lists(iso, key)) << key;
+    EXPECT_TRUE(lists(dvr, key)) << key << " in DVR mode";
+  }
 }
 
 // Pixels right of `firstColumn` that differ from the background (as drawn: sRGB, 8 bits) by more than a level.
