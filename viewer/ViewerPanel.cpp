@@ -287,7 +287,7 @@ void ViewerSession::drawHelp() {
       {"wheel", "zoom"},
       {"R", "reset the camera (frame the data)"},
       {"C", "save the camera as JSON (for --camera) and copy it"},
-      {"+, - (or keypad)", "isovalue up or down by 1% of its range"},
+      {"+, - (or keypad)", "isovalue (of the surface selected in the panel) up or down by 1% of its range"},
       {"Page Up, Page Down", "isovalue up or down by 10%"},
       {"S, F12", "screenshot: PNG of the window and EXR of the image, in the current directory"},
       {"O, or drop a file", "open another file (any input `fccvdb view` takes)"},
