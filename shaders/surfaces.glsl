@@ -137,8 +137,8 @@ bool holdsAnySurface(float lo, float hi) {
 // nextRoot3 for a polynomial of degree <= 9: the part on [u0, 1] (fcc_bernstein9_restrict), searched
 // depth first, left half first, by the convex hull (fcc_first_root_bernstein9's subdivision): an
 // interval whose coefficients change sign once and whose ends lie on different sides holds exactly one
-// crossing, bisected; one shorter than 2^-20 that cannot be decided counts as a crossing if its ends
-// differ (a touch is not one).
+// crossing, bisected on p; one shorter than 2^-20 that cannot be decided counts as a crossing if its
+// ends differ (a touch is not one).
 float nextRoot9(FccBernstein9 p, float u0, int side, out float after) {
   after = u0;
   float g0 = u0 == 0.0 ? p.b[0] : fcc_bernstein9_at(p, u0);
@@ -165,16 +165,20 @@ float nextRoot9(FccBernstein9 p, float u0, int side, out float after) {
     if (mx < 0.0 || mn >= 0.0) continue;  // one side throughout
     bool ends = (q.b[0] < 0.0) != (q.b[q.n] < 0.0);
     if ((changes == 1 && ends) || ((hi - lo < 9.5367e-7 || top + 2 > 24) && ends)) {
-      float a = 0.0, c = 1.0;
-      bool aNeg = q.b[0] < 0.0;
-      for (int it = 0; it < 26; ++it) {
-        float mid = 0.5 * (a + c);
-        if ((fcc_bernstein9_at(q, mid) < 0.0) == aNeg) a = mid;
-        else c = mid;
-      }
+      // Bisected on p itself, over the interval's place in [u0, 1]: the sides seen here are those
+      // the next search (and the caller's side update) evaluate, so a crossing is never seen twice.
       float w = 1.0 - u0;
-      after = u0 + (lo + c * (hi - lo)) * w;
-      return u0 + (lo + 0.5 * (a + c) * (hi - lo)) * w;
+      float a = u0 + lo * w, c = u0 + hi * w;
+      bool aNeg = fcc_bernstein9_at(p, a) < 0.0;
+      if ((fcc_bernstein9_at(p, c) < 0.0) != aNeg) {
+        for (int it = 0; it < 26; ++it) {
+          float mid = 0.5 * (a + c);
+          if ((fcc_bernstein9_at(p, mid) < 0.0) == aNeg) a = mid;
+          else c = mid;
+        }
+        after = c;
+        return 0.5 * (a + c);
+      }
     }
     if (hi - lo < 9.5367e-7 || top + 2 > 24) continue;
     float mid = 0.5 * (lo + hi);
@@ -302,7 +306,7 @@ bool marchBrickSurfaces(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta,
           vec3 g = uFiniteDifferenceNormals != 0 ? finiteDifferenceGradient(xyz, b)
                                                  : cc_tricubic_value_gradient(coeffs, cell, xyz).gradient;
           if (compositeCrossing(surface, t, g, st)) return true;
-          st.side[surface] = sideOf(fcc_bernstein9_at(p, after) - uSurfaceIsos[surface]);
+          st.side[surface] = sideOf(fcc_bernstein9_at(minusIso9(p, uSurfaceIsos[surface]), after));
           u0 = after;
         }
         st.side = sidesAtEnd(p.b[p.n], range.lo, range.hi);

@@ -13,7 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "CartesianTestSupport.h"
 #include "RenderTestSupport.h"
+#include "sparse/CubicBSpline.h"
+#include "sparse/LatticeSamples.h"
 #include "io/VdbFile.h"
 #include "sparse/Lattice.h"
 #include "sparse/ReferenceRaycast.h"
@@ -231,6 +234,77 @@ TEST_F(RenderSurfaces, MatchesTheCpuReference) {
   EXPECT_GT(covered, w * h / 10);
   EXPECT_GT(translucent, w * h / 20) << "the translucent surfaces must show what lies behind them somewhere";
   EXPECT_LE(disagree, int(kMaxDisagreeingFraction * w * h));
+}
+
+// The Cartesian reconstructions (the cubic of trilinear, tricubic's degree 9) composite their crossings
+// too: two surfaces of the wavy field against the CPU reference with the same coefficients.
+TEST_F(RenderSurfaces, CartesianReconstructionsMatchTheCpuReference) {
+  TempDir dir;
+  const std::string path = dir / "wavy.vdb";
+  const double scale = 0.5;
+  test::writeCartesianFile(path, test::wavy, scale, openvdb::Vec3d(-3.0, 1.0, 2.0));
+  const io::CartesianBrickStore store(path);
+  const glm::dmat4 indexFromWorld = glm::inverse(store.worldFromIndex());
+  render::Camera camera;
+  camera.lookat = glm::dvec3(store.worldFromIndex() * glm::dvec4(24.0, 24.0, 24.0, 1.0));
+  camera.eye = camera.lookat + glm::dvec3(30.0, 22.0, 36.0);
+  camera.fovYDegrees = 35.0;
+  const int w = 48, h = 40;
+  const std::vector<render::Isosurface> surfaces{{0.6f, {0.85f, 0.72f, 0.52f}, 0.5f}, {0.2f, {0.25f, 0.5f, 0.85f}, 0.8f}};
+  const render::RenderOptions options = withSurfaces(surfaces);
+  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+  const glm::dvec3 light = lightWorld(frame, options.lightInCamera);
+  std::vector<SurfaceLook> looks;
+  std::vector<float> isos;
+  for (const render::Isosurface& s : surfaces) {
+    looks.push_back(SurfaceLook{glm::dvec3(s.color), double(s.opacity)});
+    isos.push_back(s.iso);
+  }
+  const glm::dmat3 normalFromIndex = glm::transpose(glm::dmat3(indexFromWorld));
+  const glm::vec3 o(indexFromWorld * glm::dvec4(camera.eye, 1.0));
+  for (const char* name : {"trilinear", "tricubic"}) {
+    SCOPED_TRACE(name);
+    const ReconstructionInfo& info = findReconstruction(name);
+    const render::CartesianBrickSource source(store, info);
+    const render::FrameImages gpu = renderWith(source, camera, w, h, options);
+    const int pad = kBSplinePrefilterReach + 4;
+    LatticeSamples samples(Lattice::Cc, glm::ivec3(-pad), glm::ivec3(test::kDim + 2 * pad), test::kBackground);
+    samples.fill([](const glm::ivec3& ijk) {
+      const bool in = glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) && glm::all(glm::lessThan(ijk, glm::ivec3(test::kDim)));
+      return in ? test::wavy(ijk) : test::kBackground;
+    });
+    samples.prefilter(info.prefilter);
+    const CellBounds bounds(samples);
+    const std::unique_ptr<Reconstruction> recon = makeReconstruction(name);
+    std::vector<SurfacePixel> ref(std::size_t(w) * h);
+    std::vector<char> layered(ref.size(), 0);  // two crossings or more composited (both surfaces are translucent)
+    tbb::parallel_for(0, h, [&](int py) {
+      for (int px = 0; px < w; ++px) {
+        const glm::dvec3 dWorld = render::pixelRay(frame, px, py, w, h);
+        const glm::vec3 d(glm::dmat3(indexFromWorld) * dWorld);
+        const std::vector<SurfaceCrossing> crossings = surfaceCrossings(*recon, samples.accessor(), &bounds, o, d, 0.0f, 400.0f, isos);
+        ref[std::size_t(py) * w + px] =
+            compositeCrossings(crossings, looks, normalFromIndex, dWorld, light, 1.0 - double(options.terminationOpacity));
+        layered[std::size_t(py) * w + px] = crossings.size() >= 2;
+      }
+    });
+    int disagree = 0, translucent = 0;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < ref.size(); ++i) {
+      double e = 0.0;
+      for (int c = 0; c < 4; ++c) e = std::max(e, std::abs(double(gpu.rgba[4 * i + c]) - ref[i].rgba[c]));
+      if (e > kReferenceColorTol) {
+        ++disagree;
+        continue;
+      }
+      worst = std::max(worst, e);
+      translucent += layered[i];
+    }
+    std::printf("%s, 2 surfaces: %d pixels composite two crossings or more, worst difference %.3g where they agree, %d disagree\n", name,
+                translucent, worst, disagree);
+    EXPECT_GT(translucent, w * h / 10);
+    EXPECT_LE(disagree, int(kMaxDisagreeingFraction * w * h));
+  }
 }
 
 // A ray that waits for a brick keeps what it composited (colour and transmittance, exactly): a pool of
