@@ -21,6 +21,10 @@
 #ifndef FCC_MODE_DVR
 #define FCC_MODE_DVR 0
 #endif
+// 1: several isosurfaces (or a translucent one), composited front to back (surfaces.glsl).
+#ifndef FCC_MULTI_ISO
+#define FCC_MULTI_ISO 0
+#endif
 
 // The work group: pixels per group in x and y (RenderOptions::workGroup defines them).
 #ifndef FCC_GROUP_X
@@ -47,15 +51,19 @@ layout(std430, binding = 4) buffer RequestBits { uint requestBits[]; };
 layout(std430, binding = 5) buffer SlotUse { uint slotLastUse[]; };
 layout(std430, binding = 6) readonly buffer SlotBounds { vec2 slotBounds[]; };  // see pool.glsl
 
-#if FCC_MODE_DVR
+#if FCC_MODE_DVR || FCC_MULTI_ISO
 // Read back where a ray resumes: the colour so far, and in the normal's x the transmittance so far.
 layout(binding = 0, rgba32f) uniform image2D uColor;        // premultiplied colour, alpha the opacity
 layout(binding = 1, rgba32f) uniform image2D uNormalDepth;  // 0 (transmittance while waiting), depth at opacity 0.5
+                                                            // (several surfaces: the first crossing's normal, depth)
 #else
 layout(binding = 0, rgba32f) uniform writeonly image2D uColor;        // premultiplied shaded colour
 layout(binding = 1, rgba32f) uniform writeonly image2D uNormalDepth;  // unit gradient (world), depth
 #endif
 layout(binding = 2, r32f) uniform image2D uResume;                    // t to resume from; < 0: done
+#if FCC_MULTI_ISO
+layout(binding = 3, r32f) uniform image2D uTransmittance;  // while waiting: the transmittance left, exactly
+#endif
 
 uniform ivec2 uResolution;
 uniform vec3 uEye;            // world
@@ -138,6 +146,10 @@ vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick) {
               valueAt(p + vec3(0, h, 0)) - valueAt(p - vec3(0, h, 0)),
               valueAt(p + vec3(0, 0, h)) - valueAt(p - vec3(0, 0, h))) / (2.0 * h);
 }
+
+#if FCC_MULTI_ISO
+#include "surfaces.glsl"
+#endif
 
 // The first hit in the resident brick b between ta and tb, walking its unit cells (those whose slot
 // bounds exclude the isovalue are passed over). prevSign: the sign of s - iso where the ray reaches
@@ -280,6 +292,24 @@ void main() {
   }
 #endif
 
+#if FCC_MULTI_ISO
+  gDirWorld = dirWorld;
+  SurfaceState st;
+  st.side = ivec4(0);
+  if (uFirstPass != 0) {
+    st.color = vec3(0.0);
+    st.transmittance = 1.0;
+    st.normal = vec3(0.0);
+    st.depth = 1.0 / 0.0;
+  } else {  // what the ray had composited when it stopped for a brick, exactly
+    st.color = imageLoad(uColor, pixel).rgb;
+    st.transmittance = imageLoad(uTransmittance, pixel).x;
+    vec4 nd = imageLoad(uNormalDepth, pixel);
+    st.normal = nd.xyz;
+    st.depth = nd.w;
+  }
+#endif
+
   // Brick DDA (re-seeded after every node skip).
   int guard = 0;
   while (t < tEnd && guard < 4096) {
@@ -299,6 +329,9 @@ void main() {
       float tExitNode = clipBox(o, invD, nodeLo, nodeLo + 16.0 * kBrickSites).y;
       t = tExitNode > t ? tExitNode : t + 1e-5 * abs(t) + 1e-6;  // the nudge only guards progress
       prevSign = 0;
+#if FCC_MULTI_ISO
+      st.side = ivec4(0);
+#endif
       continue;
     }
     vec3 brickLo = vec3(b) * kBrickSites;
@@ -315,9 +348,17 @@ void main() {
       }
     } else if (entry == kSkip) {
       prevSign = 0;
+#if FCC_MULTI_ISO
+      st.side = ivec4(0);
+#endif
     } else if (!stopped) {
       slotLastUse[entry] = uPass;
-#if FCC_MODE_DVR
+#if FCC_MULTI_ISO
+      if (marchBrickSurfaces(b, entry, o, d, invD, t, tExitBrick, st)) {
+        found = true;  // opaque enough: nothing behind is composited or requested
+        break;
+      }
+#elif FCC_MODE_DVR
       if (marchBrick(b, entry, o, d, invD, t, tExitBrick, st)) {
         found = true;  // opaque enough: nothing behind is integrated or requested
         break;
@@ -342,6 +383,15 @@ void main() {
   imageStore(uResume, pixel, vec4(-1.0));
   imageStore(uColor, pixel, vec4(st.color, 1.0 - st.transmittance));
   imageStore(uNormalDepth, pixel, vec4(0.0, 0.0, 0.0, st.depthHalf));
+  if (st.transmittance < 1.0) noteSurfacePixel(pixel);
+  return;
+#endif
+#if FCC_MULTI_ISO
+  // Waiting or not, the pixel shows what the ray has composited (a waiting ray resumes from it).
+  if (stopped && !found) imageStore(uTransmittance, pixel, vec4(st.transmittance));
+  else imageStore(uResume, pixel, vec4(-1.0));
+  imageStore(uColor, pixel, vec4(st.color, 1.0 - st.transmittance));
+  imageStore(uNormalDepth, pixel, vec4(st.normal, st.depth));
   if (st.transmittance < 1.0) noteSurfacePixel(pixel);
   return;
 #endif

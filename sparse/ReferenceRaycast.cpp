@@ -172,6 +172,134 @@ RayHit firstHit(const Reconstruction& recon, const SiteValue& at, const CellBoun
   return result;
 }
 
+std::vector<SurfaceCrossing> surfaceCrossings(const Reconstruction& recon, const SiteValue& at, const CellBounds* bounds,
+                                              const glm::vec3& o, const glm::vec3& dIn, float t0, float t1,
+                                              const std::vector<float>& isos, std::size_t maxCrossings) {
+  std::vector<SurfaceCrossing> out;
+  const int degree = std::max(1, recon.info().rayDegree);
+  const auto& inverse = bernsteinFromValues().inverse[degree];
+  const std::size_t surfaces = isos.size();
+  glm::vec3 d = dIn;
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(d[i]) < 1e-20f) d[i] = 1e-20f;
+  const glm::vec3 invD = 1.0f / d;
+  glm::ivec3 cell(glm::floor(o + t0 * d));
+  const glm::ivec3 step(glm::sign(d));
+  glm::vec3 tMax = (glm::vec3(cell) + glm::vec3(glm::greaterThan(d, glm::vec3(0.0f))) - o) * invD;
+  const glm::vec3 tDelta = glm::abs(invD);
+  float tCell = t0;
+  std::vector<int> side(surfaces, 0);  // per surface: -1 below, +1 not, 0 unknown
+  const auto sideOf = [](double v) { return v < 0.0 ? -1 : 1; };
+  // de Casteljau in double.
+  const auto valueAt = [degree](const double* b, double u) {
+    double r[10];
+    std::copy(b, b + degree + 1, r);
+    for (int level = 1; level <= degree; ++level)
+      for (int i = 0; i <= degree - level; ++i) r[i] = r[i] + u * (r[i + 1] - r[i]);
+    return r[0];
+  };
+  constexpr int kSamples = 64;
+  for (int guard = 0; guard < 1 << 20 && tCell < t1 && out.size() < maxCrossings; ++guard) {
+    const float tExit = std::min(std::min(std::min(tMax.x, tMax.y), tMax.z), t1);
+    if (tExit > tCell) {
+      const glm::vec2 range = bounds ? bounds->at(cell) : glm::vec2(-INFINITY, INFINITY);
+      bool any = false;
+      for (std::size_t k = 0; k < surfaces; ++k) {
+        if (range.x <= isos[k] && isos[k] <= range.y) any = true;
+        else side[k] = range.x > isos[k] ? 1 : -1;
+      }
+      if (any) {
+        const spline::FccSplits splits = recon.cellSplits(cell, o, d, tCell, tExit);
+        float s0 = tCell;
+        for (int piece = 0; piece <= splits.n; ++piece) {
+          const float s1 = piece < splits.n ? splits.t[piece] : tExit;
+          if (s1 <= s0) continue;
+          const glm::vec3 mid = o + (0.5f * (s0 + s1)) * d;
+          double values[10], value[10];
+          for (int i = 0; i <= degree; ++i)
+            values[i] = recon.evaluateInPiece(mid, o + (s0 + (s1 - s0) * float(i) / degree) * d, at).value;
+          for (int i = 0; i <= degree; ++i) {
+            double sum = 0.0;
+            for (int j = 0; j <= degree; ++j) sum += inverse[i][j] * values[j];
+            value[i] = sum;
+          }
+          std::vector<SurfaceCrossing> found;
+          for (std::size_t k = 0; k < surfaces; ++k) {
+            if (!(range.x <= isos[k] && isos[k] <= range.y)) continue;
+            double b[10];
+            for (int i = 0; i <= degree; ++i) b[i] = value[i] - isos[k];
+            const auto add = [&](double u) {
+              SurfaceCrossing c;
+              c.t = float(double(s0) + u * double(s1 - s0));
+              c.surface = int(k);
+              c.gradient = recon.evaluateInPiece(mid, o + c.t * d, at).gradient;
+              found.push_back(c);
+            };
+            double ua = 0.0, ga = b[0];
+            if (side[k] != 0 && sideOf(ga) != side[k]) add(0.0);
+            for (int j = 1; j <= kSamples; ++j) {
+              const double ub = double(j) / kSamples, gb = j == kSamples ? b[degree] : valueAt(b, ub);
+              if (sideOf(gb) != sideOf(ga)) {
+                double lo = ua, hi = ub;
+                for (int it = 0; it < 60; ++it) {
+                  const double m = 0.5 * (lo + hi);
+                  if (sideOf(valueAt(b, m)) == sideOf(ga)) lo = m;
+                  else hi = m;
+                }
+                add(0.5 * (lo + hi));
+              }
+              ua = ub;
+              ga = gb;
+            }
+            side[k] = sideOf(b[degree]);
+          }
+          std::sort(found.begin(), found.end(), [](const SurfaceCrossing& a, const SurfaceCrossing& b) { return a.t < b.t; });
+          out.insert(out.end(), found.begin(), found.end());
+          s0 = s1;
+        }
+      }
+    }
+    if (tExit >= t1) break;
+    tCell = std::max(tCell, tExit);
+    if (tMax.x <= tMax.y && tMax.x <= tMax.z) {
+      cell.x += step.x;
+      tMax.x += tDelta.x;
+    } else if (tMax.y <= tMax.z) {
+      cell.y += step.y;
+      tMax.y += tDelta.y;
+    } else {
+      cell.z += step.z;
+      tMax.z += tDelta.z;
+    }
+  }
+  if (out.size() > maxCrossings) out.resize(maxCrossings);
+  return out;
+}
+
+SurfacePixel compositeCrossings(const std::vector<SurfaceCrossing>& crossings, const std::vector<SurfaceLook>& looks,
+                                const glm::dmat3& normalFromIndex, const glm::dvec3& dirWorld,
+                                const glm::dvec3& lightWorld, double stopTransmittance) {
+  SurfacePixel px;
+  glm::dvec3 color(0.0);
+  double transmittance = 1.0;
+  for (const SurfaceCrossing& c : crossings) {
+    glm::dvec3 n = normalFromIndex * glm::dvec3(c.gradient);
+    n = glm::length(n) > 0.0 ? glm::normalize(n) : -dirWorld;
+    const glm::dvec3 facing = glm::dot(n, dirWorld) > 0.0 ? -n : n;
+    const double diffuse = std::max(glm::dot(facing, lightWorld), 0.0);
+    const SurfaceLook& look = looks.at(std::size_t(c.surface));
+    color += transmittance * look.opacity * look.color * (0.15 + 0.85 * diffuse);
+    transmittance *= 1.0 - look.opacity;
+    if (std::isinf(px.depth)) {
+      px.depth = c.t;
+      px.normal = n;
+    }
+    if (transmittance <= stopTransmittance) break;
+  }
+  px.rgba = glm::dvec4(color, 1.0 - transmittance);
+  return px;
+}
+
 WorldHit firstHitAnalytic(const AnalyticField& field, const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
                           double iso, double step) {
   WorldHit result;

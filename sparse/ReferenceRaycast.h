@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include <limits>
 #include <vector>
 
 #include "AnalyticFields.h"
@@ -43,6 +44,38 @@ struct RayHit {
 // The first point of {s = iso} on o + t d, t in [t0, t1] (index space).
 RayHit firstHit(const Reconstruction& recon, const SiteValue& at, const CellBounds& bounds, const glm::vec3& o,
                 const glm::vec3& d, float t0, float t1, float iso);
+
+// Several surfaces {s = isos[k]} at once: every crossing of any of them along o + t d, t in [t0, t1]
+// (index space), in order of t, at most maxCrossings. The cells are walked as firstHit walks them
+// (skipped where `bounds`, if given, exclude every value); on each piece sub-segment the polynomial is
+// taken as firstHit takes it and, per surface, sampled in double at 64 equal steps, every change of
+// side (s < iso or not) bisected to double precision; a side at a piece's start other than where the
+// previous piece ended is a crossing at the start (firstHit's join rule). Independent of the GPU's
+// root finding; a pair of crossings closer than 1/64 of a sub-segment (a touch) is not seen.
+struct SurfaceCrossing {
+  float t = 0.0f;
+  int surface = 0;
+  glm::vec3 gradient{0.0f};  // index space
+};
+std::vector<SurfaceCrossing> surfaceCrossings(const Reconstruction& recon, const SiteValue& at, const CellBounds* bounds,
+                                              const glm::vec3& o, const glm::vec3& d, float t0, float t1,
+                                              const std::vector<float>& isos, std::size_t maxCrossings = 64);
+
+// The renderer's composite of crossings (viewer/Raycaster.h, several surfaces): each shaded two-sided
+// Lambert with 0.15 ambient in its surface's colour, composited front to back with its opacity
+// (premultiplied) until the transmittance is at most stopTransmittance. In double.
+struct SurfaceLook {
+  glm::dvec3 color{1.0};  // linear
+  double opacity = 1.0;
+};
+struct SurfacePixel {
+  glm::dvec4 rgba{0.0};  // premultiplied; A = 1 - the transmittance left
+  double depth = std::numeric_limits<double>::infinity();  // the first crossing's (world distance)
+  glm::dvec3 normal{0.0};                                  // its unit world normal
+};
+SurfacePixel compositeCrossings(const std::vector<SurfaceCrossing>& crossings, const std::vector<SurfaceLook>& looks,
+                                const glm::dmat3& normalFromIndex, const glm::dvec3& dirWorld,
+                                const glm::dvec3& lightWorld, double stopTransmittance);
 
 // The same for an analytic field in world space: steps of `step` with a sign test, then bisection.
 // Exact for every root crossed with a sign change; a pair of roots closer than the step is missed.

@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "ProgressBar.h"
+#include "SurfaceFlags.h"
 #include "Triple.h"
 #include "io/AtomicOutput.h"
 #include "io/ImageOutput.h"
@@ -70,7 +71,17 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
   app.add_flag("--no-cache", flags.noCache, "Convert a Cartesian FILE into a temporary file instead of the user cache ($XDG_CACHE_HOME/fccvdb)");
   app.add_option("--iso", flags.iso,
                  "Isovalue (default: 0 for a level set; else Otsu's threshold of the samples' histogram, as "
-                 "`fccvdb info` suggests; the middle of the range the surface can take for files without one)");
+                 "`fccvdb info` suggests; the middle of the range the surface can take for files without one); "
+                 "several surfaces at once: up to 4 values separated by commas, e.g. 0.2,0.5 (each crossing is "
+                 "composited front to back with its surface's colour and opacity)");
+  app.add_option("--surface-color", flags.surfaceColors,
+                 "Colour of each --iso surface, in order: #rrggbb or r,g,b (sRGB, 0 to 1), separated by ';' or the flag "
+                 "repeated, e.g. '#d9b88f;0.3,0.5,0.9' (default: sand, sky blue, sage, brick red)")
+      ->expected(1)
+      ->take_all();
+  app.add_option("--surface-opacity", flags.surfaceOpacity,
+                 "Opacity of each --iso surface, 0 to 1, separated by commas, e.g. 1,0.4 (default: 1, opaque; a "
+                 "translucent surface shows what lies behind it)");
   app.add_option("--res", flags.res, "Image size WxH")->capture_default_str();
   app.add_option("--camera", flags.camera,
                  "Camera file FILE.json, as the viewer's C key saves it: {\"eye\": [X,Y,Z], \"lookat\": [X,Y,Z], "
@@ -111,11 +122,13 @@ io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::BrickStore& store
 
 io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::IsoChoice& fallback) {
   if (flags.iso.empty()) return fallback;
-  char* end = nullptr;
-  const double v = std::strtod(flags.iso.c_str(), &end);
-  if (end == flags.iso.c_str() || *end != '\0' || !std::isfinite(v) || !std::isfinite(float(v)))
-    throw ValueError("--iso '" + flags.iso + "': the isovalue must be a finite number");
-  return {float(v), "--iso"};
+  return {parseIsoList(flags.iso).front(), "--iso"};
+}
+
+std::vector<render::Isosurface> surfacesFromFlags(const RenderFlags& flags, const io::IsoChoice& first) {
+  std::vector<float> isos = flags.iso.empty() ? std::vector<float>{first.value} : parseIsoList(flags.iso);
+  isos[0] = first.value;
+  return surfacesFrom(isos, flags.surfaceColors, flags.surfaceOpacity);
 }
 
 void resolutionFromFlags(const std::string& res, int& width, int& height, const char* flag) {

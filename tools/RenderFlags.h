@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "SourceFlags.h"
 #include "io/BrickStore.h"
@@ -31,6 +32,9 @@ struct RenderFlags {
   double densityScale = 1.0;                     // DVR: multiplies every extinction
   double terminationOpacity = 0.995;             // DVR: a ray stops once this opaque
   std::string clip;                              // "X0,Y0,Z0,X1,Y1,Z1": the clipping box, world space
+  // Several isosurfaces (tools/SurfaceFlags.h): --iso holds 1 to 4 values; a colour and an opacity each.
+  std::vector<std::string> surfaceColors;        // --surface-color, each '#rrggbb' or 'r,g,b', ';'-separated
+  std::string surfaceOpacity;                    // --surface-opacity "1,0.4"
 };
 
 // Registers FILE, --grid, --iso, --res, --camera, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache, --layout,
@@ -42,9 +46,13 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags);
 // --no-cache), saying so in one line on stderr with a progress bar unless `quiet`.
 std::unique_ptr<io::FccInput> openFccInput(const RenderFlags& flags, bool quiet);
 
-// --iso, or the default (io/DefaultIsovalue.h, with its basis); ValueError if not a finite number.
+// --iso's first value, or the default (io/DefaultIsovalue.h, with its basis); ValueError if --iso is
+// not a list of 1 to 4 finite numbers (tools/SurfaceFlags.h).
 io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::IsoChoice& fallback);
 io::IsoChoice isoFromFlags(const RenderFlags& flags, const io::BrickStore& store);
+// Every surface: --iso's values (the first replaced by `first`, the default when --iso is not given),
+// --surface-color and --surface-opacity (tools/SurfaceFlags.h). ValueError (one line) for a bad list.
+std::vector<render::Isosurface> surfacesFromFlags(const RenderFlags& flags, const io::IsoChoice& first);
 // One line on stderr if `iso` lies outside [valueMin, valueMax], the range the reconstruction of
 // `path` takes (the hull of the bounds): the image would show no surface. Not an error: the user may
 // want exactly that.

@@ -16,6 +16,7 @@
 #include "ProgressBar.h"
 #include "RenderData.h"
 #include "RenderFlags.h"
+#include "SurfaceFlags.h"
 #include "sparse/Error.h"
 #include "viewer/EglContext.h"
 
@@ -136,6 +137,8 @@ Command addBenchRenderCommand(CLI::App& bench) {
             render::RenderOptions options = renderOptionsFromFlags(flags);
             options.iso = iso;
             data.applyMode(args->flags, options);  // --mode dvr: the transfer function
+            if (options.mode == render::RenderMode::Iso)  // several surfaces: --iso's list, their colours and opacities
+              setSurfaces(options, surfacesFromFlags(args->flags, io::IsoChoice{iso, "--iso"}));
             options.timeGpu = args->gpuTime;
             resolutionFromFlags(args->workGroup, options.workGroup.x, options.workGroup.y, "--work-group");
 

@@ -13,6 +13,7 @@
 #include "JsonText.h"
 #include "Median.h"
 #include "RenderFlags.h"
+#include "SurfaceFlags.h"
 #include "sparse/Error.h"
 #include "viewer/DatasetSummary.h"
 #include "viewer/EglContext.h"
@@ -170,8 +171,10 @@ Command addBenchViewCommand(CLI::App& bench) {
             const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);
             const io::BrickStore store(input->path(), args->flags.grid);
             render::RenderOptions options = renderOptionsFromFlags(args->flags);
-            options.iso = isoFromFlags(args->flags, store).value;
-            warnIfIsoOutside(options.iso, store);
+            // Every surface of --iso's list, with --surface-color and --surface-opacity.
+            const std::vector<render::Isosurface> surfaces = surfacesFromFlags(args->flags, isoFromFlags(args->flags, store));
+            for (const render::Isosurface& s : surfaces) warnIfIsoOutside(s.iso, store);
+            setSurfaces(options, surfaces);
             options.timeGpu = args->gpuTime;
             const render::Camera camera = cameraFromFlags(args->flags, store, double(width) / height);
             const EglContext gl;

@@ -10,11 +10,21 @@
 #include "Command.h"
 #include "RenderData.h"
 #include "RenderFlags.h"
+#include "SurfaceFlags.h"
 #include "io/ImageOutput.h"
 #include "sparse/Error.h"
 #include "viewer/EglContext.h"
 
 namespace fcc::cli {
+namespace {
+
+std::string formatNumber(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace
 
 Command addRenderCommand(CLI::App& parent) {
   struct Args {
@@ -57,11 +67,16 @@ Command addRenderCommand(CLI::App& parent) {
             const bool dvr = options.mode == render::RenderMode::Dvr;
             const io::IsoChoice isoChoice = data.iso(args->flags);
             const float iso = isoChoice.value;
-            if (!dvr) data.warnIfIsoOutside(iso);
+            // Several surfaces (--iso's list, --surface-color, --surface-opacity); a warning for each
+            // value outside the data's range.
+            const std::vector<render::Isosurface> surfaces =
+                dvr ? std::vector<render::Isosurface>{} : surfacesFromFlags(args->flags, isoChoice);
+            for (const render::Isosurface& s : surfaces) data.warnIfIsoOutside(s.iso);
             const render::Camera camera = data.camera(args->flags, double(width) / height);
             const EglContext gl;
             mark("egl");
             options.iso = iso;
+            if (!dvr) setSurfaces(options, surfaces);
             render::Raycaster raycaster(data.source(), options);
             mark("renderer");
             const render::FrameStats stats = raycaster.render(camera, width, height);
@@ -84,6 +99,12 @@ Command addRenderCommand(CLI::App& parent) {
             // Rays load only the bricks they reach: of those whose bounds hold the isovalue, the ones
             // hidden behind the surface or outside the view are never needed, so "N of M" read as stuck.
             const std::string isoBasis = isoChoice.basis == "--iso" ? "" : " (default: " + isoChoice.basis + ")";
+            std::string isoText = "iso " + formatNumber(iso);
+            if (surfaces.size() > 1 || options.surfaceOpacity < 1.0f) {
+              isoText = surfaces.size() > 1 ? "isos" : "iso";
+              for (std::size_t k = 0; k < surfaces.size(); ++k)
+                isoText += (k ? ", " : " ") + formatNumber(surfaces[k].iso) + " (opacity " + formatNumber(surfaces[k].opacity) + ")";
+            }
             if (!args->quiet && dvr)
               std::fprintf(stderr,
                            "wrote %s: %dx%d, dvr (--tf %s over %g .. %g), %d passes, %llu bricks loaded (the rays reached "
@@ -93,12 +114,12 @@ Command addRenderCommand(CLI::App& parent) {
                            (unsigned long long)stats.bricksNeeded, stats.seconds, gl.renderer().c_str());
             else if (!args->quiet)
               std::fprintf(stderr,
-                           "wrote %s: %dx%d, iso %g%s, %d passes, %llu bricks loaded (the rays reached them; %llu "
-                           "bricks hold the isovalue), %.3f s on %s\n",
-                           args->output.c_str(), width, height, double(iso),
-                           isoBasis.c_str(),
+                           "wrote %s: %dx%d, %s%s, %d passes, %llu bricks loaded (the rays reached them; %llu "
+                           "bricks hold %s), %.3f s on %s\n",
+                           args->output.c_str(), width, height, isoText.c_str(), isoBasis.c_str(),
                            stats.passes, (unsigned long long)stats.bricksUploaded,
-                           (unsigned long long)stats.bricksNeeded, stats.seconds, gl.renderer().c_str());
+                           (unsigned long long)stats.bricksNeeded, surfaces.size() > 1 ? "an isovalue" : "the isovalue",
+                           stats.seconds, gl.renderer().c_str());
             if (!args->quiet) std::fprintf(stderr, "camera: %s\n", cameraFlags(camera).c_str());
             const io::BrickStore::Damage damage = data.damage();
             if (damage.bricks > 0) {

@@ -4,10 +4,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "Command.h"
 #include "RenderData.h"
 #include "RenderFlags.h"
+#include "SurfaceFlags.h"
 #include "io/Convert.h"
 #include "io/PatientMetadata.h"
 #include "sparse/Error.h"
@@ -25,6 +27,7 @@ struct Dataset {
   RenderFlags flags;  // what it was opened with (the camera and termination opacity read them)
   std::unique_ptr<RenderData> data;
   float iso = 0.0f;
+  std::vector<render::Isosurface> surfaces;  // --iso's list with their colours and opacities (isosurface mode)
   std::optional<render::DvrTransfer> dvr;  // --mode dvr
 };
 
@@ -37,8 +40,10 @@ Dataset openDataset(const RenderFlags& flags, std::size_t hostCacheBytes) {
     d.data->applyMode(flags, options);  // the warnings `render` gives
     d.dvr = d.data->dvrTransfer(flags);
   } else {
-    d.iso = d.data->iso(flags).value;
-    d.data->warnIfIsoOutside(d.iso);
+    const io::IsoChoice choice = d.data->iso(flags);
+    d.iso = choice.value;
+    d.surfaces = surfacesFromFlags(flags, choice);
+    for (const render::Isosurface& s : d.surfaces) d.data->warnIfIsoOutside(s.iso);
   }
   // Damaged patient axes refuse the file here, while a file opened from the window can still be
   // refused in a notice (the camera reads them).
@@ -111,6 +116,7 @@ Command addViewCommand(CLI::App& parent) {
               const RenderFlags& flags = d.flags;
               render::RenderOptions options = budgets;
               options.iso = d.iso;
+              if (!d.surfaces.empty()) setSurfaces(options, d.surfaces);
               options.terminationOpacity = float(flags.terminationOpacity);
               const io::BrickStore* store = d.data->fccStore();
               auto session = std::make_unique<render::ViewerSession>(

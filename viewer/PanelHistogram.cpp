@@ -52,12 +52,22 @@ void ViewerSession::drawHistogram() {
     drawOpacityCurve(x0, x1, outerHi.y - pad.y, outerLo.y + pad.y);
   } else if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
     // Where a surface can be: the samples' range may reach past the spline's.
-    settings_.iso = std::clamp(axis.valueAt(positionOfMouse()), summary_.valueMin, summary_.valueMax);
+    // The selected surface's isovalue (the Surfaces section selects it).
+    selectedIso() = std::clamp(axis.valueAt(positionOfMouse()), summary_.valueMin, summary_.valueMax);
   }
-  // The isovalue's place in the histogram.
+  // Every isovalue's place in the histogram: a line in its surface's colour over a dark outline (a
+  // light colour shows on the bars too), the selected one wider.
   if (!dvr_) {
-    const float x = x0 + axis.positionOf(settings_.iso) * (x1 - x0);
-    ImGui::GetWindowDrawList()->AddLine(ImVec2(x, outerLo.y), ImVec2(x, outerHi.y), IM_COL32(255, 90, 60, 255), 2.0f);
+    const std::vector<Isosurface> surfaces = surfacesOfSettings();
+    for (std::size_t k = 0; k < surfaces.size(); ++k) {
+      const float x = x0 + axis.positionOf(surfaces[k].iso) * (x1 - x0);
+      const bool selected = int(k) == settings_.selectedSurface;
+      const glm::vec3 c = srgbFromLinear(glm::clamp(surfaces[k].color, 0.0f, 1.0f));
+      ImDrawList& draw = *ImGui::GetWindowDrawList();
+      draw.AddLine(ImVec2(x, outerLo.y), ImVec2(x, outerHi.y), IM_COL32(20, 20, 20, 255), selected ? 4.0f : 3.0f);
+      draw.AddLine(ImVec2(x, outerLo.y), ImVec2(x, outerHi.y),
+                   IM_COL32(int(255.0f * c.r), int(255.0f * c.g), int(255.0f * c.b), 255), selected ? 2.5f : 1.5f);
+    }
   }
   // The value axis: the first bin's low end under the left edge, the last bin's high end under the right.
   char low[32], high[32];

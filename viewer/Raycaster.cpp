@@ -73,24 +73,13 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   const std::string modeDefines = dvr ? "#define FCC_MODE_DVR 1\n" : "";
   const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
                                    "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
-  program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines + modeDefines + groupDefines),
-                                "shaders/raycast.comp");
+  raycastDefines_ = defines + modeDefines + groupDefines;
+  program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_), "shaders/raycast.comp");
   // A CPU rasteriser gets the cheap coefficient-hull cell bounds, a GPU the BB-coefficient ones
   // (both conservative; the image is the same, only the work skipped differs).
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   if (!(renderer && std::string(renderer).find("llvmpipe") != std::string::npos)) defines += "#define FCC_SLOT_BOUNDS_BB 1\n";
-  // Uniforms one mode does not read are inactive there (-1: setting them is a no-op).
-  const auto at = [this, dvr](const char* name) {
-    static const char* const isoOnly[] = {"uNormalFromIndex", "uIso", "uFiniteDifferenceNormals", "uSurfaceColor", "uLightDir"};
-    if (dvr && std::find_if(std::begin(isoOnly), std::end(isoOnly), [&](const char* n) { return std::strcmp(n, name) == 0; }) != std::end(isoOnly))
-      return glGetUniformLocation(program_.id(), name);
-    return program_.uniformLocation(name);
-  };
-  uniforms_ = Uniforms{at("uResolution"), at("uEye"), at("uForward"), at("uRight"), at("uUp"), at("uIndexFromWorld"),
-                       at("uNormalFromIndex"), at("uIso"), at("uBrickMin"), at("uBrickDims"), at("uNodeDims"),
-                       at("uPass"), at("uFirstPass"), at("uFirstColumn"), at("uColumnOffset"),
-                       at("uRequestCapacity"), at("uLookahead"), at("uSkipEmpty"), at("uFiniteDifferenceNormals"),
-                       at("uSurfaceColor"), at("uLightDir"), at("uClipLo"), at("uClipHi")};
+  uniforms_ = uniformsOf(program_, dvr);
   slotBoundsProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/slot_bounds.comp"), defines),
                                           "shaders/slot_bounds.comp");
   slotBoundsPassUniform_ = slotBoundsProgram_.uniformLocation("uPass");
@@ -122,7 +111,38 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
     tfPrefix_ = std::make_unique<GlBuffer>(std::size_t(options.transfer->size() + 1) * sizeof(int32_t));
     uploadTransfer();
   }
-  setIso(std::isnan(options.iso) ? 0.5f * (source.valueMin() + source.valueMax()) : options.iso);
+  std::vector<Isosurface> surfaces = surfacesOf(options_);
+  if (std::isnan(surfaces[0].iso)) surfaces[0].iso = 0.5f * (source.valueMin() + source.valueMax());
+  setSurfaces(surfaces);
+}
+
+Raycaster::Uniforms Raycaster::uniformsOf(const GlProgram& program, bool lenient) const {
+  // Uniforms one variant does not read are inactive there (-1: setting them is a no-op): DVR reads
+  // none of the isosurface's, the compositing variant not the single surface's value and colour.
+  const auto at = [&program, lenient](const char* name) {
+    static const char* const isoOnly[] = {"uNormalFromIndex", "uIso", "uFiniteDifferenceNormals", "uSurfaceColor", "uLightDir"};
+    if (lenient && std::find_if(std::begin(isoOnly), std::end(isoOnly), [&](const char* n) { return std::strcmp(n, name) == 0; }) != std::end(isoOnly))
+      return glGetUniformLocation(program.id(), name);
+    return program.uniformLocation(name);
+  };
+  return Uniforms{at("uResolution"), at("uEye"), at("uForward"), at("uRight"), at("uUp"), at("uIndexFromWorld"),
+                  at("uNormalFromIndex"), at("uIso"), at("uBrickMin"), at("uBrickDims"), at("uNodeDims"),
+                  at("uPass"), at("uFirstPass"), at("uFirstColumn"), at("uColumnOffset"),
+                  at("uRequestCapacity"), at("uLookahead"), at("uSkipEmpty"), at("uFiniteDifferenceNormals"),
+                  at("uSurfaceColor"), at("uLightDir"), at("uClipLo"), at("uClipHi")};
+}
+
+void Raycaster::buildSurfacesProgram() {
+  if (surfacesProgram_.id() != 0) return;
+  surfacesProgram_ = GlProgram::compute(
+      withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_ + "#define FCC_MULTI_ISO 1\n"),
+      "shaders/raycast.comp (several surfaces)");
+  surfacesUniforms_ = uniformsOf(surfacesProgram_, true);
+  const GLuint id = surfacesProgram_.id();
+  surfaceUniforms_ = SurfaceUniforms{glGetUniformLocation(id, "uSurfaceCount"), glGetUniformLocation(id, "uSurfaceIsos"),
+                                     glGetUniformLocation(id, "uSurfaceColors"), glGetUniformLocation(id, "uSurfaceOpacities"),
+                                     glGetUniformLocation(id, "uStopTransmittance")};
+  pool_->setUniforms(surfacesProgram_);
 }
 
 void Raycaster::uploadTransfer() {
@@ -174,6 +194,29 @@ void Raycaster::setIso(float iso) {
   updateNeeded();
 }
 
+void Raycaster::setSurfaces(const std::vector<Isosurface>& surfaces) {
+  if (surfaces.empty() || surfaces.size() > std::size_t(kMaxIsosurfaces))
+    throw ValueError(std::to_string(surfaces.size()) + " isosurfaces: valid are 1 to " + std::to_string(kMaxIsosurfaces));
+  for (const Isosurface& s : surfaces) {
+    if (!std::isfinite(s.iso)) throw ValueError("isovalue " + std::to_string(s.iso) + " is not finite");
+    if (!(s.opacity >= 0.0f && s.opacity <= 1.0f))
+      throw ValueError("surface opacity " + std::to_string(s.opacity) + ": valid is 0 to 1");
+  }
+  std::vector<Isosurface> before = surfacesOf(options_);
+  options_.iso = surfaces[0].iso;
+  options_.surfaceColor = surfaces[0].color;
+  options_.surfaceOpacity = surfaces[0].opacity;
+  options_.moreSurfaces.assign(surfaces.begin() + 1, surfaces.end());
+  if (options_.mode == RenderMode::Iso && compositesSurfaces(options_)) buildSurfacesProgram();
+  ++settings_;
+  // A colour or an opacity changes no brick's need (the constructor's first call always updates).
+  const bool sameValues = residency_ && before.size() == surfaces.size() && pageTable_ &&
+                          std::equal(before.begin(), before.end(), surfaces.begin(),
+                                     [](const Isosurface& a, const Isosurface& b) { return a.iso == b.iso; });
+  if (!sameValues || !neededOnce_) updateNeeded();
+  neededOnce_ = true;
+}
+
 void Raycaster::setClip(const glm::dvec3& lo, const glm::dvec3& hi) {
   options_.clipLo = lo;
   options_.clipHi = hi;
@@ -200,9 +243,13 @@ void Raycaster::updateNeeded() {
   };
   std::vector<glm::ivec3> needed;
   const float iso = options_.iso;
+  std::vector<float> isos;  // every surface's
+  for (const Isosurface& s : surfacesOf(options_)) isos.push_back(s.iso);
   const TransferTable* transfer = options_.mode == RenderMode::Dvr ? options_.transfer.get() : nullptr;
   source_.forEachVaryingBrick([&](const glm::ivec3& brick, float lo, float hi) {
-    const bool holds = transfer ? !transfer->zeroOn(lo, hi) : (lo <= iso && iso <= hi);
+    const bool holds = transfer ? !transfer->zeroOn(lo, hi)
+                                : (lo <= iso && iso <= hi) ||
+                                      std::any_of(isos.begin() + 1, isos.end(), [&](float v) { return lo <= v && v <= hi; });
     if ((!options_.skipEmpty || holds) && insideClip(brick)) needed.push_back(brick);
   });
   residency_->setNeeded(needed);
@@ -217,6 +264,23 @@ void Raycaster::setSkipEmpty(bool skip) {
 void Raycaster::setFiniteDifferenceNormals(bool on) {
   options_.finiteDifferenceNormals = on;
   ++settings_;
+}
+
+glm::vec3 defaultSurfaceColor(int index) {
+  // Sand (the single surface's), then sky blue, sage and brick red: apart in hue and lightness.
+  static const glm::vec3 palette[kMaxIsosurfaces] = {
+      {0.85f, 0.72f, 0.52f}, {0.25f, 0.50f, 0.85f}, {0.45f, 0.75f, 0.35f}, {0.80f, 0.30f, 0.25f}};
+  return palette[std::clamp(index, 0, kMaxIsosurfaces - 1)];
+}
+
+std::vector<Isosurface> surfacesOf(const RenderOptions& options) {
+  std::vector<Isosurface> all{Isosurface{options.iso, options.surfaceColor, options.surfaceOpacity}};
+  all.insert(all.end(), options.moreSurfaces.begin(), options.moreSurfaces.end());
+  return all;
+}
+
+bool compositesSurfaces(const RenderOptions& options) {
+  return options.mode == RenderMode::Iso && (!options.moreSurfaces.empty() || options.surfaceOpacity < 1.0f);
 }
 
 void Raycaster::setSurfaceColor(const glm::vec3& rgb) {
@@ -283,6 +347,8 @@ void Raycaster::restartRays(int width, int height) {
     normalDepth_ = GlTexture2D(GL_RGBA32F, width, height);
     resume_ = GlTexture2D(GL_R32F, width, height);
   }
+  if (compositesSurfaces(options_) && (transmittance_.width() != width || transmittance_.height() != height))
+    transmittance_ = GlTexture2D(GL_R32F, width, height);
   firstPass_ = true;  // every ray starts at t = 0; the first pass writes every pixel's resume value
   // No surface pixel yet: min column and row past any pixel, max ones before any.
   const int32_t noSurface[4] = {std::numeric_limits<int32_t>::max(), std::numeric_limits<int32_t>::max(), -1, -1};
@@ -299,8 +365,11 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   requests_->write(&zero, sizeof zero);
   if (requestBitsDirty_) requestBits_->clear();
 
-  const GLuint p = program_.id();
-  const Uniforms& u = uniforms_;
+  // The compositing variant draws several or translucent surfaces (RenderOptions::moreSurfaces).
+  const bool composite = compositesSurfaces(options_);
+  const GlProgram& program = composite ? surfacesProgram_ : program_;
+  const GLuint p = program.id();
+  const Uniforms& u = composite ? surfacesUniforms_ : uniforms_;
   const glm::dmat4 indexFromWorld = glm::inverse(source_.worldFromIndex());
   const glm::mat4 indexFromWorldF(indexFromWorld);
   const glm::mat3 normalFromIndex = glm::transpose(glm::mat3(indexFromWorldF));
@@ -336,6 +405,22 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   const glm::vec3 clipHi(glm::clamp(options_.clipHi, glm::dvec3(-1e30), glm::dvec3(1e30)));
   glProgramUniform3fv(p, u.clipLo, 1, &clipLo.x);
   glProgramUniform3fv(p, u.clipHi, 1, &clipHi.x);
+  if (composite) {
+    const std::vector<Isosurface> surfaces = surfacesOf(options_);
+    float isos[kMaxIsosurfaces] = {}, opacities[kMaxIsosurfaces] = {};
+    glm::vec3 colors[kMaxIsosurfaces] = {};
+    for (std::size_t k = 0; k < surfaces.size(); ++k) {
+      isos[k] = surfaces[k].iso;
+      opacities[k] = surfaces[k].opacity;
+      colors[k] = surfaces[k].color;
+    }
+    const SurfaceUniforms& su = surfaceUniforms_;
+    glProgramUniform1i(p, su.count, GLint(surfaces.size()));
+    glProgramUniform4fv(p, su.isos, 1, isos);
+    glProgramUniform4fv(p, su.opacities, 1, opacities);
+    glProgramUniform3fv(p, su.colors, kMaxIsosurfaces, &colors[0].x);
+    glProgramUniform1f(p, su.stopTransmittance, 1.0f - options_.terminationOpacity);
+  }
 
   pool_->bind();
   pageTable_->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
@@ -348,13 +433,14 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
     tfEntries_->bindBase(GL_SHADER_STORAGE_BUFFER, 12);
     tfPrefix_->bindBase(GL_SHADER_STORAGE_BUFFER, 13);
   }
-  // DVR rays read what they accumulated before they stopped for a brick.
-  const GLenum imageAccess = options_.mode == RenderMode::Dvr ? GL_READ_WRITE : GL_WRITE_ONLY;
+  // DVR rays, and compositing ones, read what they accumulated before they stopped for a brick.
+  const GLenum imageAccess = options_.mode == RenderMode::Dvr || composite ? GL_READ_WRITE : GL_WRITE_ONLY;
   color_.bindImage(0, imageAccess);
   normalDepth_.bindImage(1, imageAccess);
   resume_.bindImage(2, GL_READ_WRITE);
+  if (composite) transmittance_.bindImage(3, GL_READ_WRITE);
 
-  program_.use();
+  program.use();
   if (passTimer_) passTimer_->begin();
   const int columns = width - columnOffset;
   glDispatchCompute(GLuint((columns + group.x - 1) / group.x), GLuint((height + group.y - 1) / group.y), 1);

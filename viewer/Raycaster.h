@@ -36,6 +36,18 @@ enum class RenderMode { Iso, Dvr };
 std::string renderModeName(RenderMode mode);  // "iso", "dvr"
 RenderMode parseRenderMode(const std::string& name);  // ValueError naming the valid ones
 
+// One isosurface of several drawn at once: its value, colour (linear RGB) and opacity in [0, 1].
+struct Isosurface {
+  float iso = 0.0f;
+  glm::vec3 color{0.85f, 0.72f, 0.52f};
+  float opacity = 1.0f;
+  bool operator==(const Isosurface& o) const { return iso == o.iso && color == o.color && opacity == o.opacity; }
+  bool operator!=(const Isosurface& o) const { return !(*this == o); }
+};
+inline constexpr int kMaxIsosurfaces = 4;
+// The default colour of surface `index` (0: RenderOptions::surfaceColor's default), linear RGB.
+glm::vec3 defaultSurfaceColor(int index);
+
 struct RenderOptions {
   RenderMode mode = RenderMode::Iso;
   float iso = std::numeric_limits<float>::quiet_NaN();  // NaN: midway through the data's value range
@@ -59,10 +71,20 @@ struct RenderOptions {
   // Requested bricks read back with a pass's header (16 KiB); a pass asking for more reads the rest
   // from the buffer itself, which waits for anything queued after the pass. (Tests lower it.)
   uint32_t requestsReadBack = 4096;
-  glm::vec3 surfaceColor{0.85f, 0.72f, 0.52f};
+  glm::vec3 surfaceColor{0.85f, 0.72f, 0.52f};  // the first surface's (`iso`'s) colour
+  float surfaceOpacity = 1.0f;                  // and its opacity
+  // Surfaces 2 to kMaxIsosurfaces. With any of them, or surfaceOpacity < 1, rays composite every
+  // crossing front to back (the FCC_MULTI_ISO variant of shaders/raycast.comp) until the remaining
+  // transmittance falls below 1 - terminationOpacity; else the first crossing is the pixel, as always.
+  std::vector<Isosurface> moreSurfaces;
   // Direction towards the light in camera space: x right, y up, z towards the viewer.
   glm::vec3 lightInCamera{0.3f, 0.6f, 1.0f};
 };
+
+// Every surface of `options`: iso, surfaceColor and surfaceOpacity first, then moreSurfaces.
+std::vector<Isosurface> surfacesOf(const RenderOptions& options);
+// Whether `options` needs the compositing variant (several surfaces, or a translucent one).
+bool compositesSurfaces(const RenderOptions& options);
 
 // The layout when none is asked for, by measurement (docs/BENCHMARKS.md, H200): the one-channel
 // embedding is 10-15% faster than the four-channel packing, but a brick costs twice the GPU bytes,
@@ -75,8 +97,10 @@ BrickLayout chooseBrickLayout(const BrickSource& source, std::size_t gpuCacheByt
 // The output of a frame, row 0 at the top.
 struct FrameImages {
   int width = 0, height = 0;
-  std::vector<float> rgba;         // premultiplied shaded colour, 4 per pixel; A = 1 on a hit
-  std::vector<float> normalDepth;  // unit world gradient direction, then depth (+inf on a miss)
+  std::vector<float> rgba;         // premultiplied shaded colour, 4 per pixel; A = 1 on a hit (several
+                                   // surfaces: A = 1 - the transmittance left)
+  std::vector<float> normalDepth;  // unit world gradient direction, then depth (+inf on a miss): the
+                                   // first surface crossed
 };
 
 struct FrameStats {
@@ -108,6 +132,11 @@ class Raycaster {
 
   // Bricks needed change; resident ones stay (no preprocessing, no reload for a revisited isovalue).
   void setIso(float iso);
+  // Every surface at once (1 to kMaxIsosurfaces; the first becomes iso/surfaceColor/surfaceOpacity):
+  // bricks needed change as for setIso; the shader variant follows compositesSurfaces. ValueError for
+  // an empty or too long list, a value that is not finite or an opacity outside [0, 1].
+  void setSurfaces(const std::vector<Isosurface>& surfaces);
+  std::vector<Isosurface> surfaces() const { return surfacesOf(options_); }
   // DVR: another transfer function (the same: bricks needed change, resident ones stay).
   void setTransfer(std::shared_ptr<const TransferTable> transfer);
   // Another clipping box (world space; lo > hi on an axis: nothing shows). Bricks needed change.
@@ -203,16 +232,25 @@ class Raycaster {
   } stepKey_;
   uint64_t settings_ = 1;  // bumped by every change of the isovalue or an option
   bool stepComplete_ = false;
+  bool neededOnce_ = false;   // updateNeeded() has run (setSurfaces skips it when only colours change)
   bool stepStarted_ = false;  // startStep() ran, finishStep() has not
   StepStats startedStep_;     // what startStep() did
   GlProgram program_, slotBoundsProgram_, pageUpdateProgram_;
+  // The compositing variant (FCC_MULTI_ISO) of program_, built the first time it is needed.
+  GlProgram surfacesProgram_;
+  std::string raycastDefines_;  // what program_ was built with, for surfacesProgram_
+  struct SurfaceUniforms {
+    GLint count, isos, colors, opacities, stopTransmittance;
+  } surfaceUniforms_{};
+  void buildSurfacesProgram();
   GLint slotBoundsPassUniform_ = -1;  // its uPass: the pass that marks freshly uploaded slots used
   GLint pageUpdateCountUniform_ = -1; // pageUpdateProgram_'s uCount: the pairs to write
   // raycast.comp's uniform locations, looked up once.
   struct Uniforms {
     GLint resolution, eye, forward, right, up, indexFromWorld, normalFromIndex, iso, brickMin, brickDims, nodeDims,
         pass, firstPass, firstColumn, columnOffset, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir, clipLo, clipHi;
-  } uniforms_{};
+  } uniforms_{}, surfacesUniforms_{};
+  Uniforms uniformsOf(const GlProgram& program, bool dvr) const;
   std::unique_ptr<GlReadbackBuffer> passResultsReadback_;
   const uint32_t* passResults_ = nullptr;  // the last pass's header and first requests, as read back
   std::vector<glm::ivec3> lastRequests_;
@@ -222,6 +260,7 @@ class Raycaster {
   std::unique_ptr<GlBuffer> pageChanges_;  // (index, value) pairs for updatePageTable
   std::unique_ptr<GlBuffer> tfEntries_, tfPrefix_;  // DVR: shaders/dvr.glsl's TfEntries and TfPrefix
   GlTexture2D color_, normalDepth_, resume_;
+  GlTexture2D transmittance_;  // FCC_MULTI_ISO: a waiting ray's transmittance, kept exactly
 };
 
 }  // namespace fcc::render

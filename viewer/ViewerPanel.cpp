@@ -83,17 +83,8 @@ void ViewerSession::drawPanel(int windowHeight) {
   layout_.isoLabel = layout_.isoSlider = layout_.transferCombo = layout_.densitySlider = {};
   if (dvr()) {
     drawTransferSection();
-  } else if (ImGui::CollapsingHeader("Isosurface", ImGuiTreeNodeFlags_DefaultOpen)) {
-    // The value above the slider, not in it: the slider's handle would cover it wherever it stands.
-    ImGui::Text("isovalue %.6g", double(settings_.iso));
-    layout_.isoLabel = lastItemRect();
-    ImGui::SetNextItemWidth(-1.0f);
-    // Instant: the bounds do not depend on the isovalue, only which bricks are needed does. No text
-    // in the slider (an empty format), so no rounding to one either; ctrl + click still types a value.
-    ImGui::SliderFloat("##iso", &settings_.iso, summary_.valueMin, summary_.valueMax, "",
-                       ImGuiSliderFlags_NoRoundToFormat);
-    layout_.isoSlider = lastItemRect();
-    drawHistogram();
+  } else {
+    drawSurfacesSection();  // viewer/PanelSurfaces.cpp: the surfaces, their values, colours and opacities
   }
   if (!dvr() && ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) {
     // Light direction in camera space as azimuth (from the view axis towards the right) and
@@ -107,9 +98,9 @@ void ViewerSession::drawPanel(int windowHeight) {
       settings_.lightInCamera = glm::vec3(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
     }
     // The renderer's colours are linear; the swatches and fields show them as drawn on screen (sRGB),
-    // and an edit is converted back (only then: the defaults stay bit-exact).
-    glm::vec3 surface = srgbFromLinear(settings_.surfaceColor), background = srgbFromLinear(settings_.background);
-    if (colourEdit("surface", surface)) settings_.surfaceColor = linearFromSrgb(surface);
+    // and an edit is converted back (only then: the defaults stay bit-exact). The surfaces' colours
+    // are in their section.
+    glm::vec3 background = srgbFromLinear(settings_.background);
     if (colourEdit("background", background, &layout_.backgroundSwatch))
       settings_.background = linearFromSrgb(background);
   } else if (dvr() && ImGui::CollapsingHeader("Background", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -304,7 +295,7 @@ void ViewerSession::drawHelp() {
       {"wheel", "zoom"},
       {"R", "reset the camera (frame the data)"},
       {"C", "save the camera as JSON (for --camera) and copy it"},
-      {"+, - (or keypad)", "isovalue up or down by 1% of its range", true},
+      {"+, - (or keypad)", "isovalue (of the surface selected in the panel) up or down by 1% of its range", true},
       {"Page Up, Page Down", "isovalue up or down by 10%", true},
       {"S, F12", "screenshot: PNG of the window and EXR of the image, in the current directory"},
       {"O, or drop a file", "open another file (any input `fccvdb view` takes)"},

@@ -68,6 +68,8 @@ void ViewerSession::init(const RenderOptions& options) {
   settings_.iso = raycaster_.iso();
   settings_.lightInCamera = options.lightInCamera;
   settings_.surfaceColor = options.surfaceColor;
+  settings_.surfaceOpacity = options.surfaceOpacity;
+  settings_.moreSurfaces = options.moreSurfaces;
   settings_.skipEmpty = options.skipEmpty;
   settings_.finiteDifferenceNormals = options.finiteDifferenceNormals;
   settings_.clipLo = options.clipLo;  // +-1e30 (the default): no box
@@ -168,8 +170,10 @@ void ViewerSession::handleInput(int windowHeight) {
     if (ImGui::IsKeyPressed(GLFW_KEY_MINUS, true) || ImGui::IsKeyPressed(GLFW_KEY_KP_SUBTRACT, true)) isoSteps -= kIsoKeyStep;
     if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_UP, true)) isoSteps += kIsoPageStep;
     if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_DOWN, true)) isoSteps -= kIsoPageStep;
-    if (isoSteps != 0.0f && !dvr())
-      settings_.iso = std::clamp(settings_.iso + isoSteps * range, summary_.valueMin, summary_.valueMax);
+    if (isoSteps != 0.0f && !dvr()) {
+      float& iso = selectedIso();  // the surface selected in the panel
+      iso = std::clamp(iso + isoSteps * range, summary_.valueMin, summary_.valueMax);
+    }
     if (ImGui::IsKeyPressed(GLFW_KEY_O, false)) {
       openField_.shown = true;
       openField_.focus = true;
@@ -212,20 +216,30 @@ void ViewerSession::updateCursor(int fbWidth, int fbHeight, int windowHeight) {
 // The raycaster's setters restart the progressive frame, so only what changed is passed on.
 bool ViewerSession::applySettings() {
   const RenderOptions o = raycaster_.options();
-  const float iso = raycaster_.iso();
+  const std::vector<Isosurface> surfaces = raycaster_.surfaces();
   const std::shared_ptr<const TransferTable> transfer = o.transfer;
   if (dvr_) applyTransfer();
-  else if (settings_.iso != iso) raycaster_.setIso(settings_.iso);
+  else if (surfacesOfSettings() != surfaces) raycaster_.setSurfaces(surfacesOfSettings());
   if (settings_.skipEmpty != o.skipEmpty) raycaster_.setSkipEmpty(settings_.skipEmpty);
   if (settings_.finiteDifferenceNormals != o.finiteDifferenceNormals)
     raycaster_.setFiniteDifferenceNormals(settings_.finiteDifferenceNormals);
-  if (settings_.surfaceColor != o.surfaceColor) raycaster_.setSurfaceColor(settings_.surfaceColor);
   if (settings_.lightInCamera != o.lightInCamera) raycaster_.setLightInCamera(settings_.lightInCamera);
   if (settings_.clipLo != o.clipLo || settings_.clipHi != o.clipHi) raycaster_.setClip(settings_.clipLo, settings_.clipHi);
   const RenderOptions& now = raycaster_.options();
-  return raycaster_.iso() != iso || now.transfer != transfer || now.skipEmpty != o.skipEmpty ||
+  return raycaster_.surfaces() != surfaces || now.transfer != transfer || now.skipEmpty != o.skipEmpty ||
          now.finiteDifferenceNormals != o.finiteDifferenceNormals || now.surfaceColor != o.surfaceColor ||
          now.lightInCamera != o.lightInCamera || now.clipLo != o.clipLo || now.clipHi != o.clipHi;
+}
+
+std::vector<Isosurface> ViewerSession::surfacesOfSettings() const {
+  std::vector<Isosurface> all{Isosurface{settings_.iso, settings_.surfaceColor, settings_.surfaceOpacity}};
+  all.insert(all.end(), settings_.moreSurfaces.begin(), settings_.moreSurfaces.end());
+  return all;
+}
+
+float& ViewerSession::selectedIso() {
+  const int k = settings_.selectedSurface;
+  return k >= 1 && k <= int(settings_.moreSurfaces.size()) ? settings_.moreSurfaces[std::size_t(k - 1)].iso : settings_.iso;
 }
 
 void ViewerSession::applyTransfer() {

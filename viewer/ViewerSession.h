@@ -27,9 +27,14 @@ namespace fcc::render {
 
 // What the panel edits.
 struct ViewerSettings {
-  float iso = 0.0f;
+  float iso = 0.0f;                             // the first surface's
   glm::vec3 lightInCamera{0.3f, 0.6f, 1.0f};   // as RenderOptions
-  glm::vec3 surfaceColor{0.85f, 0.72f, 0.52f};  // linear
+  glm::vec3 surfaceColor{0.85f, 0.72f, 0.52f};  // linear; the first surface's
+  float surfaceOpacity = 1.0f;                  // the first surface's
+  // Surfaces 2 to kMaxIsosurfaces (the panel's Surfaces section adds and removes them), and the one the
+  // isovalue keys and a click on the histogram move (0: the first).
+  std::vector<Isosurface> moreSurfaces;
+  int selectedSurface = 0;
   glm::vec3 background{0.08f, 0.09f, 0.11f};    // linear, as `fccvdb render`'s PNG
   bool skipEmpty = true;
   bool finiteDifferenceNormals = false;
@@ -54,6 +59,7 @@ struct ImRectF {
 struct PanelLayout {
   ImRectF isoLabel, isoSlider, histogram, backgroundSwatch;
   ImRectF transferCombo, densitySlider;  // DVR mode's (empty in isosurface mode, as the iso ones in DVR)
+  ImRectF addSurface, removeLastSurface;  // the Surfaces section's buttons (empty when not shown)
   std::string histogramTooltip;  // the last one shown
   // The help window's rows: the rightmost end of a key's text and the leftmost start of a description;
   // the keys it lists (those that apply to the mode).
@@ -172,6 +178,9 @@ class ViewerSession {
   bool applySettings();  // true when a setting changed the image (it restarts the frame)
   void applyTransfer();  // DVR: a new table when the transfer function or density scale changed
   void drawTransferSection();  // viewer/ViewerPanel.cpp
+  void drawSurfacesSection();  // viewer/PanelSurfaces.cpp
+  std::vector<Isosurface> surfacesOfSettings() const;  // settings_'s surfaces, the first from iso/surfaceColor
+  float& selectedIso();        // the isovalue the keys and the histogram move
   void drawOpacityCurve(float x0, float x1, float yLo, float yHi);  // viewer/PanelHistogram.cpp
   void updateCursor(int fbWidth, int fbHeight, int windowHeight);
   void drawCursorSection();

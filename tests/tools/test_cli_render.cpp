@@ -11,7 +11,10 @@
 #include <fstream>
 #include <set>
 #include <string>
+#include <vector>
+#include <cmath>
 
+#include "ExrRead.h"
 #include "RunCommand.h"
 
 namespace fcc::test {
@@ -238,6 +241,69 @@ TEST(CliRender, CartesianInputConvertsOnceIntoTheCacheAndIsReused) {
   const CommandResult noDims = render(raw, "");
   EXPECT_EQ(noDims.status, 1);
   EXPECT_THAT(noDims.err, HasSubstr("--dims"));
+}
+
+// Several surfaces: --iso's list with --surface-color (';' or repeated) and --surface-opacity renders
+// the nested spheres of the sphere field composited (opacity 0.75 through the translucent outer one
+// alone, 1 through both); a one-value list with opacity 1 is today's image bit for bit; a value outside
+// the data's range is a one-line warning; each bad list is one line naming its flag, exit 1, no output.
+TEST(CliRender, SeveralSurfacesFlagsAndTheirMessages) {
+  TempDir dir;
+  const std::string vdb = dir / "s.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 24,24,24 --quiet").status, 0);
+  const std::string common = " --res 40x30 --eye 30,20,40 --lookat 11.5,11.5,11.5 --quiet";
+  const auto plain = runFccvdb("render " + vdb + " " + (dir / "plain.exr") + " --iso 0.25" + common);
+  if (failedForLackOfGl(plain)) GTEST_SKIP() << plain.err;
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  ASSERT_EQ(runFccvdb("render " + vdb + " " + (dir / "one.exr") + " --iso 0.25 --surface-opacity 1" + common).status, 0);
+  int w = 0, h = 0;
+  for (const char* channel : {"R", "G", "B", "A", "Z", "N.X"})
+    EXPECT_EQ(readExrChannel(dir / "plain.exr", channel, w, h), readExrChannel(dir / "one.exr", channel, w, h)) << channel;
+
+  const auto two = runFccvdb("render " + vdb + " " + (dir / "two.exr") +
+                             " --iso 0.1,0.3 --surface-opacity 1,0.5 --surface-color '#ff0000' --surface-color 0.2,0.4,1 --res 40x30 "
+                             "--eye 30,20,40 --lookat 11.5,11.5,11.5");
+  ASSERT_EQ(two.status, 0) << two.err;
+  EXPECT_THAT(two.err, HasSubstr("isos 0.1 (opacity 1), 0.3 (opacity 0.5)"));
+  const std::vector<float> alpha = readExrChannel(dir / "two.exr", "A", w, h);
+  const std::vector<float> red = readExrChannel(dir / "two.exr", "R", w, h);
+  const std::vector<float> depth = readExrChannel(dir / "two.exr", "Z", w, h);
+  int outerOnly = 0, both = 0;
+  for (std::size_t i = 0; i < alpha.size(); ++i) {
+    outerOnly += std::abs(alpha[i] - 0.75f) < 1e-6f;
+    both += alpha[i] == 1.0f;
+    if (alpha[i] > 0.0f) EXPECT_TRUE(std::isfinite(depth[i])) << "Z is the first crossing's";
+    if (alpha[i] == 1.0f) EXPECT_GT(red[i], 0.0f) << "the inner surface is red";
+  }
+  EXPECT_GT(outerOnly, 10);
+  EXPECT_GT(both, 10);
+
+  const auto outside = runFccvdb("render " + vdb + " " + (dir / "w.png") + " --iso 0.25,1000" + common);
+  EXPECT_EQ(outside.status, 0) << outside.err;
+  EXPECT_EQ(lineCount(outside.err), 1) << outside.err;
+  EXPECT_THAT(outside.err, HasSubstr("isovalue 1000 is outside"));
+
+  struct Case {
+    std::string flags, says;
+  };
+  const Case cases[] = {
+      {"--iso 0.1,x", "--iso '0.1,x': expected 1 to 4 finite isovalues"},
+      {"--iso 0.1,0.2,0.3,0.4,0.5", "valid are 1 to 4"},
+      {"--iso 0.1,0.2 --surface-opacity 1,2", "--surface-opacity '1,2': expected an opacity per surface, 0 to 1"},
+      {"--iso 0.1,0.2 --surface-opacity 1,0.5,1", "3 opacities for 2 surfaces"},
+      {"--iso 0.1 --surface-color '#ff0000;#00ff00'", "2 colours for 1 surface"},
+      {"--iso 0.1 --surface-color red", "#rrggbb or r,g,b"},
+      {"--iso 0.1 --surface-color '#ff00'", "#rrggbb or r,g,b"},
+      {"--iso 0.1 --surface-color 1,2,0", "#rrggbb or r,g,b"},
+  };
+  const int before = dir.fileCount();
+  for (const Case& c : cases) {
+    const auto r = runFccvdb("render " + vdb + " " + (dir / "bad.png") + " " + c.flags);
+    EXPECT_EQ(r.status, 1) << c.flags << "\n" << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << c.flags << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.says)) << c.flags;
+  }
+  EXPECT_EQ(dir.fileCount(), before) << "nothing written for a bad list";
 }
 
 }  // namespace
