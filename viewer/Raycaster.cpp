@@ -203,7 +203,8 @@ void Raycaster::updateNeeded() {
   const TransferTable* transfer = options_.mode == RenderMode::Dvr ? options_.transfer.get() : nullptr;
   source_.forEachVaryingBrick([&](const glm::ivec3& brick, float lo, float hi) {
     const bool holds = transfer ? !transfer->zeroOn(lo, hi) : (lo <= iso && iso <= hi);
-    if ((!options_.skipEmpty || holds) && insideClip(brick)) needed.push_back(brick);
+    if ((!options_.skipEmpty || holds) && insideClip(brick) && (!options_.ownsBrick || options_.ownsBrick(brick)))
+      needed.push_back(brick);
   });
   residency_->setNeeded(needed);
   uploadPageTable();
