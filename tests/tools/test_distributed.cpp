@@ -35,7 +35,9 @@ TEST(CompositingRadices, MultiplyToTheCountSmallestFirst) {
     for (std::size_t i = 0; i < radices.size(); ++i) {
       product *= radices[i];
       EXPECT_GE(radices[i], 2);
-      if (i) EXPECT_LE(radices[i - 1], radices[i]);
+      if (i) {
+        EXPECT_LE(radices[i - 1], radices[i]);
+      }
     }
     EXPECT_EQ(product, n);
   }
@@ -132,8 +134,8 @@ std::vector<float> compositeOverThreads(const KdPartition& partition, const glm:
   const int n = partition.parts();
   const std::size_t pixels = images[0].size() / kPixelFloats;
   Mailbox mailbox;
-  std::vector<std::vector<float>> pieces(std::size_t(n));
-  std::vector<CompositeStats> stats(std::size_t(n));
+  std::vector<std::vector<float>> pieces(static_cast<std::size_t>(n));
+  std::vector<CompositeStats> stats(static_cast<std::size_t>(n));
   std::vector<std::thread> threads;
   for (int r = 0; r < n; ++r)
     threads.emplace_back([&, r] {
@@ -183,9 +185,12 @@ TEST(RadixK, NearestDepthEqualsTheMinimumOverRanksBitForBit) {
       for (int r = 1; r < n; ++r)
         if (images[std::size_t(r)][p * kPixelFloats + 7] < images[std::size_t(best)][p * kPixelFloats + 7]) best = r;
       const bool miss = std::isinf(images[std::size_t(best)][p * kPixelFloats + 7]);
+      if (miss) {
+        ASSERT_TRUE(std::isinf(whole[p * kPixelFloats + 7])) << n << " ranks, pixel " << p;
+        continue;
+      }
       for (int c = 0; c < kPixelFloats; ++c)
-        if (!miss) ASSERT_EQ(whole[p * kPixelFloats + c], images[std::size_t(best)][p * kPixelFloats + c]) << n << " ranks, pixel " << p;
-      if (miss) ASSERT_TRUE(std::isinf(whole[p * kPixelFloats + 7]));
+        ASSERT_EQ(whole[p * kPixelFloats + c], images[std::size_t(best)][p * kPixelFloats + c]) << n << " ranks, pixel " << p;
     }
     // Radix-k's exchange: each rank sends (1 - 1/k) of what it holds per round, never a whole image per peer.
     double expected = 0.0, held = double(pixels) * kPixelFloats * sizeof(float) * n;

@@ -65,7 +65,7 @@ std::vector<float> compositeRadixK(const KdPartition& partition, int rank, const
     }
     std::vector<std::vector<float>> received = transport.exchange(peers, sends, recvCounts);
     // The k versions of the kept piece, by digit, then in the slabs' front-to-back order.
-    std::vector<const float*> byDigit(std::size_t(k));
+    std::vector<const float*> byDigit(static_cast<std::size_t>(k));
     for (int j = 0, i = 0; j < k; ++j) {
       if (j == mine) {
         byDigit[std::size_t(j)] = held.data() + (kept.begin - range.begin) * kPixelFloats;

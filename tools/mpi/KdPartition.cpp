@@ -89,7 +89,7 @@ std::unique_ptr<KdPartition::Node> build(std::vector<WeightedBrick> bricks, cons
   const glm::ivec3 extent = hi - lo;
   node->axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
   node->cuts = balancedCuts(bricks, node->axis, k);
-  std::vector<std::vector<WeightedBrick>> slabs(std::size_t(k));
+  std::vector<std::vector<WeightedBrick>> slabs(static_cast<std::size_t>(k));
   for (const WeightedBrick& b : bricks) slabs[std::size_t(node->slabOf(b.brick[node->axis]))].push_back(b);
   // Round `level`'s digit: children j are the ranks firstRank + j * rankStride (+ lower digits).
   const int childStride = rankStride / k;
