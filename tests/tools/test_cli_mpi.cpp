@@ -129,6 +129,22 @@ TEST(MpiRender, EngineCtIsSameAsOneProcess) {
   expectSameAsOneProcess(dir, vdb, "--res 96x96 --iso 100", false);
 }
 
+TEST(MpiRender, BenchRenderReportsEveryRank) {
+  TempDir dir;
+  const std::string vdb = dir / "sphere.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 48,48,48 --quiet").status, 0);
+  const auto r = runShell(mpirun(2, "bench render " + vdb + " --iso 0.25 --res 48x40 --frames 2 --warmup 0 --json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(r.out);
+  EXPECT_EQ(report["frames"].get<int>(), 2);
+  EXPECT_GT(report["fps"].get<double>(), 0.0);
+  ASSERT_EQ(report["per_rank"].size(), 2u);
+  for (const auto& rank : report["per_rank"]) {
+    EXPECT_LE(rank["bricks_read"].get<uint64_t>(), rank["bricks_owned"].get<uint64_t>()) << rank.dump();
+    EXPECT_GT(rank["composite_seconds"].get<double>(), 0.0);
+  }
+}
+
 TEST(MpiRender, ARankThatCannotOpenTheFileEndsEveryRankWithOneLine) {
   TempDir dir;
   const std::string vdb = dir / "sphere.vdb", missing = dir / "missing.vdb", out = dir / "out.exr";

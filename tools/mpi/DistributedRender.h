@@ -20,4 +20,9 @@ struct DistributedRenderRequest {
 // rank exits 1 and rank 0 prints one line (naming the rank unless all failed alike).
 int renderDistributed(const DistributedRenderRequest& request);
 
+// `mpirun -np N fccvdb bench render`: a cold frame, `warmup` frames, then `frames` timed frames over an
+// orbit of `arc` degrees, each rendered by all ranks and composited (and gathered) as render's; per
+// rank the mean render, wait and compositing seconds and bytes exchanged, bricks read over the run.
+int benchRenderDistributed(const cli::RenderFlags& flags, int frames, int warmup, double arc, bool json);
+
 }  // namespace fcc::mpi
