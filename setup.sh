@@ -17,6 +17,7 @@ packages=(build-essential cmake pkg-config ccache python3
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers
   libglfw3-dev libglm-dev libopenexr-dev libpng-dev libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev libx11-dev libxrandr-dev
   libinsighttoolkit5-dev libgdcm-tools
+  libopenmpi-dev openmpi-bin  # FCC_MPI: mpirun -np N fccvdb render (docs/MPI.md)
   libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev xvfb xauth
   clang libclang-rt-14-dev)  # the fuzz targets: clang, and its libFuzzer and sanitizer runtimes
 

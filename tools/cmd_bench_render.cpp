@@ -19,6 +19,10 @@
 #include "SurfaceFlags.h"
 #include "sparse/Error.h"
 #include "viewer/EglContext.h"
+#ifdef FCC_MPI
+#include "mpi/DistributedRender.h"
+#include "mpi/MpiSession.h"
+#endif
 
 namespace fcc::cli {
 namespace {
@@ -91,8 +95,22 @@ Command addBenchRenderCommand(CLI::App& bench) {
       ->description("Brick layout to time: all (each in turn, with fresh caches), auto (the one render chooses)" + layouts)
       ->capture_default_str();
   app->add_flag("--gpu-time", args->gpuTime, "Also time the raycasting passes on the GPU (timestamp queries)");
-  app->add_flag("--json", args->json, "A JSON list of objects: variant, skip, normals, fps, frame_ms, ...");
+  app->add_flag("--json", args->json,
+                "A JSON list of objects: variant, skip, normals, fps, frame_ms, ... (under mpirun: one object, per rank "
+                "mean render, wait and compositing seconds, bytes exchanged; docs/MPI.md)");
   return {app, [args, app]() {
+#ifdef FCC_MPI
+            // Started by mpirun with more than one rank: the orbit rendered sort-last over the ranks
+            // (docs/MPI.md), skip+analytic only, the layout render chooses; fewer frames unless asked.
+            if (mpi::world().distributed()) {
+              RenderFlags flags = args->flags;
+              if (flags.layout == "all") flags.layout = "auto";
+              const auto given = [&](const char* flag) { return app->get_option(flag)->count() > 0; };
+              if (!given("--res")) flags.res = kCpuRes;
+              return mpi::benchRenderDistributed(flags, given("--frames") ? args->frames : kCpuFrames,
+                                                 given("--warmup") ? args->warmup : kCpuWarmup, args->arc, args->json);
+            }
+#endif
             if (args->flags.layout != "all" && args->flags.layout != "auto") {
               try {
                 render::parseBrickLayout(args->flags.layout);

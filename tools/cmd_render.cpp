@@ -11,9 +11,14 @@
 #include "RenderData.h"
 #include "RenderFlags.h"
 #include "SurfaceFlags.h"
+#include "RenderJson.h"
 #include "io/ImageOutput.h"
 #include "sparse/Error.h"
 #include "viewer/EglContext.h"
+#ifdef FCC_MPI
+#include "mpi/DistributedRender.h"
+#include "mpi/MpiSession.h"
+#endif
 
 namespace fcc::cli {
 namespace {
@@ -30,7 +35,7 @@ Command addRenderCommand(CLI::App& parent) {
   struct Args {
     RenderFlags flags;
     std::string output, positionalOutput;
-    bool quiet = false, allowDamaged = false, force = false, timings = false;
+    bool quiet = false, allowDamaged = false, force = false, timings = false, json = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* app = parent.add_subcommand("render", "Render the isosurface headless (EGL) to EXR (R,G,B,A,Z,N.X,N.Y,N.Z) or PNG");
@@ -48,6 +53,9 @@ Command addRenderCommand(CLI::App& parent) {
   app->add_flag("--force", args->force, "Overwrite an existing output image");
   app->add_flag("--quiet", args->quiet, "No summary on stderr");
   app->add_flag("--timings", args->timings, "Print where the wall time went (open, EGL, renderer set-up, frame, image) on stderr");
+  app->add_flag("--json", args->json,
+                "Print a JSON object on stdout: the frame and, per process (MPI rank), render, wait and compositing "
+                "seconds, bytes exchanged, bricks read and owned (docs/MPI.md)");
   app->add_flag("--allow-damaged", args->allowDamaged,
                 "Exit 0 although damaged bricks were met (they are never trusted: rendered as holes, and named on stderr)");
   return {app, [args]() {
@@ -57,6 +65,11 @@ Command addRenderCommand(CLI::App& parent) {
               times.emplace_back(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
             };
             if (args->output.empty()) args->output = args->positionalOutput;
+#ifdef FCC_MPI
+            // Started by mpirun with more than one rank: sort-last over the ranks (docs/MPI.md).
+            if (mpi::world().distributed())
+              return mpi::renderDistributed({args->flags, args->output, args->force, args->quiet, args->json, args->allowDamaged});
+#endif
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
             checkOutputWritable(args->output, args->force);
@@ -79,12 +92,24 @@ Command addRenderCommand(CLI::App& parent) {
             if (!dvr) setSurfaces(options, surfaces);
             render::Raycaster raycaster(data.source(), options);
             mark("renderer");
+            const auto frameStart = std::chrono::steady_clock::now();
             const render::FrameStats stats = raycaster.render(camera, width, height);
             mark("frame");
             const render::FrameImages images = raycaster.readImages(/*withNormalDepth=*/io::imageHoldsNormalDepth(args->output));
             io::RenderedImage image{images.width, images.height, &images.rgba, &images.normalDepth, /*normals=*/!dvr};
             io::writeRenderedImage(args->output, image, glm::vec3(0.08f, 0.09f, 0.11f));
             mark("image");
+            if (args->json) {  // one process: the same fields as a distributed frame's, nothing exchanged
+              RankReport report;
+              report.renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart).count();
+              report.bricksRead = raycaster.bricksDecoded();
+              report.bricksOwned = stats.bricksNeeded;
+              report.bricksUploaded = stats.bricksUploaded;
+              report.passes = stats.passes;
+              report.device = gl.renderer() + " (" + gl.platform() + ")";
+              std::fputs(renderJson(args->flags.file, args->output, args->flags.mode, width, height, {}, report.renderSeconds, {report}).c_str(),
+                         stdout);
+            }
             if (args->timings) {
               std::string line = "timings (s):";
               double before = 0.0;

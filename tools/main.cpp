@@ -5,8 +5,16 @@
 #include "Command.h"
 #include "ParseErrorLine.h"
 #include "sparse/Error.h"
+#ifdef FCC_MPI
+#include "mpi/MpiSession.h"
+#endif
 
 int main(int argc, char** argv) {
+#ifdef FCC_MPI
+  // Under mpirun: MPI for the whole run (tools/mpi/, docs/MPI.md); otherwise nothing.
+  fcc::mpi::Session mpiSession(argc, argv);
+  const fcc::mpi::World world = fcc::mpi::world();
+#endif
   CLI::App app{"fccvdb: isosurfaces of volumes on the face-centered cubic (FCC) lattice, from OpenVDB files"};
   app.name("fccvdb");
   app.require_subcommand(1, 1);
@@ -30,6 +38,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
+#ifdef FCC_MPI
+    if (world.rank != 0) return 2;  // every rank parsed the same words: one line, from rank 0
+#endif
     std::fprintf(stderr, "fccvdb: %s\n", fcc::cli::parseErrorLine(app, e, argc, argv).c_str());
     return 2;
   }
@@ -38,6 +49,11 @@ int main(int argc, char** argv) {
       if (c.app->parsed()) return c.run();
     return 2;
   } catch (const std::exception& e) {
+#ifdef FCC_MPI
+    // Other ranks may be waiting for this one in a collective: end them all (renderDistributed has
+    // agreed on whatever can fail on one rank alone before this point).
+    if (world.distributed()) fcc::mpi::abortAll(e.what());
+#endif
     std::fprintf(stderr, "fccvdb: %s\n", e.what());
     return 1;
   }

@@ -113,7 +113,7 @@ bool isSoftwareDevice(EGLDeviceEXT device) {
 
 }  // namespace
 
-EglContext::EglContext() {
+EglContext::EglContext(int hardwareDevice) {
   std::vector<std::string> reasons;
   Attempt ok;
   auto attempt = [&](EGLDisplay display, const std::string& label) {
@@ -139,7 +139,10 @@ EglContext::EglContext() {
       devices.resize(size_t(std::max(n, 0)));
     }
     if (devices.empty()) reasons.push_back("EGL device platform: no devices");
-    std::stable_partition(devices.begin(), devices.end(), [](EGLDeviceEXT d) { return !isSoftwareDevice(d); });
+    const auto software = std::stable_partition(devices.begin(), devices.end(), [](EGLDeviceEXT d) { return !isSoftwareDevice(d); });
+    const long hardware = long(software - devices.begin());
+    if (hardwareDevice >= 0 && hardware > 1)  // the chosen GPU first, the others after it as a fallback
+      std::rotate(devices.begin(), devices.begin() + hardwareDevice % hardware, software);
     for (size_t i = 0; i < devices.size() && !done; ++i) {
       std::string label = "EGL device " + std::to_string(i + 1) + "/" + std::to_string(devices.size());
       if (isSoftwareDevice(devices[i])) label += " (software)";

@@ -17,8 +17,10 @@ namespace fcc {
 class EglContext {
  public:
   // Creates the context and makes it current on the calling thread. Throws fcc::Error, one line:
-  // "no usable EGL/OpenGL 4.5: <what each display attempt said>".
-  EglContext();
+  // "no usable EGL/OpenGL 4.5: <what each display attempt said>". `hardwareDevice` >= 0: of the hardware
+  // devices the EGL device platform lists, the one at that index modulo their count is tried first
+  // (an MPI rank's GPU, CUDA_VISIBLE_DEVICES-style); -1: the list's order.
+  explicit EglContext(int hardwareDevice = -1);
   ~EglContext();
   EglContext(const EglContext&) = delete;
   EglContext& operator=(const EglContext&) = delete;

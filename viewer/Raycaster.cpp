@@ -250,7 +250,8 @@ void Raycaster::updateNeeded() {
     const bool holds = transfer ? !transfer->zeroOn(lo, hi)
                                 : (lo <= iso && iso <= hi) ||
                                       std::any_of(isos.begin() + 1, isos.end(), [&](float v) { return lo <= v && v <= hi; });
-    if ((!options_.skipEmpty || holds) && insideClip(brick)) needed.push_back(brick);
+    if ((!options_.skipEmpty || holds) && insideClip(brick) && (!options_.ownsBrick || options_.ownsBrick(brick)))
+      needed.push_back(brick);
   });
   residency_->setNeeded(needed);
   uploadPageTable();

@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -58,6 +59,11 @@ struct RenderOptions {
   // The clipping box, world space: rays are cut to it and bricks outside it are never loaded. The
   // default holds everything.
   glm::dvec3 clipLo{-1e30}, clipHi{1e30};
+  // Sort-last distributed rendering (tools/mpi/, docs/MPI.md): the bricks this process renders. The
+  // others are treated as bricks without the isovalue: never loaded, and rays pass them as skipped
+  // bricks, so that the cells a process does march are marched from the same t as by one process
+  // alone. Empty: every brick.
+  std::function<bool(const glm::ivec3&)> ownsBrick;
   std::size_t gpuCacheBytes = std::size_t(512) << 20;   // the brick pool
   std::size_t hostCacheBytes = std::size_t(512) << 20;  // decoded bricks in host memory
   // How the pool stores bricks (viewer/BrickPool.h); unset: chooseBrickLayout below.

@@ -1,0 +1,47 @@
+// `render --json`: one JSON object on stdout describing the frame and, per process (MPI rank; one
+// without MPI), where its time went. The same fields for one process and for N (docs/MPI.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "JsonText.h"
+
+namespace fcc::cli {
+
+struct RankReport {
+  int rank = 0;
+  double renderSeconds = 0.0;     // its frame (raycasting passes, uploads) and reading the image back
+  double waitSeconds = 0.0;       // waiting for the slowest rank before compositing
+  double compositeSeconds = 0.0;  // radix-k exchange and compositing, then the gather of the pieces
+  uint64_t bytesSent = 0, bytesReceived = 0;  // image pieces exchanged while compositing and gathered
+  uint64_t bricksRead = 0;        // bricks decoded from the file (through its host cache)
+  uint64_t bricksOwned = 0;       // bricks of its partition whose bounds hold the isovalue / an opacity
+  uint64_t bricksUploaded = 0;    // bricks uploaded to its GPU pool
+  int passes = 0;
+  std::string device;             // GL_RENDERER (EGL platform)
+};
+
+inline std::string renderJson(const std::string& file, const std::string& output, const std::string& mode, int width,
+                              int height, const std::vector<int>& radices, double frameSeconds,
+                              const std::vector<RankReport>& ranks) {
+  std::string radixList;
+  for (std::size_t i = 0; i < radices.size(); ++i) radixList += (i ? ", " : "") + std::to_string(radices[i]);
+  std::string s = "{\"file\": " + jsonString(file) + ", \"output\": " + jsonString(output) + ", \"mode\": " + jsonString(mode) +
+                  ", \"res\": [" + std::to_string(width) + ", " + std::to_string(height) + "], \"ranks\": " +
+                  std::to_string(ranks.size()) + ", \"radices\": [" + radixList + "], \"frame_seconds\": " +
+                  jsonNumber(frameSeconds) + ", \"per_rank\": [";
+  for (std::size_t i = 0; i < ranks.size(); ++i) {
+    const RankReport& r = ranks[i];
+    s += std::string(i ? "," : "") + "\n {\"rank\": " + std::to_string(r.rank) + ", \"render_seconds\": " + jsonNumber(r.renderSeconds) +
+         ", \"wait_seconds\": " + jsonNumber(r.waitSeconds) + ", \"composite_seconds\": " + jsonNumber(r.compositeSeconds) +
+         ", \"bytes_sent\": " + std::to_string(r.bytesSent) + ", \"bytes_received\": " + std::to_string(r.bytesReceived) +
+         ", \"bricks_read\": " + std::to_string(r.bricksRead) + ", \"bricks_owned\": " + std::to_string(r.bricksOwned) +
+         ", \"bricks_uploaded\": " + std::to_string(r.bricksUploaded) + ", \"passes\": " + std::to_string(r.passes) +
+         ", \"device\": " + jsonString(r.device) + "}";
+  }
+  return s + "\n]}\n";
+}
+
+}  // namespace fcc::cli
