@@ -20,16 +20,29 @@ constexpr size_t kBatchLeaves = 256;
 }  // namespace
 
 CopiedFccTree::CopiedFccTree(const BrickStore& source, openvdb::util::NullInterrupter* progress)
-    : FccTree(source.index().tree()), source_(source), progress_(progress) {}  // copies keep buffers unallocated
+    : FccTree(source.index().tree().background()), source_(source), progress_(progress) {}
 
-openvdb::Index64 CopiedFccTree::memUsage() const {
-  return openvdb::tools::memUsageIfLoaded(static_cast<const FccTree&>(*this));
+openvdb::Index64 CopiedFccTree::memUsage() const { return openvdb::tools::memUsageIfLoaded(source_.index().tree()); }
+void CopiedFccTree::writeTopology(std::ostream& os, bool half) const { source_.index().tree().writeTopology(os, half); }
+bool CopiedFccTree::evalActiveVoxelBoundingBox(openvdb::CoordBBox& b) const {
+  return source_.index().tree().evalActiveVoxelBoundingBox(b);
 }
+bool CopiedFccTree::evalActiveVoxelDim(openvdb::Coord& d) const { return source_.index().tree().evalActiveVoxelDim(d); }
+bool CopiedFccTree::evalLeafBoundingBox(openvdb::CoordBBox& b) const { return source_.index().tree().evalLeafBoundingBox(b); }
+bool CopiedFccTree::evalLeafDim(openvdb::Coord& d) const { return source_.index().tree().evalLeafDim(d); }
+openvdb::Index32 CopiedFccTree::leafCount() const { return source_.index().tree().leafCount(); }
+openvdb::Index32 CopiedFccTree::nonLeafCount() const { return source_.index().tree().nonLeafCount(); }
+openvdb::Index64 CopiedFccTree::activeVoxelCount() const { return source_.index().tree().activeVoxelCount(); }
+openvdb::Index64 CopiedFccTree::inactiveVoxelCount() const { return source_.index().tree().inactiveVoxelCount(); }
+openvdb::Index64 CopiedFccTree::activeLeafVoxelCount() const { return source_.index().tree().activeLeafVoxelCount(); }
+openvdb::Index64 CopiedFccTree::inactiveLeafVoxelCount() const { return source_.index().tree().inactiveLeafVoxelCount(); }
+openvdb::Index64 CopiedFccTree::activeTileCount() const { return source_.index().tree().activeTileCount(); }
 
 void CopiedFccTree::writeBuffers(std::ostream& os, bool saveFloatAsHalf) const {
+  // The source's leaves in its own order, the order its writeTopology wrote their masks in.
   std::vector<const Leaf*> topology;
   topology.reserve(leafCount());
-  for (auto it = cbeginLeaf(); it; ++it) topology.push_back(it.getLeaf());
+  for (auto it = source_.index().tree().cbeginLeaf(); it; ++it) topology.push_back(it.getLeaf());
 
   auto read = [&](size_t first, std::vector<std::unique_ptr<Leaf>>& out) {
     out.clear();
@@ -41,7 +54,7 @@ void CopiedFccTree::writeBuffers(std::ostream& os, bool saveFloatAsHalf) const {
         const openvdb::Coord b = shape.origin() >> 3;
         // false for a leaf of the topology: damaged (recorded in the store's damage()); stop below.
         if (!source_.readBrick(glm::ivec3(b.x(), b.y(), b.z()), values)) continue;
-        auto leaf = std::make_unique<Leaf>(shape.origin(), background(), false);
+        auto leaf = std::make_unique<Leaf>(shape.origin(), source_.index().tree().background(), false);
         for (openvdb::Index n = 0; n < Leaf::SIZE; ++n) leaf->setValueOnly(n, values[n]);
         leaf->setValueMask(shape.valueMask());
         out[i] = std::move(leaf);

@@ -167,10 +167,10 @@ PyramidSummary addPyramid(const std::string& input, const PyramidOptions& option
   const FccGrid::Ptr copy0 = copiedFccGrid(level0, progress);
   copy0->insertMeta(meta::kLodLevels, openvdb::Int32Metadata(int(summary.levels.size())));
   grids.push_back(copy0);
-  if (level0.boundsFromFile()) grids.push_back(level0.bounds().deepCopyGrid());
+  if (level0.boundsFromFile()) grids.push_back(level0.boundsGrid());
   for (const auto& level : levels) {
     grids.push_back(copiedFccGrid(*level, progress));
-    grids.push_back(level->bounds().deepCopyGrid());
+    grids.push_back(level->boundsGrid());
   }
   try {
     writeVdbAtomically(output, grids, inPlace || options.overwrite, inPlace ? std::string() : input);
