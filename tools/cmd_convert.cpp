@@ -41,7 +41,7 @@ Command addConvertCommand(CLI::App& parent) {
   app->add_flag("--quiet", args->quiet, "No progress bar");
   app->add_flag("--pyramid", args->pyramid,
                 "Then add the level-of-detail pyramid (as `fccvdb pyramid OUTPUT`: levels of spacing 2, 4, ... down to a "
-                "few bricks; about +15% file size and time, docs/BENCHMARKS.md)");
+                "few bricks; blobs 512^3: +26% file size, about as long again as synth, docs/BENCHMARKS.md)");
   app->add_flag("--timings", args->timings, "Print the wall time of each stage of the conversion (one line on stderr)");
   addDeviceOption(*app, args->device);
   return {app, [args, bg]() {

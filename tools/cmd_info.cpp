@@ -186,7 +186,7 @@ Command addInfoCommand(CLI::App& parent) {
   auto args = std::make_shared<Args>();
   CLI::App* app = parent.add_subcommand("info", "Describe the FCC grids of a .vdb file");
   app->add_option("FILE", args->file, "FCC .vdb file")->required();
-  app->add_option("--grid", args->grid, "The FCC grid to describe (default: the first)");
+  app->add_option("--grid", args->grid, "The FCC grid to describe (default: level 0, the first FCC grid that is not a pyramid level `NAME.lodK`)");
   auto* isoOption = app->add_option("--iso", args->iso, "Isovalue: how many bricks and internal nodes of the bounds hierarchy it leaves active");
   app->add_flag("--check", args->check, "Read every brick and name the damaged ones (exit 1 if any is)");
   app->add_flag("--json", args->json,
