@@ -45,6 +45,8 @@ VdbGridEntry chooseFccGrid(const std::string& path, const std::string& gridName,
   const VdbGridEntry* chosen = nullptr;
   for (const VdbGridEntry& g : grids) {
     if (!gridName.empty() && g.name != gridName) continue;
+    // Without a name: level 0, never a pyramid level (FccPyramid.h), whatever the grids' order.
+    if (gridName.empty() && isLodGridName(g.name)) continue;
     if (g.type == kFccTreeTypeName) {
       chosen = &g;
       break;
@@ -132,6 +134,8 @@ void BrickStore::worldBounds(glm::dvec3& lo, glm::dvec3& hi) const {
   const glm::dvec3 indexHi = glm::dvec3(packed.max().x(), packed.max().y(), packed.max().z()) * 2.0 + 1.0;
   worldBoxOfIndexBox(worldFromIndex_, indexLo, indexHi, lo, hi);
 }
+
+bool BrickStore::storedAsHalf() const { return reader_->storedAsHalf(); }
 
 bool BrickStore::hasLeaf(const glm::ivec3& brick) const {
   return grid_->tree().probeConstLeaf(leafOrigin(brick)) != nullptr;

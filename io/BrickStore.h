@@ -37,7 +37,9 @@ class BrickStore {
   const std::string& path() const { return path_; }
   const FccGrid& index() const { return *grid_; }  // leaf buffers stay out of core: do not read values
   const BoundsGrid& bounds() const { return *bounds_; }
+  BoundsGrid::ConstPtr boundsGrid() const { return bounds_; }  // the same, shared (for writing it again)
   bool boundsFromFile() const { return boundsFromFile_; }
+  bool storedAsHalf() const;  // the file stores the grid's values as half floats
   float background() const { return background_; }
   // worldFromIndex of the lattice's index space (an affine map), column-vector convention.
   const glm::dmat4& worldFromIndex() const { return worldFromIndex_; }

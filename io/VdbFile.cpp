@@ -154,6 +154,8 @@ BoundsGrid::Ptr findBoundsGrid(const openvdb::GridPtrVec& grids, const std::stri
 FccGrid::Ptr findFccGrid(const std::string& path, const openvdb::GridPtrVec& grids, const std::string& gridName) {
   for (const auto& g : grids) {
     if (!gridName.empty() && g->getName() != gridName) continue;
+    // Without a name: level 0, never a pyramid level (FccPyramid.h), whatever the grids' order.
+    if (gridName.empty() && isLodGridName(g->getName())) continue;
     if (isFccGrid(*g)) return openvdb::gridPtrCast<FccGrid>(g);
     if (!gridName.empty())
       throw InputError(path + ": grid '" + gridName + "' is a " + g->type() +

@@ -27,7 +27,26 @@ inline constexpr const char* kSourceGrid = "fcc_source_grid";
 inline constexpr const char* kMode = "fcc_mode";               // "subsample", "resample", "synth:<kind>"
 inline constexpr const char* kSampleMin = "fcc_sample_min";    // range of the samples (before prefilter)
 inline constexpr const char* kSampleMax = "fcc_sample_max";
+// The level-of-detail pyramid (docs/FORMAT.md, io/FccPyramid.h). On level 0 (the full-resolution grid):
+inline constexpr const char* kLodLevels = "fcc_lod_levels";    // int: levels in the file, level 0 included
+// On level k >= 1 (grid `<level 0's name>.lod<k>`):
+inline constexpr const char* kLodLevel = "fcc_lod_level";      // int: k
+inline constexpr const char* kLodOf = "fcc_lod_of";            // string: level 0's grid name
+inline constexpr const char* kLodSpacing = "fcc_lod_spacing";  // double: 2^k, level 0's lattice spacings
 }  // namespace meta
+
+// The grid name of pyramid level `level` (>= 1) of FCC grid `base`: "<base>.lod<level>".
+inline std::string lodGridName(const std::string& base, int level) { return base + ".lod" + std::to_string(level); }
+
+// True if `name` is a pyramid level's ("<anything>.lod<digits>"): readers that pick "the first FCC grid"
+// skip these, so a file opens at level 0 whatever order its grids are in.
+inline bool isLodGridName(const std::string& name) {
+  const size_t dot = name.rfind(".lod");
+  if (dot == std::string::npos || dot == 0 || dot + 4 == name.size()) return false;
+  for (size_t i = dot + 4; i < name.size(); ++i)
+    if (name[i] < '0' || name[i] > '9') return false;
+  return true;
+}
 
 inline constexpr const char* kValuesCoefficients = "coefficients";
 inline constexpr const char* kValuesSamples = "samples";

@@ -24,6 +24,7 @@ Command addCompareCommand(CLI::App& parent);
 Command addConvertCommand(CLI::App& parent);
 Command addInfoCommand(CLI::App& parent);
 Command addProbeCommand(CLI::App& parent);
+Command addPyramidCommand(CLI::App& parent);
 Command addRenderCommand(CLI::App& parent);
 Command addSynthCommand(CLI::App& parent);
 Command addViewCommand(CLI::App& parent);

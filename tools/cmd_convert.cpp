@@ -3,9 +3,12 @@
 
 #include "Command.h"
 #include "ProgressBar.h"
+#include "PyramidReport.h"
 #include "SourceFlags.h"
 #include "io/Convert.h"
+#include "io/FccPyramid.h"
 #include "sparse/BrickKernels.h"
+#include "sparse/Error.h"
 
 namespace fcc::cli {
 namespace {
@@ -14,7 +17,7 @@ struct ConvertArgs {
   std::string input, output, device = "auto";
   SourceFlags source;
   float background = 0.0f;
-  bool quiet = false, noPrefilter = false, timings = false;
+  bool quiet = false, noPrefilter = false, timings = false, pyramid = false;
   io::ConvertOptions options;
 };
 
@@ -36,6 +39,9 @@ Command addConvertCommand(CLI::App& parent) {
   app->add_flag("--half", args->options.half, "Store values as 16-bit floats");
   app->add_flag("--force", args->options.overwrite, "Overwrite an existing OUTPUT");
   app->add_flag("--quiet", args->quiet, "No progress bar");
+  app->add_flag("--pyramid", args->pyramid,
+                "Then add the level-of-detail pyramid (as `fccvdb pyramid OUTPUT`: levels of spacing 2, 4, ... down to a "
+                "few bricks; blobs 512^3: +26% file size, about as long again as synth, docs/BENCHMARKS.md)");
   app->add_flag("--timings", args->timings, "Print the wall time of each stage of the conversion (one line on stderr)");
   addDeviceOption(*app, args->device);
   return {app, [args, bg]() {
@@ -43,6 +49,8 @@ Command addConvertCommand(CLI::App& parent) {
             o.prefilter = !args->noPrefilter;
             if (bg->count() > 0) o.background = args->background;
             o.raw = rawLayoutFromFlags(args->source, args->input);
+            if (args->pyramid && args->noPrefilter)
+              throw ValueError("--pyramid: the pyramid is built from spline coefficients; drop --no-prefilter");
             const std::unique_ptr<BrickKernels> kernels = preprocessKernels(args->device);
             o.preprocess = kernels.get();
             ProgressBar progress(args->quiet);
@@ -61,6 +69,12 @@ Command addConvertCommand(CLI::App& parent) {
                            (unsigned long long)s.inputVoxels, (unsigned long long)s.boundsBricks,
                            kernels->describe().c_str());
             if (args->timings && !s.timings.empty()) std::fprintf(stderr, "timings: %s\n", s.timings.c_str());
+            if (args->pyramid) {
+              io::PyramidOptions pyramid;  // in place: OUTPUT is ours, just written
+              pyramid.kernels = kernels.get();
+              const io::PyramidSummary p = io::addPyramid(args->output, pyramid, &progress);
+              if (!args->quiet) printPyramidSummary(args->output, p);
+            }
             return 0;
           }};
 }

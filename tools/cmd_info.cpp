@@ -1,5 +1,6 @@
 // fccvdb info FILE.vdb: what an FCC .vdb holds, from its topology, bounds grid and metadata alone (no
 // brick is read); --check reads every brick and names the damaged ones.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -12,6 +13,7 @@
 
 #include "io/BrickStore.h"
 #include "io/DefaultIsovalue.h"
+#include "io/VdbLeafReader.h"
 #include "sparse/BoundsHierarchy.h"
 #include "sparse/Error.h"
 #include "sparse/FccGrid.h"
@@ -111,6 +113,55 @@ Summary summarize(const io::BrickStore& store) {
   return s;
 }
 
+// One level of the pyramid (docs/FORMAT.md): level 0 is the grid itself.
+struct LevelSummary {
+  int level = 0;
+  std::string grid;
+  double spacing = 1.0;  // in level 0's lattice spacings
+  uint64_t bricks = 0, boundsBricks = 0;
+  openvdb::Vec3d voxelSize;
+};
+
+// Level 0 and the levels "<grid>.lod1", "<grid>.lod2", ... the file holds, each opened (guarded) for its
+// topology and bounds; no brick is read.
+std::vector<LevelSummary> summarizeLevels(const std::string& file, const io::BrickStore& level0) {
+  std::vector<LevelSummary> levels;
+  auto add = [&](const io::BrickStore& store, int k) {
+    LevelSummary l;
+    l.level = k;
+    l.grid = store.index().getName();
+    l.spacing = double(uint64_t(1) << k);
+    l.bricks = store.index().tree().leafCount();
+    l.boundsBricks = store.boundsFromFile() ? store.bounds().activeVoxelCount() : 0;
+    l.voxelSize = store.index().voxelSize();
+    levels.push_back(l);
+  };
+  add(level0, 0);
+  std::vector<std::string> names;
+  for (const io::VdbGridEntry& g : io::VdbLeafReader::listGrids(file)) names.push_back(g.name);
+  for (int k = 1;; ++k) {
+    const std::string name = lodGridName(level0.index().getName(), k);
+    if (std::find(names.begin(), names.end(), name) == names.end()) break;
+    add(io::BrickStore(file, name, /*forRendering=*/false), k);
+  }
+  return levels;
+}
+
+std::string levelsJson(const std::vector<LevelSummary>& levels) {
+  std::string out;
+  for (const LevelSummary& l : levels) {
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "{\"level\": %d, \"grid\": %s, \"spacing\": %s, \"bricks\": %llu, \"bounds_bricks\": %llu, "
+                  "\"voxel_size\": [%s, %s, %s]}",
+                  l.level, jsonString(l.grid).c_str(), jsonNumber(l.spacing).c_str(), (unsigned long long)l.bricks,
+                  (unsigned long long)l.boundsBricks, jsonNumber(l.voxelSize.x()).c_str(),
+                  jsonNumber(l.voxelSize.y()).c_str(), jsonNumber(l.voxelSize.z()).c_str());
+    out += (out.empty() ? "" : ", ") + std::string(buf);
+  }
+  return "[" + out + "]";
+}
+
 // Reads every brick (in parallel); returns the damage found.
 io::BrickStore::Damage checkBricks(const io::BrickStore& store) {
   std::vector<glm::ivec3> bricks;
@@ -136,7 +187,7 @@ Command addInfoCommand(CLI::App& parent) {
   auto args = std::make_shared<Args>();
   CLI::App* app = parent.add_subcommand("info", "Describe the FCC grids of a .vdb file");
   app->add_option("FILE", args->file, "FCC .vdb file")->required();
-  app->add_option("--grid", args->grid, "The FCC grid to describe (default: the first)");
+  app->add_option("--grid", args->grid, "The FCC grid to describe (default: level 0, the first FCC grid that is not a pyramid level `NAME.lodK`)");
   auto* isoOption = app->add_option("--iso", args->iso, "Isovalue: how many bricks and internal nodes of the bounds hierarchy it leaves active");
   app->add_flag("--check", args->check, "Read every brick and name the damaged ones (exit 1 if any is)");
   app->add_flag("--json", args->json,
@@ -145,7 +196,8 @@ Command addInfoCommand(CLI::App& parent) {
                 "data's range), percentiles ({\"1\": v, ... \"99\": v} or null), suggested_iso, suggested_iso_basis, "
                 "voxel_size, world_bounds: {min: [x, y, z], max: [x, y, z]} (the active data's box in world space, "
                 "what the default camera frames), metadata, bounds: {bricks, nodes1, nodes2[, iso, bricks_kept, "
-                "nodes1_kept, nodes2_kept]} or null)");
+                "nodes1_kept, nodes2_kept]} or null, levels: [{level, grid, spacing, bricks, bounds_bricks, voxel_size}] "
+                "(the level-of-detail pyramid, level 0 first; one entry without a pyramid))");
   return {app, [args, isoOption]() {
             std::optional<float> iso;
             if (isoOption->count() > 0) {
@@ -160,6 +212,7 @@ Command addInfoCommand(CLI::App& parent) {
                 summarizeBounds(store.boundsFromFile() ? &store.bounds() : nullptr, iso);
             std::optional<io::BrickStore::Damage> damage;
             if (args->check) damage = checkBricks(store);
+            const std::vector<LevelSummary> levels = summarizeLevels(args->file, store);
             const openvdb::Coord dims = s.siteBox.dim();
             if (args->json) {
               glm::dvec3 worldLo, worldHi;
@@ -174,7 +227,7 @@ Command addInfoCommand(CLI::App& parent) {
                           "\"dims\": [%d, %d, %d], \"samples\": %llu, \"bricks\": %llu, \"tiles\": %llu, "
                           "\"bytes\": %llu, \"min\": %s, \"max\": %s, \"range_from\": %s, \"sample_min\": %s, "
                           "\"sample_max\": %s, \"percentiles\": %s, \"suggested_iso\": %s, \"suggested_iso_basis\": %s, "
-                          "\"voxel_size\": [%s, %s, %s], \"world_bounds\": %s, \"metadata\": {%s}, \"bounds\": %s%s}\n",
+                          "\"voxel_size\": [%s, %s, %s], \"world_bounds\": %s, \"metadata\": {%s}, \"bounds\": %s, \"levels\": %s%s}\n",
                           jsonString(args->file).c_str(), jsonString(s.name).c_str(), jsonString(s.lattice).c_str(),
                           jsonString(s.values).c_str(), jsonString(s.gridClass).c_str(), dims.x(), dims.y(), dims.z(),
                           (unsigned long long)s.samples, (unsigned long long)s.bricks, (unsigned long long)s.tiles,
@@ -186,7 +239,7 @@ Command addInfoCommand(CLI::App& parent) {
                           jsonNumber(s.voxelSize.x()).c_str(),
                           jsonNumber(s.voxelSize.y()).c_str(), jsonNumber(s.voxelSize.z()).c_str(),
                           worldBounds.c_str(), meta.c_str(),
-                          boundsJson(b).c_str(), checkJson(damage).c_str());
+                          boundsJson(b).c_str(), levelsJson(levels).c_str(), checkJson(damage).c_str());
               return damage && damage->bricks > 0 ? 1 : 0;
             }
             std::printf("file:          %s\n", args->file.c_str());
@@ -240,6 +293,15 @@ Command addInfoCommand(CLI::App& parent) {
                             double(*b.iso), (unsigned long long)b.kept.bricks, percent(b.kept.bricks, b.total.bricks),
                             (unsigned long long)b.kept.nodes1, percent(b.kept.nodes1, b.total.nodes1),
                             (unsigned long long)b.kept.nodes2, percent(b.kept.nodes2, b.total.nodes2));
+            }
+            if (levels.size() == 1) {
+              std::printf("levels:        1 (no level-of-detail pyramid; `fccvdb pyramid FILE` adds one)\n");
+            } else {
+              std::printf("levels:        %zu (the level-of-detail pyramid)\n", levels.size());
+              for (const LevelSummary& l : levels)
+                std::printf("  level %-2d     %s: spacing %g (voxel %g world units), %llu bricks, bounds: %llu bricks\n",
+                            l.level, l.grid.c_str(), l.spacing, l.voxelSize.x(), (unsigned long long)l.bricks,
+                            (unsigned long long)l.boundsBricks);
             }
             for (const auto& [k, v] : s.metadata) {
               if (k == meta::kSampleHistogram && s.data && !s.data->histogram.empty())  // a long list: --json has it whole

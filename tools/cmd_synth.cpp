@@ -5,7 +5,9 @@
 
 #include "Command.h"
 #include "ProgressBar.h"
+#include "PyramidReport.h"
 #include "Triple.h"
+#include "io/FccPyramid.h"
 #include "io/SynthFile.h"
 #include "sparse/BrickKernels.h"
 #include "sparse/Error.h"
@@ -16,7 +18,7 @@ Command addSynthCommand(CLI::App& parent) {
   struct Args {
     std::string kind, output, dims, device = "auto", lattice = "fcc";
     uint64_t seed = 1;
-    bool force = false, quiet = false, half = false, noPrefilter = false;
+    bool force = false, quiet = false, half = false, noPrefilter = false, pyramid = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* app = parent.add_subcommand(
@@ -39,6 +41,8 @@ Command addSynthCommand(CLI::App& parent) {
   app->add_option("--seed", args->seed, "Random seed (blobs)")->capture_default_str();
   app->add_flag("--half", args->half, "Store values as 16-bit floats");
   app->add_flag("--no-prefilter", args->noPrefilter, "Store raw samples instead of spline coefficients (fcc only)");
+  app->add_flag("--pyramid", args->pyramid,
+                "Then add the level-of-detail pyramid (as `fccvdb pyramid OUTPUT`; fcc only, with the prefilter)");
   app->add_flag("--force", args->force, "Overwrite an existing OUTPUT");
   app->add_flag("--quiet", args->quiet, "No progress bar or summary");
   addDeviceOption(*app, args->device);
@@ -52,6 +56,9 @@ Command addSynthCommand(CLI::App& parent) {
             options.prefilter = !args->noPrefilter;
             options.half = args->half;
             options.overwrite = args->force;
+            if (args->pyramid && (args->lattice == "cc" || args->noPrefilter))
+              throw ValueError("--pyramid: the pyramid is built from the spline coefficients of an FCC grid; drop " +
+                               std::string(args->lattice == "cc" ? "--lattice cc" : "--no-prefilter"));
             if (args->lattice == "cc") {
               if (args->noPrefilter)
                 throw ValueError("--no-prefilter: a Cartesian grid always stores the samples (the renderer prefilters for tricubic)");
@@ -73,6 +80,12 @@ Command addSynthCommand(CLI::App& parent) {
                            args->output.c_str(), args->kind.c_str(), (unsigned long long)summary.activeSamples,
                            (unsigned long long)summary.bricks, (unsigned long long)summary.boundsBricks,
                            kernels->describe().c_str());
+            if (args->pyramid) {
+              io::PyramidOptions pyramid;  // in place: OUTPUT is ours, just written
+              pyramid.kernels = kernels.get();
+              const io::PyramidSummary p = io::addPyramid(args->output, pyramid, &progress);
+              if (!args->quiet) printPyramidSummary(args->output, p);
+            }
             return 0;
           }};
 }

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
       fcc::cli::addConvertCommand(app),
       fcc::cli::addInfoCommand(app),
       fcc::cli::addProbeCommand(app),
+      fcc::cli::addPyramidCommand(app),
       fcc::cli::addRenderCommand(app),
       fcc::cli::addSynthCommand(app),
       fcc::cli::addViewCommand(app),
