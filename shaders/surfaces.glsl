@@ -52,12 +52,18 @@ int sideOf(float v) { return v < 0.0 ? -1 : 1; }
 // than `side` is a crossing at u0 (the join rule of fcc_first_root_after). `after` gets the end of the
 // bisection's bracket, where the new side is established: the search for the next crossing starts
 // there, so a root is never found twice. Monotone pieces between critical points and bisection, as
-// fcc_first_root_bernstein3.
-float nextRoot3(vec4 b, float u0, int side, out float after) {
+// fcc_first_root_bernstein3. `tolerance` (joinTolerance): where two pieces join, each piece's own polynomial
+// gives the value there, rounded differently; a start within it of the surface on the other side
+// than the one carried in is taken on the carried side, not as a crossing (else a surface through the
+// join counts twice or three times: on NVIDIA, bright speckles on translucent surfaces).
+float nextRoot3(vec4 b, float u0, int side, float tolerance, out float after) {
   after = u0;
   float g0 = u0 == 0.0 ? b.x : fcc_bernstein3(b, u0);
   bool neg = g0 < 0.0;
-  if (side != 0 && neg != (side < 0)) return u0;
+  if (side != 0 && neg != (side < 0)) {
+    if (abs(g0) > tolerance) return u0;
+    neg = side < 0;
+  }
   if (neg ? max(max(b.x, b.y), max(b.z, b.w)) < 0.0 : min(min(b.x, b.y), min(b.z, b.w)) >= 0.0) return -1.0;
   float d0 = b.y - b.x, d1 = b.z - b.y, d2 = b.w - b.z;
   float A = d0 - 2.0 * d1 + d2, B = 2.0 * (d1 - d0), C = d0;
@@ -96,6 +102,11 @@ float nextRoot3(vec4 b, float u0, int side, out float after) {
   return -1.0;
 }
 
+// How far from a surface a piece's start may lie on the far side and still be taken as the side
+// carried in from the piece before (nextRoot3): rounding of the pieces' coefficients, relative to the
+// field's values there.
+float joinTolerance(float lo, float hi) { return 1e-5 * max(abs(lo), abs(hi)); }
+
 // The earliest crossing of any surface in [u0, 1] of a piece along which the field is the cubic bz
 // (Bernstein, on [0, 1]) and lies within [lo, hi]: its surface (-1: none), u and `after`.
 int nextCrossing3(vec4 bz, float lo, float hi, float u0, ivec4 side, out float u, out float after) {
@@ -106,7 +117,7 @@ int nextCrossing3(vec4 bz, float lo, float hi, float u0, ivec4 side, out float u
     float iso = uSurfaceIsos[k];
     if (!(lo <= iso && iso <= hi)) continue;
     float a;
-    float r = nextRoot3(bz - vec4(iso), u0, side[k], a);
+    float r = nextRoot3(bz - vec4(iso), u0, side[k], joinTolerance(lo, hi), a);
     if (r >= 0.0 && r < u) {
       u = r;
       after = a;
@@ -139,13 +150,16 @@ bool holdsAnySurface(float lo, float hi) {
 // interval whose coefficients change sign once and whose ends lie on different sides holds exactly one
 // crossing, bisected on p; one shorter than 2^-20 that cannot be decided counts as a crossing if its
 // ends differ (a touch is not one).
-float nextRoot9(FccBernstein9 p, float u0, int side, out float after) {
+float nextRoot9(FccBernstein9 p, float u0, int side, float tolerance, out float after) {
   after = u0;
   float g0 = u0 == 0.0 ? p.b[0] : fcc_bernstein9_at(p, u0);
   bool neg = g0 < 0.0;
-  if (side != 0 && neg != (side < 0)) return u0;
+  if (side != 0 && neg != (side < 0)) {  // nextRoot3's join rule
+    if (abs(g0) > tolerance) return u0;
+    neg = side < 0;
+  }
   FccBernstein9 rest = u0 > 0.0 ? fcc_bernstein9_restrict(p, u0, 1.0) : p;
-  rest.b[0] = g0;  // the side the search starts from
+  rest.b[0] = neg ? min(g0, -1e-30) : max(g0, 0.0);  // the side the search starts from
   float stackLo[24];
   float stackHi[24];
   stackLo[0] = 0.0;
@@ -169,7 +183,7 @@ float nextRoot9(FccBernstein9 p, float u0, int side, out float after) {
       // the next search (and the caller's side update) evaluate, so a crossing is never seen twice.
       float w = 1.0 - u0;
       float a = u0 + lo * w, c = u0 + hi * w;
-      bool aNeg = fcc_bernstein9_at(p, a) < 0.0;
+      bool aNeg = lo == 0.0 ? neg : fcc_bernstein9_at(p, a) < 0.0;
       if ((fcc_bernstein9_at(p, c) < 0.0) != aNeg) {
         for (int it = 0; it < 26; ++it) {
           float mid = 0.5 * (a + c);
@@ -293,7 +307,7 @@ bool marchBrickSurfaces(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta,
             float iso = uSurfaceIsos[k];
             if (!(range.lo <= iso && iso <= range.hi)) continue;
             float a;
-            float r = nextRoot9(minusIso9(p, iso), u0, st.side[k], a);
+            float r = nextRoot9(minusIso9(p, iso), u0, st.side[k], joinTolerance(range.lo, range.hi), a);
             if (r >= 0.0 && r < u) {
               u = r;
               after = a;

@@ -139,11 +139,8 @@ Command addBenchRenderCommand(CLI::App& bench) {
             }
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
-            const RenderData data(args->flags, renderOptionsFromFlags(args->flags).hostCacheBytes, false);
-            const float iso = data.iso(args->flags).value;
-            if (render::parseRenderMode(args->flags.mode) == render::RenderMode::Iso) data.warnIfIsoOutside(iso);
-            const render::Camera camera = data.camera(args->flags, double(width) / height);
             // --layout all: every layout in turn, each with fresh caches; auto: the renderer's choice.
+            // First: the options below are parsed from `flags`, where "all" is no layout.
             std::vector<std::optional<render::BrickLayout>> layouts;
             RenderFlags flags = args->flags;
             if (flags.layout == "all") {
@@ -152,6 +149,10 @@ Command addBenchRenderCommand(CLI::App& bench) {
             } else {
               layouts.push_back(renderOptionsFromFlags(flags).layout);  // nullopt for auto
             }
+            const RenderData data(args->flags, renderOptionsFromFlags(flags).hostCacheBytes, false);
+            const float iso = data.iso(args->flags).value;
+            if (render::parseRenderMode(args->flags.mode) == render::RenderMode::Iso) data.warnIfIsoOutside(iso);
+            const render::Camera camera = data.camera(args->flags, double(width) / height);
             render::RenderOptions options = renderOptionsFromFlags(flags);
             options.iso = iso;
             data.applyMode(args->flags, options);  // --mode dvr: the transfer function

@@ -145,6 +145,12 @@ TEST(CliMessages, BenchRenderAcceptsLayoutAuto) {
       "assert rows[0]['layout'] in ('ssbo-vec4', 'ssbo-scalar', 'texture-vec4', 'texture-scalar'), rows\n"
       "assert abs(rows[0]['iso'] - " + std::to_string(suggested) + ") < 1e-4, rows\n";
   EXPECT_EQ(checkJsonWithPython(dir, r.out, check), 0) << r.out;
+  // --layout all (the default where the renderer is a GPU's, given here since a CPU renderer's default
+  // is auto): a row per layout. It was parsed as a layout before being expanded, and refused.
+  const CommandResult all = runFccvdb("bench render " + vdb +
+                                      " --layout all --res 16x16 --frames 1 --warmup 0 --variants skip+analytic --json");
+  ASSERT_EQ(all.status, 0) << all.err;
+  EXPECT_EQ(checkJsonWithPython(dir, all.out, "assert len(rows) == 4, rows\n"), 0) << all.out;
 }
 
 // On a CPU renderer the defaults shrink, with one warning naming what was scaled; the progress bar
