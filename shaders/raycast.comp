@@ -26,6 +26,13 @@
 #define FCC_MULTI_ISO 0
 #endif
 
+// 1: level of detail (docs/RENDERER.md): each brick drawn from the finest resident pyramid level no
+// finer than the level it wants; a coarser one drawn in its place makes the ray provisional.
+// The single opaque isosurface only.
+#ifndef FCC_LOD
+#define FCC_LOD 0
+#endif
+
 // The work group: pixels per group in x and y (RenderOptions::workGroup defines them).
 #ifndef FCC_GROUP_X
 #define FCC_GROUP_X 8
@@ -89,9 +96,41 @@ uniform vec3 uLightDir;       // world, unit, towards the light
 uniform vec3 uClipLo;         // the clipping box, world space (+-1e30: none); rays are cut to it
 uniform vec3 uClipHi;
 
+#if FCC_LOD
+// Level k of the pyramid: its box of bricks (its own brick coordinates: level 0's brick b lies in level
+// k's brick b >> k, since level k's index space is level 0's scaled by 2^-k), its nodes, where its
+// entries start in the page and node tables, and 2^-k (exact in float: o, d and the brick faces
+// scaled by it keep every t of the march the same numbers).
+#define FCC_MAX_LEVELS 16
+uniform int uLevelCount;
+uniform ivec3 uLevelBrickMin[FCC_MAX_LEVELS];
+uniform ivec3 uLevelBrickDims[FCC_MAX_LEVELS];
+uniform ivec3 uLevelNodeDims[FCC_MAX_LEVELS];
+uniform uint uLevelPageOffset[FCC_MAX_LEVELS];
+uniform uint uLevelNodeOffset[FCC_MAX_LEVELS];
+uniform float uLevelScale[FCC_MAX_LEVELS];  // 2^-k
+uniform float uLevelSize[FCC_MAX_LEVELS];   // 2^k
+uniform float uLodBias;     // added to log2 of a brick's pixels per voxel (the user's and the raised one)
+uniform float uPixelAngle;  // a pixel's height at unit distance from the eye: 2 tan(fov / 2) / height
+// Per level: the pixels whose final hit was drawn from it (the frame's level mix).
+layout(std430, binding = 8) buffer LevelHits { uint levelHits[]; };
+
+#endif
+
 const uint kSkip = 0xFFFFFFFFu;
 const uint kMissing = 0xFFFFFFFEu;
 const float kBrickSites = 16.0;
+
+#if FCC_LOD
+// The level level-0 brick b wants: the coarsest whose voxel is no larger than a pixel at the brick's
+// centre (index space distance times the pixel's angle is a pixel in index units, which is a level-0
+// voxel), plus the bias. One value per brick and eye, whatever the pixel.
+int wantedLevel(ivec3 b, vec3 o) {
+  float pixelsInVoxels = length((vec3(b) + 0.5) * kBrickSites - o) * uPixelAngle;
+  int level = int(floor(log2(max(pixelsInVoxels, 1e-30)) + uLodBias));
+  return clamp(level, 0, uLevelCount - 1);
+}
+#endif
 
 void request(uint brickIndex, bool lookahead) {
   uint bit = 1u << (brickIndex & 31u);
@@ -310,6 +349,88 @@ void main() {
   }
 #endif
 
+#if FCC_LOD
+  // The same brick DDA over level 0's bricks; each brick is drawn from the finest level at or above
+  // the one it wants whose page entry is not missing (a coarser level's brick covers 2^k level-0
+  // bricks per axis; it is marched over this brick's stretch of the ray only, in its own index space,
+  // with the same t). Drawing a coarser level than wanted makes the ray provisional: it shows what it
+  // found and resumes from the first such brick once the wanted one is resident. A ray stops and
+  // waits, as without levels, only where no level is resident (the coarsest is kept resident).
+  int guard = 0;
+  int prevLevel = -1;          // the level the last marched stretch was drawn from
+  float tProvisional = -1.0;   // where the ray first drew a coarser level than wanted (< 0: nowhere)
+  int hitLevel = 0;
+  int requestsLeft = 1 + uLookahead;  // a drawing ray's requests for the levels it wants
+  while (t < tEnd && guard < 4096) {
+    ++guard;
+    vec3 p = o + t * d;
+    ivec3 b = clamp(ivec3(floor(p / kBrickSites)), uBrickMin, uBrickMin + uBrickDims - 1);
+    vec3 tFar = (vec3(b) * kBrickSites + vec3(greaterThan(d, vec3(0.0))) * kBrickSites - o) * invD;
+    b += ivec3(lessThanEqual(tFar, vec3(t))) * ivec3(sign(d));
+    if (any(lessThan(b, uBrickMin)) || any(greaterThanEqual(b, uBrickMin + uBrickDims))) break;
+    int want = wantedLevel(b, o);
+    ivec3 bw = b >> want;
+    ivec3 relw = bw - uLevelBrickMin[want];
+    bool insideWanted = !(any(lessThan(relw, ivec3(0))) || any(greaterThanEqual(relw, uLevelBrickDims[want])));
+    if (uSkipEmpty != 0 && insideWanted) {
+      ivec3 node = relw >> 4;
+      ivec3 nd = uLevelNodeDims[want];
+      if (nodeEntries[uLevelNodeOffset[want] + uint((node.z * nd.y + node.y) * nd.x + node.x)] == 0u) {
+        // The wanted level has nothing to draw in this node (level 0: exactly the march without levels).
+        float size = uLevelSize[want];
+        vec3 nodeLo = vec3(uLevelBrickMin[want] + node * 16) * (kBrickSites * size);
+        float tExitNode = clipBox(o, invD, nodeLo, nodeLo + 16.0 * kBrickSites * size).y;
+        t = tExitNode > t ? tExitNode : t + 1e-5 * abs(t) + 1e-6;  // the nudge only guards progress
+        prevSign = 0;
+        continue;
+      }
+    }
+    vec3 brickLo = vec3(b) * kBrickSites;
+    float tExitBrick = min(clipBox(o, invD, brickLo, brickLo + kBrickSites).y, tEnd);
+    // The finest level at or above `want` whose entry is known; missing finer ones are requested.
+    uint entry = kMissing;
+    int level = want;
+    for (int k = want; k < uLevelCount; ++k) {
+      level = k;
+      ivec3 rk = (b >> k) - uLevelBrickMin[k];
+      ivec3 dims = uLevelBrickDims[k];
+      if (any(lessThan(rk, ivec3(0))) || any(greaterThanEqual(rk, dims))) {
+        entry = kSkip;  // outside the level's box: nothing varies there
+        break;
+      }
+      uint index = uLevelPageOffset[k] + uint((rk.z * dims.y + rk.y) * dims.x + rk.x);
+      entry = pageEntries[index];
+      if (entry != kMissing) break;
+      if (stopped || requestsLeft > 0) request(index, stopped || k != want);
+      if (!stopped) --requestsLeft;
+    }
+    if (entry == kMissing) {  // no level resident: wait, as a ray without levels does
+      if (!stopped) {
+        stopped = true;
+        imageStore(uResume, pixel, vec4(tProvisional >= 0.0 ? tProvisional : t));
+      } else if (--lookahead < 0) {
+        break;
+      }
+    } else if (!stopped) {
+      if (level > want && tProvisional < 0.0) tProvisional = t;
+      if (entry == kSkip) {
+        prevSign = 0;
+        prevLevel = -1;
+      } else {
+        slotLastUse[entry] = uPass;
+        if (level != prevLevel) prevSign = 0;  // another level is another spline
+        prevLevel = level;
+        float scale = uLevelScale[level];
+        if (marchBrick(b >> level, entry, o * scale, d * scale, invD * uLevelSize[level], t, tExitBrick, prevSign, hit)) {
+          found = true;
+          hitLevel = level;
+          break;
+        }
+      }
+    }
+    t = tExitBrick > t ? tExitBrick : t + 1e-5 * abs(t) + 1e-6;
+  }
+#else
   // Brick DDA (re-seeded after every node skip).
   int guard = 0;
   while (t < tEnd && guard < 4096) {
@@ -372,6 +493,7 @@ void main() {
     }
     t = tExitBrick > t ? tExitBrick : t + 1e-5 * abs(t) + 1e-6;
   }
+#endif
 #if FCC_MODE_DVR
   if (stopped && !found) {  // resumes next pass; meanwhile the pixel shows what it has so far
     imageStore(uColor, pixel, vec4(st.color, 1.0 - st.transmittance));
@@ -401,7 +523,15 @@ void main() {
     return;
   }
 
+#if FCC_LOD
+  // Provisional: shows what it found and resumes where it first drew a coarser level than wanted.
+  bool provisional = tProvisional >= 0.0;
+  imageStore(uResume, pixel, vec4(provisional ? tProvisional : -1.0));
+  if (found && !provisional) atomicAdd(levelHits[hitLevel], 1u);
+  if (found) hit.gradient *= uLevelScale[hitLevel];  // to level 0's index space (normalized below)
+#else
   imageStore(uResume, pixel, vec4(-1.0));
+#endif
   if (!found) {
     imageStore(uColor, pixel, vec4(0.0));
     imageStore(uNormalDepth, pixel, vec4(0.0, 0.0, 0.0, 1.0 / 0.0));

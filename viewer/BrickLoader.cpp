@@ -10,7 +10,10 @@ constexpr std::size_t kChunk = 8;  // most bricks a loader thread takes at once 
 }  // namespace
 
 BrickLoader::BrickLoader(const BrickSource& source, std::size_t maxReady)
-    : source_(source), maxReady_(std::max<std::size_t>(maxReady, 1)) {
+    : BrickLoader(std::vector<const BrickSource*>{&source}, maxReady) {}
+
+BrickLoader::BrickLoader(std::vector<const BrickSource*> sources, std::size_t maxReady)
+    : sources_(std::move(sources)), maxReady_(std::max<std::size_t>(maxReady, 1)) {
   // As many as TBB may use (all cores, or what a tbb::global_control allows).
   const int threads = std::max<int>(1, int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { work(); });
@@ -25,18 +28,25 @@ BrickLoader::~BrickLoader() {
   for (std::thread& t : threads_) t.join();
 }
 
-uint64_t BrickLoader::key(const glm::ivec3& b) {
+std::size_t BrickLoader::KeyHash::operator()(const LevelBrick& b) const {
   // 21 bits per axis: brick coordinates of any grid OpenVDB can index (2^31 voxels / 8 per brick).
   const auto u = [](int v) { return uint64_t(uint32_t(v) & 0x1FFFFFu); };
-  return u(b.x) | (u(b.y) << 21) | (u(b.z) << 42);
+  return std::hash<uint64_t>()((u(b.brick.x) | (u(b.brick.y) << 21) | (u(b.brick.z) << 42)) ^ (uint64_t(b.level) << 59));
 }
 
 void BrickLoader::request(const std::vector<glm::ivec3>& bricks) {
+  std::vector<LevelBrick> level0;
+  level0.reserve(bricks.size());
+  for (const glm::ivec3& b : bricks) level0.push_back(LevelBrick{b, 0});
+  request(level0);
+}
+
+void BrickLoader::request(const std::vector<LevelBrick>& bricks) {
   bool any = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    for (const glm::ivec3& b : bricks)
-      if (held_.insert(key(b)).second) {
+    for (const LevelBrick& b : bricks)
+      if (held_.insert(b).second) {
         queued_.push_back(b);
         any = true;
       }
@@ -46,7 +56,7 @@ void BrickLoader::request(const std::vector<glm::ivec3>& bricks) {
 
 void BrickLoader::cancelQueued() {
   std::lock_guard<std::mutex> lock(mutex_);
-  for (const glm::ivec3& b : queued_) held_.erase(key(b));
+  for (const LevelBrick& b : queued_) held_.erase(b);
   queued_.clear();
   done_.notify_all();
 }
@@ -65,7 +75,7 @@ std::vector<LoadedBrick> BrickLoader::take(std::size_t max, bool wait) {
   const bool wasFull = ready_.size() + decoding_ >= maxReady_;
   std::vector<LoadedBrick> out;
   while (!ready_.empty() && out.size() < max) {
-    held_.erase(key(ready_.front().brick));
+    held_.erase(LevelBrick{ready_.front().brick, ready_.front().level});
     out.push_back(std::move(ready_.front()));
     ready_.pop_front();
   }
@@ -103,7 +113,8 @@ void BrickLoader::work() {
       const std::size_t n = std::min({kChunk, share, maxReady_ - ready_.size() - decoding_});
       chunk.resize(n);
       for (LoadedBrick& b : chunk) {
-        b.brick = queued_.front();
+        b.brick = queued_.front().brick;
+        b.level = queued_.front().level;
         queued_.pop_front();
         if (!spare_.empty()) {
           b.halo = std::move(spare_.back());
@@ -119,7 +130,20 @@ void BrickLoader::work() {
 void BrickLoader::decodeChunk(std::vector<LoadedBrick>& chunk) {
   std::exception_ptr error;
   try {
-    source_.decode(chunk);
+    if (sources_.size() == 1) {
+      sources_[0]->decode(chunk);
+    } else {  // a pyramid: each level's bricks through its own source, the chunk's order kept
+      for (std::size_t level = 0; level < sources_.size(); ++level) {
+        std::vector<LoadedBrick> part;
+        for (LoadedBrick& b : chunk)
+          if (std::size_t(b.level) == level) part.push_back(std::move(b));
+        if (part.empty()) continue;
+        sources_[level]->decode(part);
+        std::size_t next = 0;
+        for (LoadedBrick& b : chunk)
+          if (std::size_t(b.level) == level) b = std::move(part[next++]);
+      }
+    }
   } catch (...) {
     error = std::current_exception();
   }
@@ -128,7 +152,7 @@ void BrickLoader::decodeChunk(std::vector<LoadedBrick>& chunk) {
     decoding_ -= chunk.size();
     if (error) {
       if (!error_) error_ = error;
-      for (const LoadedBrick& b : chunk) held_.erase(key(b.brick));
+      for (const LoadedBrick& b : chunk) held_.erase(LevelBrick{b.brick, b.level});
     } else {
       for (LoadedBrick& b : chunk) ready_.push_back(std::move(b));
       loaded_ += chunk.size();

@@ -29,12 +29,15 @@ namespace fcc::render {
 class BrickLoader {
  public:
   BrickLoader(const BrickSource& source, std::size_t maxReady);
+  // A pyramid: sources[k] decodes level k's bricks (all give the same SlotBlock).
+  BrickLoader(std::vector<const BrickSource*> sources, std::size_t maxReady);
   ~BrickLoader();  // waits for the chunks in progress; queued requests are dropped
   BrickLoader(const BrickLoader&) = delete;
   BrickLoader& operator=(const BrickLoader&) = delete;
 
   // Queues bricks, in order, skipping ones the loader already holds in any state.
-  void request(const std::vector<glm::ivec3>& bricks);
+  void request(const std::vector<glm::ivec3>& bricks);  // level 0's
+  void request(const std::vector<LevelBrick>& bricks);
   // Drops the queued requests not yet started (the view changed; what is decoding still arrives).
   void cancelQueued();
   // Up to `max` finished bricks, in the order they finished. With `wait`, blocks until `max` (or
@@ -49,19 +52,21 @@ class BrickLoader {
  private:
   void work();  // one loader thread
   void decodeChunk(std::vector<LoadedBrick>& chunk);
-  static uint64_t key(const glm::ivec3& b);
+  struct KeyHash {
+    std::size_t operator()(const LevelBrick& b) const;
+  };
 
-  const BrickSource& source_;
+  std::vector<const BrickSource*> sources_;
   const std::size_t maxReady_;
   mutable std::mutex mutex_;
   std::condition_variable work_;   // requests queued, room in ready_, or stopping
   std::condition_variable done_;   // a chunk finished
-  std::deque<glm::ivec3> queued_;
+  std::deque<LevelBrick> queued_;
   std::size_t decoding_ = 0;  // bricks in chunks being decoded
   std::size_t waitFor_ = 0;   // ready bricks a blocked take() waits for (0: none waits)
   std::deque<LoadedBrick> ready_;
   std::vector<std::vector<float>> spare_;  // recycled halo blocks
-  std::unordered_set<uint64_t> held_;  // keys of queued, decoding and ready bricks
+  std::unordered_set<LevelBrick, KeyHash> held_;  // queued, decoding and ready bricks
   uint64_t loaded_ = 0;
   std::exception_ptr error_;  // the first decoding failure, for take() to rethrow
   bool stop_ = false;

@@ -29,6 +29,14 @@ inline std::size_t slotBlockFloats(SlotBlock block) {
 struct LoadedBrick {
   glm::ivec3 brick;
   std::vector<float> halo;  // slotBlockFloats(source.slotBlock()) floats: one pool slot
+  int level = 0;            // the pyramid level the brick is of (BrickLoader's sources[level] decodes it)
+};
+
+// A brick of one level of a level-of-detail pyramid (level 0: the data itself).
+struct LevelBrick {
+  glm::ivec3 brick{0};
+  int level = 0;
+  bool operator==(const LevelBrick& o) const { return brick == o.brick && level == o.level; }
 };
 
 // Memory a source keeps decoded on the host (the viewer's panel shows it).

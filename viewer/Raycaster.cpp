@@ -50,12 +50,26 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   if (!options_.layout) options_.layout = chooseBrickLayout(source, options_.gpuCacheBytes);
   const RenderOptions& options = options_;
   const BrickLayout layout = *options.layout;
-  glm::ivec3 boxLo, boxHi;
-  source.brickBox(boxLo, boxHi);
-  const bool empty = glm::any(glm::greaterThan(boxLo, boxHi));
-  const glm::ivec3 brickMin = empty ? glm::ivec3(0) : boxLo;
-  const glm::ivec3 brickDims = empty ? glm::ivec3(1) : boxHi - boxLo + 1;
-  const std::size_t bricksInBox = std::size_t(brickDims.x) * brickDims.y * brickDims.z;
+  levelSources_.push_back(&source);
+  if (options_.coarserLevels.size() + 1 > std::size_t(kMaxLodLevels))
+    throw ValueError(std::to_string(options_.coarserLevels.size() + 1) + " pyramid levels: the renderer draws at most " +
+                     std::to_string(kMaxLodLevels));
+  for (const BrickSource* level : options_.coarserLevels) {
+    if (!level || level->slotBlock() != source.slotBlock() || level->reconstruction().deviceId != source.reconstruction().deviceId)
+      throw ValueError("a pyramid level must be an FCC source like level 0");
+    levelSources_.push_back(level);
+  }
+  // Each level's box of bricks (level 0 first), one page table over all of them.
+  std::vector<Residency::LevelBox> levelBoxes;
+  for (const BrickSource* level : levelSources_) {
+    glm::ivec3 boxLo, boxHi;
+    level->brickBox(boxLo, boxHi);
+    const bool empty = glm::any(glm::greaterThan(boxLo, boxHi));
+    levelBoxes.push_back(Residency::LevelBox{empty ? glm::ivec3(0) : boxLo, empty ? glm::ivec3(1) : boxHi - boxLo + 1});
+  }
+  std::size_t bricksInBox = 0;
+  for (const Residency::LevelBox& box : levelBoxes)
+    bricksInBox += std::size_t(box.brickDims.x) * box.brickDims.y * box.brickDims.z;
 
   // The GPU budget pays for a slot's data and its cell bounds.
   std::size_t slots = options.gpuCacheBytes / (BrickPool::slotBytes(layout) + kSlotBoundsBytes);
@@ -87,8 +101,21 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   pageUpdateCountUniform_ = pageUpdateProgram_.uniformLocation("uCount");
   pool_->setUniforms(program_);
   pool_->setUniforms(slotBoundsProgram_);
+  if (levelSources_.size() > 1 && !dvr) {
+    // The levels' variant, beside the full-resolution program (which stays the same text and speed).
+    lodProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_ + "#define FCC_LOD 1\n"),
+                                     "shaders/raycast.comp (level of detail)");
+    lodUniforms_ = uniformsOf(lodProgram_, false);
+    const auto at = [this](const char* name) { return lodProgram_.uniformLocation(name); };
+    lodExtra_ = LodUniforms{at("uLevelCount"), at("uLevelBrickMin"), at("uLevelBrickDims"), at("uLevelNodeDims"),
+                            at("uLevelPageOffset"), at("uLevelNodeOffset"), at("uLevelScale"), at("uLevelSize"),
+                            at("uLodBias"), at("uPixelAngle")};
+    pool_->setUniforms(lodProgram_);
+    levelHits_ = std::make_unique<GlBuffer>(kMaxLodLevels * sizeof(uint32_t));
+    levelHits_->clear();
+  }
 
-  residency_ = std::make_unique<Residency>(brickMin, brickDims, uint32_t(slots));
+  residency_ = std::make_unique<Residency>(levelBoxes, uint32_t(slots));
 
   requestCapacity_ = uint32_t(std::min<std::size_t>(bricksInBox, 1 << 16));
   slotBounds_ = std::make_unique<GlBuffer>(slots * kSlotBoundsBytes);
@@ -105,7 +132,7 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   slotUse_->clear();
   // Four batches ready, so decoding goes on while render() uploads one (16 MB of blocks); no more than
   // the pool has slots: a pass cannot use more, and the blocks count against the process's memory.
-  loader_ = std::make_unique<BrickLoader>(source, std::min<std::size_t>(4 * kUploadBatch, std::max<std::size_t>(slots, kStepUploadBatch)));
+  loader_ = std::make_unique<BrickLoader>(levelSources_, std::min<std::size_t>(4 * kUploadBatch, std::max<std::size_t>(slots, kStepUploadBatch)));
   if (dvr) {
     tfEntries_ = std::make_unique<GlBuffer>(std::size_t(options.transfer->size()) * sizeof(glm::vec4));
     tfPrefix_ = std::make_unique<GlBuffer>(std::size_t(options.transfer->size() + 1) * sizeof(int32_t));
@@ -237,8 +264,8 @@ void Raycaster::updateNeeded() {
     clipLo = glm::min(clipLo, xyz);
     clipHi = glm::max(clipHi, xyz);
   }
-  const auto insideClip = [&](const glm::ivec3& brick) {
-    const glm::dvec3 lo = glm::dvec3(brick) * 16.0, hi = lo + 16.0;
+  const auto insideClip = [&](const glm::ivec3& brick, double size = 1.0) {  // size: 2^level
+    const glm::dvec3 lo = glm::dvec3(brick) * (16.0 * size), hi = lo + 16.0 * size;
     return !clipEmpty && glm::all(glm::lessThanEqual(lo, clipHi)) && glm::all(glm::greaterThanEqual(hi, clipLo));
   };
   std::vector<glm::ivec3> needed;
@@ -253,8 +280,83 @@ void Raycaster::updateNeeded() {
     if ((!options_.skipEmpty || holds) && insideClip(brick) && (!options_.ownsBrick || options_.ownsBrick(brick)))
       needed.push_back(brick);
   });
-  residency_->setNeeded(needed);
+  std::vector<std::vector<glm::ivec3>> neededPerLevel{std::move(needed)};
+  coarsestNeeded_.clear();
+  if (lodDrawing()) {  // the coarser levels' bricks that hold the isovalue, each in its own bricks
+    for (std::size_t k = 1; k < levelSources_.size(); ++k) {
+      std::vector<glm::ivec3> level;
+      const double size = double(uint64_t(1) << k);
+      levelSources_[k]->forEachVaryingBrick([&](const glm::ivec3& brick, float lo, float hi) {
+        if ((!options_.skipEmpty || (lo <= iso && iso <= hi)) && insideClip(brick, size)) level.push_back(brick);
+      });
+      neededPerLevel.push_back(std::move(level));
+    }
+    coarsestNeeded_ = neededPerLevel.back();
+  }
+  residency_->setNeeded(neededPerLevel);
+  // The coarsest level stays resident when it takes under half the pool: every ray then has a level
+  // to draw (at most 8 bricks: docs/FORMAT.md).
+  const bool pin = lodDrawing() && coarsestNeeded_.size() * 2 < residency_->slotCount();
+  residency_->setPinnedLevel(pin ? residency_->levelCount() - 1 : -1);
   uploadPageTable();
+}
+
+bool Raycaster::lodDrawing() const {
+  return levelSources_.size() > 1 && lodProgram_.id() != 0 && options_.mode == RenderMode::Iso && !compositesSurfaces(options_) &&
+         !options_.ownsBrick;
+}
+
+void Raycaster::requestCoarsest() {
+  if (coarsestNeeded_.empty()) return;
+  std::vector<LevelBrick> missing;
+  const int coarsest = residency_->levelCount() - 1;
+  for (const glm::ivec3& b : coarsestNeeded_)
+    if (!residency_->isResident(b, coarsest)) missing.push_back(LevelBrick{b, coarsest});
+  loader_->request(missing);
+}
+
+bool Raycaster::coarsestResident() const {
+  if (!lodDrawing()) return true;
+  return residency_->missingCount(residency_->levelCount() - 1) == 0;
+}
+
+bool Raycaster::raiseBiasIfThrashing(uint64_t uploadedThisView) {
+  // More bricks loaded for one view than the pool holds: the wanted working set does not fit, and
+  // the frame would stream it through the pool pass after pass. A level coarser needs about a quarter
+  // of the bricks (a surface's bricks) to an eighth (a volume's).
+  if (!lodDrawing() || !options_.lodAdaptBias || uploadedThisView <= residency_->slotCount()) return false;
+  if (double(options_.lodBias) + double(autoBias_) >= double(residency_->levelCount() - 1)) return false;
+  autoBias_ += 1.0f;
+  return true;
+}
+
+std::vector<glm::ivec3> Raycaster::lastRequests() const {
+  std::vector<glm::ivec3> level0;
+  for (const LevelBrick& b : lastRequests_)
+    if (b.level == 0) level0.push_back(b.brick);
+  return level0;
+}
+
+LevelMix Raycaster::levelMix() const {
+  LevelMix mix;
+  mix.lodBias = lodBias();
+  const int levels = levelCount();
+  mix.bricksPerLevel.assign(std::size_t(levels), 0);
+  const std::vector<uint32_t> slotUse = readSlotUse();
+  for (uint32_t slot = 0; slot < residency_->slotCount(); ++slot) {
+    const int64_t index = residency_->slotBrick(slot);
+    if (index < 0 || slotUse[slot] < viewFirstPass_) continue;
+    const int level = residency_->levelOf(uint32_t(index));
+    if (level < levels) ++mix.bricksPerLevel[std::size_t(level)];
+  }
+  if (lodDrawing()) {
+    std::vector<uint32_t> hits(kMaxLodLevels);
+    levelHits_->read(hits);
+    uint64_t all = 0;
+    for (uint32_t h : hits) all += h;
+    mix.fullResolutionFraction = all ? double(hits[0]) / double(all) : 1.0;
+  }
+  return mix;
 }
 
 void Raycaster::setSkipEmpty(bool skip) {
@@ -351,6 +453,9 @@ void Raycaster::restartRays(int width, int height) {
   if (compositesSurfaces(options_) && (transmittance_.width() != width || transmittance_.height() != height))
     transmittance_ = GlTexture2D(GL_R32F, width, height);
   firstPass_ = true;  // every ray starts at t = 0; the first pass writes every pixel's resume value
+  viewFirstPass_ = pass_ + 1;
+  uploadedThisView_ = 0;
+  if (levelHits_) levelHits_->clear();
   // No surface pixel yet: min column and row past any pixel, max ones before any.
   const int32_t noSurface[4] = {std::numeric_limits<int32_t>::max(), std::numeric_limits<int32_t>::max(), -1, -1};
   requests_->write(noSurface, sizeof noSurface, sizeof(uint32_t));
@@ -368,9 +473,10 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
 
   // The compositing variant draws several or translucent surfaces (RenderOptions::moreSurfaces).
   const bool composite = compositesSurfaces(options_);
-  const GlProgram& program = composite ? surfacesProgram_ : program_;
+  const bool lod = lodDrawing();
+  const GlProgram& program = composite ? surfacesProgram_ : (lod ? lodProgram_ : program_);
   const GLuint p = program.id();
-  const Uniforms& u = composite ? surfacesUniforms_ : uniforms_;
+  const Uniforms& u = composite ? surfacesUniforms_ : (lod ? lodUniforms_ : uniforms_);
   const glm::dmat4 indexFromWorld = glm::inverse(source_.worldFromIndex());
   const glm::mat4 indexFromWorldF(indexFromWorld);
   const glm::mat3 normalFromIndex = glm::transpose(glm::mat3(indexFromWorldF));
@@ -406,6 +512,34 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   const glm::vec3 clipHi(glm::clamp(options_.clipHi, glm::dvec3(-1e30), glm::dvec3(1e30)));
   glProgramUniform3fv(p, u.clipLo, 1, &clipLo.x);
   glProgramUniform3fv(p, u.clipHi, 1, &clipHi.x);
+  if (lod) {
+    const int levels = residency_->levelCount();
+    glm::ivec3 brickMin[kMaxLodLevels], brickDims[kMaxLodLevels], nodeDims[kMaxLodLevels];
+    GLuint pageOffset[kMaxLodLevels], nodeOffset[kMaxLodLevels];
+    float scale[kMaxLodLevels], size[kMaxLodLevels];
+    for (int k = 0; k < levels; ++k) {
+      brickMin[k] = residency_->levelBox(k).brickMin;
+      brickDims[k] = residency_->levelBox(k).brickDims;
+      nodeDims[k] = residency_->levelNodeDims(k);
+      pageOffset[k] = residency_->pageOffset(k);
+      nodeOffset[k] = residency_->nodeOffset(k);
+      size[k] = std::ldexp(1.0f, k);  // powers of two: exact
+      scale[k] = std::ldexp(1.0f, -k);
+    }
+    const LodUniforms& lu = lodExtra_;
+    glProgramUniform1i(p, lu.levelCount, levels);
+    glProgramUniform3iv(p, lu.brickMin, levels, &brickMin[0].x);
+    glProgramUniform3iv(p, lu.brickDims, levels, &brickDims[0].x);
+    glProgramUniform3iv(p, lu.nodeDims, levels, &nodeDims[0].x);
+    glProgramUniform1uiv(p, lu.pageOffset, levels, pageOffset);
+    glProgramUniform1uiv(p, lu.nodeOffset, levels, nodeOffset);
+    glProgramUniform1fv(p, lu.scale, levels, scale);
+    glProgramUniform1fv(p, lu.size, levels, size);
+    glProgramUniform1f(p, lu.bias, float(lodBias()));
+    // frame.up is scaled by tan(fov / 2): a pixel is 2 tan(fov / 2) / height at unit distance.
+    glProgramUniform1f(p, lu.pixelAngle, float(2.0 * glm::length(frame.up) / double(height)));
+    levelHits_->bindBase(GL_SHADER_STORAGE_BUFFER, 8);
+  }
   if (composite) {
     const std::vector<Isosurface> surfaces = surfacesOf(options_);
     float isos[kMaxIsosurfaces] = {}, opacities[kMaxIsosurfaces] = {};
@@ -474,7 +608,7 @@ Raycaster::PassResult Raycaster::collectPass() {
   return result;
 }
 
-std::vector<glm::ivec3> Raycaster::requestedBricks(uint32_t requestCount) const {
+std::vector<LevelBrick> Raycaster::requestedBricks(uint32_t requestCount) const {
   const uint32_t n = std::min(requestCount, requestCapacity_);
   const uint32_t copied = std::min(n, options_.requestsReadBack);
   std::vector<uint32_t> raw(passResults_ + kRequestsHeaderWords, passResults_ + kRequestsHeaderWords + copied);
@@ -483,12 +617,17 @@ std::vector<glm::ivec3> Raycaster::requestedBricks(uint32_t requestCount) const 
     requests_->read(raw.data() + copied, (n - copied) * sizeof(uint32_t), (kRequestsHeaderWords + copied) * sizeof(uint32_t));
   }
   // The bricks rays stopped at come first: loading them guarantees progress; look-ahead ones follow.
-  std::vector<glm::ivec3> bricks;
+  std::vector<LevelBrick> bricks;
   bricks.reserve(n);
+  const auto add = [&](uint32_t index) { bricks.push_back(LevelBrick{residency_->brickAt(index), residency_->levelOf(index)}); };
   for (uint32_t r : raw)
-    if (!(r & 0x80000000u)) bricks.push_back(residency_->brickAt(r));
+    if (!(r & 0x80000000u)) add(r);
   for (uint32_t r : raw)
-    if (r & 0x80000000u) bricks.push_back(residency_->brickAt(r & 0x7FFFFFFFu));
+    if (r & 0x80000000u) add(r & 0x7FFFFFFFu);
+  // Coarse levels first: a few coarse bricks give every waiting ray something to draw, finer ones
+  // replace them as they arrive.
+  if (residency_->levelCount() > 1)
+    std::stable_sort(bricks.begin(), bricks.end(), [](const LevelBrick& a, const LevelBrick& b) { return a.level > b.level; });
   // No more than the pool holds: every brick loaded in a pass keeps its slot through the pass.
   if (bricks.size() > residency_->slotCount()) bricks.resize(residency_->slotCount());
   return bricks;
@@ -501,16 +640,16 @@ std::vector<uint32_t> Raycaster::readSlotUse() const {
 }
 
 uint32_t Raycaster::upload(const std::vector<LoadedBrick>& loaded) {
-  std::vector<glm::ivec3> bricks;
-  bricks.reserve(loaded.size());
-  for (const LoadedBrick& b : loaded) bricks.push_back(b.brick);
-  const auto assigned = residency_->assign(bricks);  // skips bricks resident meanwhile
+  std::vector<uint32_t> indices;
+  indices.reserve(loaded.size());
+  for (const LoadedBrick& b : loaded) indices.push_back(residency_->brickIndex(b.brick, b.level));
+  const auto assigned = residency_->assignIndices(indices);  // skips bricks resident meanwhile
   if (assigned.empty()) return 0;
   std::vector<uint32_t> slots;
   std::vector<const float*> blocks;
   std::size_t next = 0;
-  for (const auto& [brick, slot] : assigned) {
-    while (loaded[next].brick != brick) ++next;  // assign() keeps the order
+  for (const auto& [index, slot] : assigned) {
+    while (indices[next] != index) ++next;  // assignIndices() keeps the order
     blocks.push_back(loaded[next].halo.data());
     // Freshly loaded slots count as used now (computeSlotBounds marks them on the GPU), so the next
     // pass's eviction order does not evict them first; this pass's order never hands a slot out twice.
@@ -528,7 +667,11 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
     throw ValueError("image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   const auto start = std::chrono::steady_clock::now();
   const CameraFrame frame = cameraFrame(camera, double(width) / double(height));
+  if (lodDrawing()) noteView(frame, width, height);
+  if (lowerBiasPending_ && autoBias_ - 1.0f > thrashBias_) autoBias_ -= 1.0f;
+  lowerBiasPending_ = false;
   restartRays(width, height);
+  requestCoarsest();
   stepKey_ = StepKey{};  // a later step() starts over
   FrameStats stats;
   stats.bricksNeeded = residency_->neededCount();
@@ -553,10 +696,44 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
     if (uploaded == 0) throw Error("renderer: rays requested bricks but none could be given a pool slot");
     updatePageTable();
     stats.bricksUploaded += uploaded;
+    uploadedThisView_ += uploaded;
+    if (raiseBiasIfThrashing(uploadedThisView_)) {  // coarser bricks for every ray, from the start
+      thrashBias_ = autoBias_ - 1.0f;
+      ++stats.lodRestarts;
+      restartRays(width, height);
+      requestCoarsest();
+    }
   }
   // No glFinish: the last pass's read-back waited for every command of the frame.
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  finishLevelMix(stats);
   return stats;
+}
+
+void Raycaster::finishLevelMix(FrameStats& stats) {
+  const LevelMix mix = levelMix();
+  stats.bricksPerLevel = mix.bricksPerLevel;
+  stats.fullResolutionFraction = mix.fullResolutionFraction;
+  stats.lodBias = mix.lodBias;
+  noteFrameUse(mix);
+}
+
+void Raycaster::noteFrameUse(const LevelMix& mix) {
+  // A frame that used under an eighth of the pool would fit a level finer (about four times the
+  // bricks): the next frame tries it, unless this view already streamed through the pool there.
+  uint64_t used = 0;
+  for (uint64_t n : mix.bricksPerLevel) used += n;
+  lowerBiasPending_ = lodDrawing() && autoBias_ > 0.0f && used * 8 < residency_->slotCount() && autoBias_ - 1.0f > thrashBias_;
+}
+
+void Raycaster::noteView(const CameraFrame& frame, int width, int height) {
+  if (frame.eye == lodView_.frame.eye && frame.forward == lodView_.frame.forward && frame.right == lodView_.frame.right &&
+      frame.up == lodView_.frame.up && width == lodView_.width && height == lodView_.height)
+    return;
+  lodView_.frame = frame;
+  lodView_.width = width;
+  lodView_.height = height;
+  thrashBias_ = -1.0f;  // a new view may fit where the last did not
 }
 
 StepStats Raycaster::step(const Camera& camera, int width, int height, double uploadSeconds, int coveredColumns) {
@@ -578,8 +755,16 @@ void Raycaster::startStep(const Camera& camera, int width, int height, double up
         key.width == stepKey_.width && key.height == stepKey_.height &&
         key.coveredColumns == stepKey_.coveredColumns && key.settings == stepKey_.settings)) {
     stepKey_ = key;
+    if (lodDrawing()) noteView(frame, width, height);
     restartRays(width, height);
     loader_->cancelQueued();  // requests of the old view; what still arrives is uploaded all the same
+    requestCoarsest();
+    stepComplete_ = false;
+    stats.restarted = true;
+  } else if (lowerBiasPending_) {  // the completed frame used little of the pool: a level finer
+    lowerBiasPending_ = false;
+    autoBias_ -= 1.0f;
+    restartRays(width, height);
     stepComplete_ = false;
     stats.restarted = true;
   }
@@ -596,6 +781,14 @@ void Raycaster::startStep(const Camera& camera, int width, int height, double up
     loader_->recycle(std::move(loaded));
   } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < uploadSeconds);
   if (stats.uploaded) updatePageTable();
+  uploadedThisView_ += stats.uploaded;
+  if (!stepComplete_ && raiseBiasIfThrashing(uploadedThisView_)) {  // coarser bricks, from the start
+    thrashBias_ = autoBias_ - 1.0f;
+    restartRays(width, height);
+    loader_->cancelQueued();
+    requestCoarsest();
+    stats.restarted = true;
+  }
 
   stepStarted_ = true;
   if (stepComplete_) return;
@@ -611,8 +804,12 @@ StepStats Raycaster::finishStep() {
     const PassResult pass = collectPass();
     stats.requested = pass.requested;
     stats.gpuSeconds = pass.gpuSeconds;
-    if (stats.requested == 0) stepComplete_ = true;
-    else loader_->request(lastRequests_ = requestedBricks(stats.requested));
+    if (stats.requested == 0) {
+      stepComplete_ = true;
+      if (lodDrawing() && autoBias_ > 0.0f) noteFrameUse(levelMix());
+    } else {
+      loader_->request(lastRequests_ = requestedBricks(stats.requested));
+    }
   }
   stats.complete = stepComplete_;
   stats.streaming = loader_->pending();

@@ -85,7 +85,22 @@ struct RenderOptions {
   std::vector<Isosurface> moreSurfaces;
   // Direction towards the light in camera space: x right, y up, z towards the viewer.
   glm::vec3 lightInCamera{0.3f, 0.6f, 1.0f};
+  // Level of detail (docs/RENDERER.md, "Level of detail"): the pyramid's coarser levels, level 1 first
+  // (sources whose index space is level 0's scaled by 2^-k; they outlive the raycaster). Empty: level 0
+  // only, the full-resolution program and image, as without a pyramid. Drawn for the single opaque
+  // isosurface only (DVR, several or translucent surfaces and ownsBrick stay at full resolution).
+  std::vector<const BrickSource*> coarserLevels;
+  // Added to log2 of a brick's pixels per level-0 voxel to choose its level: 0 draws the coarsest level
+  // whose voxels are no larger than a pixel; > 0 coarser, < 0 finer.
+  float lodBias = 0.0f;
+  // Raise the bias (by whole levels) for the next frames when the GPU pool cannot hold the bricks a
+  // frame wants, instead of streaming them through it pass after pass; lower it back once a frame
+  // uses under an eighth of the pool.
+  bool lodAdaptBias = true;
 };
+
+// The most pyramid levels the raycaster draws (shaders/raycast.comp's FCC_MAX_LEVELS).
+inline constexpr int kMaxLodLevels = 16;
 
 // Every surface of `options`: iso, surfaceColor and surfaceOpacity first, then moreSurfaces.
 std::vector<Isosurface> surfacesOf(const RenderOptions& options);
@@ -109,12 +124,27 @@ struct FrameImages {
                                    // first surface crossed
 };
 
+// Which pyramid levels a frame drew from.
+struct LevelMix {
+  // Per level (level 0 first; one entry without levels): the bricks the frame drew, i.e. the resident
+  // bricks its passes read plus those it loaded.
+  std::vector<uint64_t> bricksPerLevel;
+  // Of the pixels whose ray hit the surface, the share whose hit was drawn from level 0 (1 when no
+  // pixel hit, or without levels). Progressive frames count final hits only.
+  double fullResolutionFraction = 1.0;
+  double lodBias = 0.0;  // the bias in effect: RenderOptions::lodBias plus what the renderer added
+};
+
 struct FrameStats {
   int passes = 0;
   uint64_t bricksUploaded = 0;
-  uint64_t bricksNeeded = 0;     // bricks whose bounds hold the isovalue
+  uint64_t bricksNeeded = 0;     // bricks whose bounds hold the isovalue (every level's)
   double seconds = 0.0;
   double gpuSeconds = 0.0;       // the passes on the GPU alone (RenderOptions::timeGpu; else 0)
+  std::vector<uint64_t> bricksPerLevel;  // LevelMix::bricksPerLevel
+  double fullResolutionFraction = 1.0;   // LevelMix::fullResolutionFraction
+  double lodBias = 0.0;                  // LevelMix::lodBias at the frame's end
+  int lodRestarts = 0;                   // times the frame started over with a raised bias
 };
 
 // What one step() of a progressive frame did.
@@ -188,8 +218,20 @@ class Raycaster {
   std::size_t slotBytes() const;  // GPU bytes one resident brick costs (data and cell bounds)
   std::size_t poolBytes() const;  // slotCount() * slotBytes()
   uint64_t bricksUploaded() const { return bricksUploaded_; }  // since construction
-  // The bricks the last pass that asked for any asked for, stopping rays' first (tests, statistics).
-  const std::vector<glm::ivec3>& lastRequests() const { return lastRequests_; }
+  // The bricks the last pass that asked for any asked for, stopping rays' first (tests, statistics):
+  // level 0's (coordinates of every level with levelRequests()).
+  std::vector<glm::ivec3> lastRequests() const;
+  // The same with their levels, coarsest level first (the order they are loaded in).
+  const std::vector<LevelBrick>& lastLevelRequests() const { return lastRequests_; }
+  // Level of detail: the levels drawn (1 without, or when the mode cannot draw them), the bias in
+  // effect, and the mix of the last frame (render()) or of the progressive frame so far (reads the
+  // GPU's per-slot use: not for every frame of a benchmark).
+  int levelCount() const { return lodDrawing() ? residency_->levelCount() : 1; }
+  double lodBias() const { return double(options_.lodBias) + double(autoBias_); }
+  LevelMix levelMix() const;
+  // Whether every needed brick of the coarsest level is resident (a progressive frame's rays never
+  // wait for a brick after that; true without levels).
+  bool coarsestResident() const;
   uint64_t bricksDecoded() const { return loader_->loadedCount(); }
   const RenderOptions& options() const { return options_; }  // layout always set: the one in use
   // Settings that change without reloading anything (benchmarks and the viewer).
@@ -201,6 +243,12 @@ class Raycaster {
  private:
   Raycaster(std::unique_ptr<BrickSource> owned, const RenderOptions& options);  // keeps `owned`
   void restartRays(int width, int height);
+  bool lodDrawing() const;  // the LOD program draws the frames (levels, iso mode, one opaque surface)
+  void requestCoarsest();   // the coarsest level's missing bricks, before anything else
+  bool raiseBiasIfThrashing(uint64_t uploadedThisView);  // true: the bias rose, the rays must restart
+  void finishLevelMix(FrameStats& stats);
+  void noteFrameUse(const LevelMix& mix);  // whether the next frame may lower the raised bias
+  void noteView(const CameraFrame& frame, int width, int height);  // a new view forgets thrashBias_
   void updateNeeded();  // the bricks the isovalue or the transfer function needs, and the page table
   void uploadTransfer();  // DVR: the table, its zero-prefix and bin maxima
   struct PassResult {
@@ -211,7 +259,7 @@ class Raycaster {
   static constexpr std::size_t kRequestsHeaderWords = kPassResultsHeaderBytes / sizeof(uint32_t);
   void dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn);
   PassResult collectPass();  // waits for the pass dispatched last and reads what it tells the host
-  std::vector<glm::ivec3> requestedBricks(uint32_t requestCount) const;  // after collectPass()
+  std::vector<LevelBrick> requestedBricks(uint32_t requestCount) const;  // after collectPass()
   uint32_t upload(const std::vector<LoadedBrick>& loaded);  // after residency_->startAssigning
   std::vector<uint32_t> readSlotUse() const;
   void uploadPageTable();  // the whole page and node tables (a new isovalue or skip setting)
@@ -259,7 +307,25 @@ class Raycaster {
   Uniforms uniformsOf(const GlProgram& program, bool dvr) const;
   std::unique_ptr<GlReadbackBuffer> passResultsReadback_;
   const uint32_t* passResults_ = nullptr;  // the last pass's header and first requests, as read back
-  std::vector<glm::ivec3> lastRequests_;
+  std::vector<LevelBrick> lastRequests_;
+  // Level of detail.
+  std::vector<const BrickSource*> levelSources_;  // level 0 first
+  float autoBias_ = 0.0f;            // whole levels added to options_.lodBias (lodAdaptBias)
+  uint64_t uploadedThisView_ = 0;    // bricks uploaded since the rays last started over
+  uint32_t viewFirstPass_ = 1;       // the first pass of the current view (for LevelMix)
+  bool lowerBiasPending_ = false;    // the last complete frame used little of the pool
+  float thrashBias_ = -1.0f;         // the highest raised bias this view streamed through the pool at
+  struct {
+    CameraFrame frame{};
+    int width = 0, height = 0;
+  } lodView_;
+  std::vector<glm::ivec3> coarsestNeeded_;
+  GlProgram lodProgram_;             // FCC_LOD: built when there are levels
+  Uniforms lodUniforms_{};
+  struct LodUniforms {
+    GLint levelCount, brickMin, brickDims, nodeDims, pageOffset, nodeOffset, scale, size, bias, pixelAngle;
+  } lodExtra_{};
+  std::unique_ptr<GlBuffer> levelHits_;
   std::unique_ptr<GpuInterval> passTimer_;
   std::unique_ptr<BrickPool> pool_;
   std::unique_ptr<GlBuffer> slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;

@@ -1,6 +1,9 @@
 // Which bricks the GPU pool holds, in which slots, and the page table the raycaster reads: for every
-// brick of a dense box, kSkip (its bounds exclude the isovalue, or it is constant), kMissing (needed,
+// brick of a dense box, kSkip (its bounds exclude the isovalue, or it is constant) or kMissing (needed,
 // not resident) or its pool slot; and per node of 16^3 bricks whether any brick in it is needed.
+// With a level-of-detail pyramid (docs/RENDERER.md, "Level of detail") there is one such box per
+// level, their page and node entries concatenated (level 0 first): a brick is named by its index into
+// the concatenated page table, and the pool's slots are shared by every level.
 // Pure bookkeeping, no OpenGL: the raycaster uploads what this computes.
 #pragma once
 
@@ -19,20 +22,41 @@ class Residency {
   static constexpr uint32_t kMissing = 0xFFFFFFFEu;
   static constexpr int kNodeBricks = 16;  // bricks per node side (an internal node of the FCC tree)
 
-  // The box of bricks [brickMin, brickMin + brickDims) and the number of pool slots.
+  // One level's box of bricks [brickMin, brickMin + brickDims), in that level's brick coordinates.
+  struct LevelBox {
+    glm::ivec3 brickMin{0}, brickDims{1};
+  };
+  // The box of bricks [brickMin, brickMin + brickDims) and the number of pool slots: one level.
   Residency(const glm::ivec3& brickMin, const glm::ivec3& brickDims, uint32_t slotCount);
+  // One box per level, level 0 first.
+  Residency(const std::vector<LevelBox>& levels, uint32_t slotCount);
 
-  const glm::ivec3& brickMin() const { return brickMin_; }
-  const glm::ivec3& brickDims() const { return brickDims_; }
-  const glm::ivec3& nodeDims() const { return nodeDims_; }
+  // Level 0's box.
+  const glm::ivec3& brickMin() const { return levels_[0].box.brickMin; }
+  const glm::ivec3& brickDims() const { return levels_[0].box.brickDims; }
+  const glm::ivec3& nodeDims() const { return levels_[0].nodeDims; }
+  int levelCount() const { return int(levels_.size()); }
+  const LevelBox& levelBox(int level) const { return levels_[std::size_t(level)].box; }
+  const glm::ivec3& levelNodeDims(int level) const { return levels_[std::size_t(level)].nodeDims; }
+  uint32_t pageOffset(int level) const { return levels_[std::size_t(level)].pageOffset; }  // into pageEntries()
+  uint32_t nodeOffset(int level) const { return levels_[std::size_t(level)].nodeOffset; }  // into nodeEntries()
   uint32_t slotCount() const { return uint32_t(slotBrick_.size()); }
-  uint32_t brickIndex(const glm::ivec3& brick) const;  // into pageEntries()
-  glm::ivec3 brickAt(uint32_t index) const;
+  uint32_t brickIndex(const glm::ivec3& brick, int level = 0) const;  // into pageEntries()
+  glm::ivec3 brickAt(uint32_t index) const;  // in its level's brick coordinates
+  int levelOf(uint32_t index) const;
 
   // The bricks that need evaluation for the current isovalue (all inside the box). Resident bricks
-  // stay resident whether needed or not (an isovalue change back costs nothing).
+  // stay resident whether needed or not (an isovalue change back costs nothing). The first form is
+  // level 0's (other levels need none); the second one list per level.
   void setNeeded(const std::vector<glm::ivec3>& bricks);
+  void setNeeded(const std::vector<std::vector<glm::ivec3>>& bricksPerLevel);
   std::size_t neededCount() const { return neededCount_; }
+  std::size_t neededCount(int level) const { return levels_[std::size_t(level)].needed; }
+
+  // Slots holding a brick of `level` or coarser are never evicted (-1: none). The raycaster pins the
+  // coarsest level of a pyramid (at most 8 bricks), so that every ray always has a level to draw.
+  void setPinnedLevel(int level) { pinnedLevel_ = level; }
+  int pinnedLevel() const { return pinnedLevel_; }
 
   // Orders the slots for eviction once per pass: free slots first, then the least recently used
   // (slotLastUse, the pass that last read each slot). Sorting the whole pool for every upload batch
@@ -40,8 +64,10 @@ class Residency {
   void startAssigning(const std::vector<uint32_t>& slotLastUse);
   // Assigns pool slots to `bricks` (not yet resident), in order, taking slots in the order
   // startAssigning made and never one assigned since then. Returns (brick, slot) pairs (fewer when
-  // the order runs out); the page table already points to them.
+  // the order runs out); the page table already points to them. Level 0's bricks.
   std::vector<std::pair<glm::ivec3, uint32_t>> assign(const std::vector<glm::ivec3>& bricks);
+  // The same for bricks of any level, named by index: (index, slot) pairs.
+  std::vector<std::pair<uint32_t, uint32_t>> assignIndices(const std::vector<uint32_t>& indices);
   // Both at once: one call's worth of assignments.
   std::vector<std::pair<glm::ivec3, uint32_t>> assign(const std::vector<glm::ivec3>& bricks,
                                                       const std::vector<uint32_t>& slotLastUse) {
@@ -53,16 +79,25 @@ class Residency {
   std::vector<uint32_t> takeChangedEntries();
   bool allEntriesChanged() const { return allChanged_; }
 
-  bool isResident(const glm::ivec3& brick) const;
+  bool isResident(const glm::ivec3& brick, int level = 0) const;
   uint32_t residentCount() const { return uint32_t(brickSlot_.size()); }
+  // The brick index a slot holds, or -1 for a free slot.
+  int64_t slotBrick(uint32_t slot) const { return slotBrick_[slot]; }
   // Needed bricks not resident (what the current isovalue may still have to stream).
   std::size_t missingCount() const;
+  std::size_t missingCount(int level) const;
 
   const std::vector<uint32_t>& pageEntries() const { return pageEntries_; }
   const std::vector<uint32_t>& nodeEntries() const { return nodeEntries_; }
 
  private:
-  glm::ivec3 brickMin_, brickDims_, nodeDims_;
+  struct Level {
+    LevelBox box;
+    glm::ivec3 nodeDims{1};
+    uint32_t pageOffset = 0, nodeOffset = 0;
+    std::size_t needed = 0, residentNeeded = 0;
+  };
+  std::vector<Level> levels_;
   std::vector<uint32_t> pageEntries_;
   std::vector<uint32_t> nodeEntries_;
   std::vector<uint8_t> needed_;            // per brick index
@@ -73,6 +108,7 @@ class Residency {
   std::vector<uint32_t> changed_;         // page entries changed since takeChangedEntries
   std::vector<uint8_t> changedMark_;      // per page entry: in changed_
   bool allChanged_ = true;
+  int pinnedLevel_ = -1;
   void markChanged(uint32_t index);
   std::size_t neededCount_ = 0;
   std::size_t residentNeeded_ = 0;  // needed bricks that are resident (kept up to date: read every frame)

@@ -1,0 +1,232 @@
+// Level of detail in the raycaster (docs/RENDERER.md, "Level of detail"): a file with a pyramid
+// (`synth ... --pyramid`) drawn at full resolution and without a pyramid give today's image bit for bit;
+// progressive steps with a tiny pool show no hole once the coarsest level is resident; the converged
+// image equals the full-resolution one bit for bit; the bias rises when the pool cannot hold the bricks
+// a frame wants, and the frame completes.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "RenderTestSupport.h"
+#include "tests/tools/RunCommand.h"
+#include "viewer/Camera.h"
+#include "viewer/FccBrickSource.h"
+#include "viewer/PyramidLevels.h"
+
+namespace fcc {
+namespace {
+
+using test::GlSuite;
+using test::TempDir;
+
+class Lod : public GlSuite {};
+
+// The sphere field's surface, with and without a pyramid, from one synth run each (level 0 is the
+// same bits: docs/FORMAT.md). 96^3: 6^3 level-0 bricks, levels 1 and 2 above them.
+struct SphereFiles {
+  std::string plain, pyramid;
+};
+SphereFiles writeSpheres(const TempDir& dir) {
+  SphereFiles f{dir / "sphere.vdb", dir / "sphere_lod.vdb"};
+  EXPECT_EQ(test::runFccvdb("synth sphere " + f.plain + " --dims 96,96,96 --quiet").status, 0);
+  EXPECT_EQ(test::runFccvdb("synth sphere " + f.pyramid + " --dims 96,96,96 --pyramid --quiet").status, 0);
+  return f;
+}
+
+// Close enough that every brick wants level 0 at this size (a level-0 voxel covers more than a pixel
+// everywhere: the distance to any brick times 2 tan(20 deg) / 64 stays below 2 voxels).
+render::Camera nearCamera() {
+  render::Camera camera;
+  camera.eye = glm::dvec3(150.0, 110.0, 130.0);
+  camera.lookat = glm::dvec3(48.0);
+  return camera;
+}
+constexpr int kW = 64, kH = 56;
+constexpr float kIso = 0.5f;
+
+bool hit(const render::FrameImages& image, std::size_t pixel) { return image.rgba[pixel * 4 + 3] > 0.5f; }
+
+// Bit for bit, colour, normal and depth; the count of hit pixels (or -1 on the first difference).
+int sameImage(const render::FrameImages& a, const render::FrameImages& b, const std::string& what) {
+  if (a.rgba.size() != b.rgba.size() || a.normalDepth.size() != b.normalDepth.size()) {
+    ADD_FAILURE() << what << ": sizes differ";
+    return -1;
+  }
+  int hits = 0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+    if (a.rgba[i] != b.rgba[i] || !(a.normalDepth[i] == b.normalDepth[i])) {
+      ADD_FAILURE() << what << ": pixel " << i / 4 << " component " << i % 4 << ": " << a.rgba[i] << " vs " << b.rgba[i]
+                    << ", normal/depth " << a.normalDepth[i] << " vs " << b.normalDepth[i];
+      return -1;
+    }
+    hits += (i % 4 == 3) && a.rgba[i] > 0.5f;
+  }
+  return hits;
+}
+
+struct Opened {
+  explicit Opened(const std::string& path, std::size_t hostCache = std::size_t(64) << 20)
+      : store(path), level0(store, hostCache), levels(store, hostCache) {}
+  io::BrickStore store;
+  render::FccBrickSource level0;
+  render::PyramidLevels levels;
+};
+
+render::RenderOptions isoOptions(std::size_t gpuBytes = std::size_t(256) << 20) {
+  render::RenderOptions o;
+  o.iso = kIso;
+  o.gpuCacheBytes = gpuBytes;
+  return o;
+}
+
+TEST_F(Lod, FullResolutionAndAFileWithoutPyramidGiveTodaysImage) {
+  TempDir dir;
+  const SphereFiles files = writeSpheres(dir);
+  Opened withPyramid(files.pyramid);
+  ASSERT_EQ(withPyramid.levels.size(), 2u) << "96^3: levels 1 and 2";
+  // Today's image: the file without a pyramid (its raycaster has no levels: the unchanged program).
+  const render::FrameImages today = test::renderFile(files.plain, nearCamera(), kW, kH, kIso, isoOptions());
+  // --full-resolution: the pyramid's file, its levels not given to the raycaster.
+  render::Raycaster full(withPyramid.level0, isoOptions());
+  const render::FrameStats stats = full.render(nearCamera(), kW, kH);
+  EXPECT_GT(sameImage(today, full.readImages(), "full resolution vs no pyramid"), kW * kH / 10);
+  ASSERT_EQ(stats.bricksPerLevel.size(), 1u);
+  EXPECT_GT(stats.bricksPerLevel[0], 0u);
+  EXPECT_EQ(stats.fullResolutionFraction, 1.0);
+  // With the levels and bias 0, every brick here wants level 0: the level-of-detail program's complete
+  // frame is the same image, and says so in its mix.
+  render::RenderOptions lod = isoOptions();
+  lod.coarserLevels = withPyramid.levels.sources();
+  render::Raycaster levels(withPyramid.level0, lod);
+  EXPECT_EQ(levels.levelCount(), 3);
+  const render::FrameStats lodStats = levels.render(nearCamera(), kW, kH);
+  EXPECT_GT(sameImage(today, levels.readImages(), "level of detail, all bricks at level 0"), kW * kH / 10);
+  ASSERT_EQ(lodStats.bricksPerLevel.size(), 3u);
+  EXPECT_GT(lodStats.bricksPerLevel[0], 0u);
+  EXPECT_EQ(lodStats.bricksPerLevel[1] + lodStats.bricksPerLevel[2], 0u) << "no coarser brick drawn";
+  EXPECT_EQ(lodStats.fullResolutionFraction, 1.0);
+  EXPECT_EQ(lodStats.lodBias, 0.0);
+}
+
+// A positive bias draws coarser levels: the mix says so, and the image is a sphere still (close to the
+// full-resolution one: most pixels agree on hit or miss).
+TEST_F(Lod, BiasDrawsCoarserLevelsAndTheMixSaysSo) {
+  TempDir dir;
+  const SphereFiles files = writeSpheres(dir);
+  Opened opened(files.pyramid);
+  render::RenderOptions lod = isoOptions();
+  lod.coarserLevels = opened.levels.sources();
+  lod.lodBias = 4.0f;  // every brick: the coarsest level
+  render::Raycaster coarse(opened.level0, lod);
+  const render::FrameStats stats = coarse.render(nearCamera(), kW, kH);
+  ASSERT_EQ(stats.bricksPerLevel.size(), 3u);
+  EXPECT_EQ(stats.bricksPerLevel[0] + stats.bricksPerLevel[1], 0u);
+  EXPECT_GT(stats.bricksPerLevel[2], 0u);
+  EXPECT_EQ(stats.fullResolutionFraction, 0.0);
+  const render::FrameImages coarseImage = coarse.readImages();
+  const render::FrameImages full = test::renderFile(files.plain, nearCamera(), kW, kH, kIso, isoOptions());
+  int agree = 0, hits = 0;
+  for (std::size_t p = 0; p < std::size_t(kW * kH); ++p) {
+    agree += hit(full, p) == hit(coarseImage, p);
+    hits += hit(coarseImage, p);
+  }
+  EXPECT_GT(hits, kW * kH / 10);
+  EXPECT_GT(agree, kW * kH * 95 / 100) << "the coarsest sphere covers nearly the same pixels";
+}
+
+// Progressive steps over a pool of a few dozen slots (the bias kept at 0): coarse first, finer bricks
+// replacing them. What is tested, precisely: once the coarsest level is resident and one pass has run
+// with it, every pixel that the converged image hits and whose 8 neighbours it hits too (the
+// silhouette's pixels may differ between levels: a coarser spline's sphere is not the same sphere)
+// is hit in every later intermediate image; and the converged image equals the full-resolution one
+// bit for bit.
+TEST_F(Lod, ProgressiveStepsShowNoHoleAndConvergeToFullResolution) {
+  TempDir dir;
+  const SphereFiles files = writeSpheres(dir);
+  Opened opened(files.pyramid);
+  const render::FrameImages full = test::renderFile(files.plain, nearCamera(), kW, kH, kIso, isoOptions());
+  render::RenderOptions lod = isoOptions(test::kSmallPoolBytes);
+  lod.coarserLevels = opened.levels.sources();
+  lod.lodAdaptBias = false;
+  render::Raycaster raycaster(opened.level0, lod);
+  std::vector<render::FrameImages> intermediate;
+  bool coarseSeen = false, complete = false;
+  int steps = 0;
+  for (steps = 1; steps <= 20000 && !complete; ++steps) {
+    const bool coarseBefore = raycaster.coarsestResident();
+    const render::StepStats s = raycaster.step(nearCamera(), kW, kH, 0.0);
+    complete = s.complete;
+    if (coarseSeen && !complete) intermediate.push_back(raycaster.readImages(false));
+    coarseSeen = coarseSeen || (coarseBefore && s.dispatched);
+  }
+  ASSERT_TRUE(complete) << "no complete frame after " << steps << " steps";
+  std::printf("complete after %d steps, %zu intermediate images checked, %llu bricks uploaded into %u slots\n", steps,
+              intermediate.size(), (unsigned long long)raycaster.bricksUploaded(), raycaster.slotCount());
+  EXPECT_GT(raycaster.bricksUploaded(), raycaster.slotCount()) << "the pool must be too small for the frame";
+  EXPECT_GT(intermediate.size(), 2u);
+  const render::FrameImages converged = raycaster.readImages();
+  EXPECT_GT(sameImage(full, converged, "converged progressive vs full resolution"), kW * kH / 10);
+  const render::LevelMix mix = raycaster.levelMix();
+  EXPECT_EQ(mix.fullResolutionFraction, 1.0);
+
+  const auto interior = [&](int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int u = x + dx, v = y + dy;
+        if (u < 0 || v < 0 || u >= kW || v >= kH || !hit(converged, std::size_t(v) * kW + u)) return false;
+      }
+    return true;
+  };
+  int checked = 0;
+  bool coarserShown = false;
+  for (std::size_t i = 0; i < intermediate.size(); ++i) {
+    int holes = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (!interior(x, y)) continue;
+        ++checked;
+        holes += !hit(intermediate[i], std::size_t(y) * kW + x);
+      }
+    EXPECT_EQ(holes, 0) << "intermediate image " << i << " shows " << holes << " holes";
+    if (intermediate[i].rgba != converged.rgba) coarserShown = true;
+  }
+  EXPECT_GT(checked, 0);
+  EXPECT_TRUE(coarserShown) << "some intermediate image must show coarser levels";
+}
+
+// A pool far too small for the bricks bias 0 wants: render() raises the bias and completes with
+// coarser levels; without adapting, the same pool streams the level-0 bricks through.
+TEST_F(Lod, BiasRisesWhenThePoolIsTooSmallAndTheFrameCompletes) {
+  TempDir dir;
+  const SphereFiles files = writeSpheres(dir);
+  Opened opened(files.pyramid);
+  render::RenderOptions lod = isoOptions(test::kSmallPoolBytes / 2);
+  lod.coarserLevels = opened.levels.sources();
+  render::Raycaster small(opened.level0, lod);
+  const render::FrameStats s = small.render(nearCamera(), kW, kH);
+  std::printf("%u slots: bias %.1f after %d restarts, %d passes, level mix", small.slotCount(), s.lodBias, s.lodRestarts, s.passes);
+  for (uint64_t n : s.bricksPerLevel) std::printf(" %llu", (unsigned long long)n);
+  std::printf(", full resolution %.3f\n", s.fullResolutionFraction);
+  EXPECT_GT(s.lodBias, 0.0);
+  EXPECT_GE(s.lodRestarts, 1);
+  EXPECT_LT(s.fullResolutionFraction, 1.0);
+  const render::FrameImages image = small.readImages();
+  int hits = 0;
+  for (std::size_t p = 0; p < std::size_t(kW * kH); ++p) hits += hit(image, p);
+  EXPECT_GT(hits, kW * kH / 10) << "the frame completes with the surface";
+
+  // Without adapting, the same pool streams the level-0 bricks through and ends at full resolution.
+  lod.lodAdaptBias = false;
+  render::Raycaster fixed(opened.level0, lod);
+  const render::FrameStats f = fixed.render(nearCamera(), kW, kH);
+  EXPECT_EQ(f.lodBias, 0.0);
+  EXPECT_EQ(f.fullResolutionFraction, 1.0);
+  const render::FrameImages full = test::renderFile(files.plain, nearCamera(), kW, kH, kIso, isoOptions());
+  EXPECT_GT(sameImage(full, fixed.readImages(), "small pool, bias fixed at 0"), kW * kH / 10);
+
+}
+
+}  // namespace
+}  // namespace fcc
