@@ -114,6 +114,11 @@ uniform float uLodBias;     // added to log2 of a brick's pixels per voxel (the 
 uniform float uPixelAngle;  // a pixel's height at unit distance from the eye: 2 tan(fov / 2) / height
 // Per level: the pixels whose final hit was drawn from it (the frame's level mix).
 layout(std430, binding = 8) buffer LevelHits { uint levelHits[]; };
+// Per slot: the last pass that drew from it (slotLastUse also counts uploads, for eviction).
+layout(std430, binding = 9) buffer SlotDrawn { uint slotDrawnPass[]; };
+// Where a provisional ray resumes, what the march carried there: (prevLevel + 1) * 3 + prevSign + 1,
+// so that the resumed march is the very march a ray drawing the wanted levels throughout makes.
+layout(binding = 4, r32f) uniform image2D uResumeState;
 
 #endif
 
@@ -358,7 +363,13 @@ void main() {
   // waits, as without levels, only where no level is resident (the coarsest is kept resident).
   int guard = 0;
   int prevLevel = -1;          // the level the last marched stretch was drawn from
+  if (uFirstPass == 0) {
+    int state = int(imageLoad(uResumeState, pixel).x);
+    prevLevel = state / 3 - 1;
+    prevSign = state % 3 - 1;
+  }
   float tProvisional = -1.0;   // where the ray first drew a coarser level than wanted (< 0: nowhere)
+  float stateProvisional = 1.0;  // uResumeState's value there
   int hitLevel = 0;
   int requestsLeft = 1 + uLookahead;  // a drawing ray's requests for the levels it wants
   while (t < tEnd && guard < 4096) {
@@ -408,20 +419,33 @@ void main() {
       if (!stopped) {
         stopped = true;
         imageStore(uResume, pixel, vec4(tProvisional >= 0.0 ? tProvisional : t));
+        // Resumed at a stop, the march starts afresh (as without levels); at a provisional point, as it was.
+        imageStore(uResumeState, pixel, vec4(tProvisional >= 0.0 ? stateProvisional : 1.0));
       } else if (--lookahead < 0) {
         break;
       }
     } else if (!stopped) {
-      if (level > want && tProvisional < 0.0) tProvisional = t;
+      if (level > want && tProvisional < 0.0) {
+        tProvisional = t;
+        stateProvisional = float((prevLevel + 1) * 3 + prevSign + 1);
+      }
       if (entry == kSkip) {
         prevSign = 0;
         prevLevel = -1;
       } else {
         slotLastUse[entry] = uPass;
+        slotDrawnPass[entry] = uPass;
         if (level != prevLevel) prevSign = 0;  // another level is another spline
         prevLevel = level;
-        float scale = uLevelScale[level];
-        if (marchBrick(b >> level, entry, o * scale, d * scale, invD * uLevelSize[level], t, tExitBrick, prevSign, hit)) {
+        // Level 0 marches with o, d and invD themselves: scaled by 1 they would be the same numbers, but
+        // the compiler may fuse the scaling into the march's arithmetic and round otherwise.
+        vec3 oLevel = o, dLevel = d, invDLevel = invD;
+        if (level != 0) {
+          oLevel = o * uLevelScale[level];
+          dLevel = d * uLevelScale[level];
+          invDLevel = invD * uLevelSize[level];
+        }
+        if (marchBrick(b >> level, entry, oLevel, dLevel, invDLevel, t, tExitBrick, prevSign, hit)) {
           found = true;
           hitLevel = level;
           break;
@@ -527,8 +551,9 @@ void main() {
   // Provisional: shows what it found and resumes where it first drew a coarser level than wanted.
   bool provisional = tProvisional >= 0.0;
   imageStore(uResume, pixel, vec4(provisional ? tProvisional : -1.0));
+  if (provisional) imageStore(uResumeState, pixel, vec4(stateProvisional));
   if (found && !provisional) atomicAdd(levelHits[hitLevel], 1u);
-  if (found) hit.gradient *= uLevelScale[hitLevel];  // to level 0's index space (normalized below)
+  // (A coarser level's gradient is in its own index space: 2^-k times level 0's, the same direction.)
 #else
   imageStore(uResume, pixel, vec4(-1.0));
 #endif

@@ -66,6 +66,31 @@ void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& opti
   options.terminationOpacity = float(flags.terminationOpacity);
 }
 
+int RenderData::applyLevels(const RenderFlags& flags, bool levelsByDefault, bool quiet, render::RenderOptions& options) {
+  const std::optional<float> bias = lodBiasFromFlags(flags, levelsByDefault);
+  options.coarserLevels.clear();
+  if (!bias) return 1;
+  const auto note = [&](const std::string& why) {
+    if (!quiet && !flags.lodBias.empty()) std::fprintf(stderr, "fccvdb: note: --lod-bias: %s: drawn at full resolution\n", why.c_str());
+  };
+  if (!fccStore_) {
+    note("a Cartesian grid has no pyramid");
+    return 1;
+  }
+  if (options.mode != render::RenderMode::Iso) {
+    note("--mode " + render::renderModeName(options.mode) + " draws level 0 only so far");
+    return 1;
+  }
+  if (!levels_) levels_ = std::make_unique<render::PyramidLevels>(*fccStore_, options.hostCacheBytes);
+  if (levels_->size() == 0) {
+    note(fccStore_->path() + " has no pyramid (`fccvdb pyramid` adds one)");
+    return 1;
+  }
+  options.coarserLevels = levels_->sources();
+  options.lodBias = *bias;
+  return int(levels_->size()) + 1;
+}
+
 io::BrickStore::Damage RenderData::damage() const { return fccStore_ ? fccStore_->damage() : io::BrickStore::Damage{}; }
 
 }  // namespace fcc::cli

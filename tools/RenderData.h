@@ -11,6 +11,7 @@
 #include "io/CartesianBrickStore.h"
 #include "viewer/BrickSource.h"
 #include "viewer/DvrTransfer.h"
+#include "viewer/PyramidLevels.h"
 
 namespace fcc::cli {
 
@@ -37,6 +38,12 @@ class RenderData {
   // viewer keeps it to rebuild the table). ValueError / InputError (one line) for a bad --tf.
   render::DvrTransfer dvrTransfer(const RenderFlags& flags) const;
   render::Camera camera(const RenderFlags& flags, double aspect) const;
+  // Level of detail: with a bias from --lod-bias (or `levelsByDefault`, view's) and not
+  // --full-resolution, opens the FCC file's pyramid levels (none in a file without one: drawn as today)
+  // into options.coarserLevels and sets options.lodBias. ValueError (one line) for a bad --lod-bias.
+  // Returns the levels drawn (1: full resolution). A note on stderr (unless `quiet`) when --lod-bias
+  // names a file without a pyramid, or a mode that draws full resolution only.
+  int applyLevels(const RenderFlags& flags, bool levelsByDefault, bool quiet, render::RenderOptions& options);
   // Damaged bricks met so far (FCC files: rendered as holes; a damaged Cartesian leaf fails the frame).
   io::BrickStore::Damage damage() const;
 
@@ -45,6 +52,7 @@ class RenderData {
   std::unique_ptr<io::BrickStore> fccStore_;
   std::unique_ptr<io::CartesianBrickStore> ccStore_;
   std::unique_ptr<render::BrickSource> source_;
+  std::unique_ptr<render::PyramidLevels> levels_;
 };
 
 }  // namespace fcc::cli

@@ -38,7 +38,7 @@ std::unique_ptr<io::FccInput> openFccInput(const RenderFlags& flags, bool quiet)
                                         quiet ? nullptr : +[](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
 }
 
-void addRenderFlags(CLI::App& app, RenderFlags& flags) {
+void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
   app.add_option("FILE", flags.file,
                  "FCC .vdb file (from fccvdb convert or synth), or anything convert takes (a Cartesian .vdb, NRRD, "
                  "NIfTI, raw with --dims/--type): converted once and cached (--no-cache: a temporary file)")
@@ -102,6 +102,29 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags) {
   app.add_option("--layout", flags.layout,
                  "How the GPU pool stores bricks: " + layouts + ", or auto (one channel when every varying brick fits the GPU cache)")
       ->capture_default_str();
+  app.add_option("--lod-bias", flags.lodBias,
+                 std::string("Level of detail: draw a file's pyramid (fccvdb pyramid) brick by brick from the level whose voxels match a "
+                             "pixel, plus this many levels (-8 to 16; 0: no voxel larger than a pixel; < 0 finer). Coarse levels stand in while finer ones load; the bias rises "
+                             "when the GPU cache cannot hold the bricks a frame wants. " +
+                     (levelsByDefault ? "Default 0 (a file without a pyramid is drawn at full resolution)"
+                                      : "Without it: full resolution (level 0 only)"));
+  app.add_flag("--full-resolution", flags.fullResolution,
+               "Draw level 0 only, as for a file without a pyramid (measurements)");
+}
+
+std::optional<float> lodBiasFromFlags(const RenderFlags& flags, bool levelsByDefault) {
+  if (flags.fullResolution) {
+    if (!flags.lodBias.empty())
+      throw ValueError("--lod-bias " + flags.lodBias + " with --full-resolution: give one of them (--full-resolution draws level 0 only)");
+    return std::nullopt;
+  }
+  if (flags.lodBias.empty()) return levelsByDefault ? std::optional<float>(0.0f) : std::nullopt;
+  double bias = 0.0;
+  char rest = 0;
+  if (std::sscanf(flags.lodBias.c_str(), "%lf%c", &bias, &rest) != 1 || !std::isfinite(bias) || bias < -8.0 ||
+      bias > 16.0)
+    throw ValueError("--lod-bias '" + flags.lodBias + "': expected a number from -8 to 16 (levels added to the one whose voxels match a pixel; 0: none)");
+  return float(bias);
 }
 
 void warnIfIsoOutside(float iso, const std::string& path, float valueMin, float valueMax) {

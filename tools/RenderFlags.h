@@ -35,12 +35,23 @@ struct RenderFlags {
   // Several isosurfaces (tools/SurfaceFlags.h): --iso holds 1 to 4 values; a colour and an opacity each.
   std::vector<std::string> surfaceColors;        // --surface-color, each '#rrggbb' or 'r,g,b', ';'-separated
   std::string surfaceOpacity;                    // --surface-opacity "1,0.4"
+  // Level of detail (docs/RENDERER.md): --lod-bias B draws a file's pyramid levels with bias B (render
+  // and bench render draw full resolution without it; view draws the levels at bias 0 by default);
+  // --full-resolution draws level 0 only.
+  std::string lodBias;
+  bool fullResolution = false;
 };
 
+// The bias the levels are drawn with, or none: full resolution (--full-resolution, or neither flag
+// where `levelsByDefault` is false). ValueError (one line) for a --lod-bias that is not a number in
+// [-8, 16], or given with --full-resolution.
+std::optional<float> lodBiasFromFlags(const RenderFlags& flags, bool levelsByDefault);
+
 // Registers FILE, --grid, --iso, --res, --camera, --eye, --lookat, --up, --fov, --gpu-cache, --host-cache, --layout,
-// --reconstruction, --mode, --tf, --unit-distance, --density-scale, --stop-opacity, --clip, the raw input flags
-// (--dims, --type, ...) and --no-cache.
-void addRenderFlags(CLI::App& app, RenderFlags& flags);
+// --reconstruction, --mode, --tf, --unit-distance, --density-scale, --stop-opacity, --clip, --lod-bias,
+// --full-resolution, the raw input flags (--dims, --type, ...) and --no-cache. `levelsByDefault`: the
+// command draws a pyramid's levels without --lod-bias (view), which the help says.
+void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault = false);
 
 // FILE as an FCC .vdb: itself, or its conversion (io/ConversionCache.h: cached, or temporary with
 // --no-cache), saying so in one line on stderr with a progress bar unless `quiet`.

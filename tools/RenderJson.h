@@ -23,15 +23,30 @@ struct RankReport {
   std::string device;             // GL_RENDERER (EGL platform)
 };
 
+// The pyramid levels one process drew (docs/RENDERER.md, "Level of detail"): bricks per level, level 0
+// first, and the share of hit pixels drawn from level 0. Empty: not reported (distributed frames).
+struct LevelReport {
+  std::vector<uint64_t> bricksPerLevel;
+  double fullResolutionFraction = 1.0;
+  double lodBias = 0.0;
+};
+
 inline std::string renderJson(const std::string& file, const std::string& output, const std::string& mode, int width,
                               int height, const std::vector<int>& radices, double frameSeconds,
-                              const std::vector<RankReport>& ranks) {
+                              const std::vector<RankReport>& ranks, const LevelReport& levels = {}) {
   std::string radixList;
   for (std::size_t i = 0; i < radices.size(); ++i) radixList += (i ? ", " : "") + std::to_string(radices[i]);
   std::string s = "{\"file\": " + jsonString(file) + ", \"output\": " + jsonString(output) + ", \"mode\": " + jsonString(mode) +
                   ", \"res\": [" + std::to_string(width) + ", " + std::to_string(height) + "], \"ranks\": " +
                   std::to_string(ranks.size()) + ", \"radices\": [" + radixList + "], \"frame_seconds\": " +
-                  jsonNumber(frameSeconds) + ", \"per_rank\": [";
+                  jsonNumber(frameSeconds);
+  if (!levels.bricksPerLevel.empty()) {
+    std::string mix;
+    for (std::size_t k = 0; k < levels.bricksPerLevel.size(); ++k) mix += (k ? ", " : "") + std::to_string(levels.bricksPerLevel[k]);
+    s += ", \"level_mix\": [" + mix + "], \"full_resolution_fraction\": " + jsonNumber(levels.fullResolutionFraction) +
+         ", \"lod_bias\": " + jsonNumber(levels.lodBias);
+  }
+  s += ", \"per_rank\": [";
   for (std::size_t i = 0; i < ranks.size(); ++i) {
     const RankReport& r = ranks[i];
     s += std::string(i ? "," : "") + "\n {\"rank\": " + std::to_string(r.rank) + ", \"render_seconds\": " + jsonNumber(r.renderSeconds) +

@@ -35,6 +35,9 @@ struct Measurement {
   uint64_t uploads = 0;
   int passes = 0;
   double gpuSeconds = 0.0;  // --gpu-time
+  std::vector<uint64_t> bricksPerLevel;  // summed over the timed frames (level of detail)
+  double fullResolutionFraction = 0.0;   // mean over the timed frames
+  double lodBias = 0.0;                  // at the last frame
 };
 
 // Calls `tick` after every frame it renders (the progress bar).
@@ -51,11 +54,22 @@ Measurement measureOrbit(render::Raycaster& raycaster, const render::Camera& cam
     m.uploads += s.bricksUploaded;
     m.passes += s.passes;
     m.gpuSeconds += s.gpuSeconds;
+    if (m.bricksPerLevel.size() < s.bricksPerLevel.size()) m.bricksPerLevel.resize(s.bricksPerLevel.size());
+    for (std::size_t k = 0; k < s.bricksPerLevel.size(); ++k) m.bricksPerLevel[k] += s.bricksPerLevel[k];
+    m.fullResolutionFraction += s.fullResolutionFraction / frames;
+    m.lodBias = s.lodBias;
     tick();
   }
   m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   m.frames = frames;
   return m;
+}
+
+// "n0, n1, ...": bricks per level, level 0 first.
+std::string levelMixList(const std::vector<uint64_t>& bricksPerLevel) {
+  std::string list;
+  for (std::size_t k = 0; k < bricksPerLevel.size(); ++k) list += (k ? ", " : "") + std::to_string(bricksPerLevel[k]);
+  return list;
 }
 
 // What a CPU renderer times unless told otherwise: about a second a frame for llvmpipe on two cores.
@@ -149,13 +163,15 @@ Command addBenchRenderCommand(CLI::App& bench) {
             } else {
               layouts.push_back(renderOptionsFromFlags(flags).layout);  // nullopt for auto
             }
-            const RenderData data(args->flags, renderOptionsFromFlags(flags).hostCacheBytes, false);
+            RenderData data(args->flags, renderOptionsFromFlags(flags).hostCacheBytes, false);
             const float iso = data.iso(args->flags).value;
             if (render::parseRenderMode(args->flags.mode) == render::RenderMode::Iso) data.warnIfIsoOutside(iso);
             const render::Camera camera = data.camera(args->flags, double(width) / height);
             render::RenderOptions options = renderOptionsFromFlags(flags);
             options.iso = iso;
             data.applyMode(args->flags, options);  // --mode dvr: the transfer function
+            // Level of detail only with --lod-bias; full resolution reads no level mix per timed frame.
+            const bool lod = data.applyLevels(args->flags, /*levelsByDefault=*/false, false, options) > 1;
             if (options.mode == render::RenderMode::Iso)  // several surfaces: --iso's list, their colours and opacities
               setSurfaces(options, surfacesFromFlags(args->flags, io::IsoChoice{iso, "--iso"}));
             options.timeGpu = args->gpuTime;
@@ -182,6 +198,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
               render::Raycaster& raycaster = *made;
               const render::FrameStats c = raycaster.render(camera, width, height);
               tick();
+              raycaster.setFrameLevelMix(lod);
               const std::string layoutName = render::brickLayoutName(*raycaster.options().layout);
               if (coldLayout.empty()) {
                 cold = c;
@@ -213,7 +230,8 @@ Command addBenchRenderCommand(CLI::App& bench) {
                             "\"res\": [%d, %d], \"arc_degrees\": %s, \"iso\": %s, \"frames\": %d, \"fps\": %s, \"frame_ms\": %s, "
                             "\"gpu_frame_ms\": %s, \"passes_per_frame\": %s, \"bricks_streamed_per_second\": %s, "
                             "\"first_frame_seconds\": %s, \"first_frame_bricks\": %llu, \"pool_mib\": %s, "
-                            "\"device\": %s, \"file\": %s, \"reconstruction\": %s, \"mode\": %s, \"tf\": %s}",
+                            "\"device\": %s, \"file\": %s, \"reconstruction\": %s, \"mode\": %s, \"tf\": %s, "
+                            "\"level_mix\": [%s], \"full_resolution_fraction\": %s, \"lod_bias\": %s}",
                             i ? "," : "", jsonString(m.variant).c_str(), jsonString(m.layout).c_str(), m.skip ? "true" : "false",
                             jsonString(m.normals).c_str(), width, height, jsonNumber(args->arc).c_str(), jsonNumber(iso).c_str(), m.frames,
                             jsonNumber(m.frames / m.seconds).c_str(), jsonNumber(1e3 * m.seconds / m.frames).c_str(),
@@ -223,7 +241,9 @@ Command addBenchRenderCommand(CLI::App& bench) {
                             jsonNumber(poolMiB).c_str(), jsonString(gl.renderer()).c_str(),
                             jsonString(args->flags.file).c_str(), jsonString(std::string(data.source().reconstruction().name)).c_str(),
                             jsonString(args->flags.mode).c_str(),
-                            options.mode == render::RenderMode::Dvr ? jsonString(args->flags.tf).c_str() : "null");
+                            options.mode == render::RenderMode::Dvr ? jsonString(args->flags.tf).c_str() : "null",
+                            levelMixList(lod ? m.bricksPerLevel : cold.bricksPerLevel).c_str(),
+                            jsonNumber(lod ? m.fullResolutionFraction : 1.0).c_str(), jsonNumber(m.lodBias).c_str());
               }
               std::printf("\n]\n");
               return 0;
@@ -236,6 +256,12 @@ Command addBenchRenderCommand(CLI::App& bench) {
             std::printf("first complete frame (cold caches, %s): %.3f s, %llu bricks streamed (%.0f bricks/s), %d passes\n",
                         coldLayout.c_str(), cold.seconds, (unsigned long long)cold.bricksUploaded, cold.bricksUploaded / cold.seconds,
                         cold.passes);
+            if (lod && !results.empty()) {
+              const Measurement& m = results.back();
+              std::printf("levels (last variant, bricks drawn over its timed frames): %s; %.1f%% of the surface pixels at full "
+                          "resolution; bias %g\n",
+                          levelMixList(m.bricksPerLevel).c_str(), 100.0 * m.fullResolutionFraction, m.lodBias);
+            }
             std::printf("%-16s %-18s %10s %10s %10s %8s %14s\n", "layout", "variant", "fps", "frame ms", "gpu ms", "passes",
                         "bricks/s");
             for (const Measurement& m : results) {

@@ -166,6 +166,9 @@ Command addBenchViewCommand(CLI::App& bench) {
                 "Also time the parts of a frame on the GPU (timestamp queries; adds a little to the frame times)");
   app->add_flag("--json", args->json, "One JSON object: render_ms, view_panel_ms, view_no_panel_ms, ratio, ...");
   return {app, [args]() {
+            if (!args->flags.lodBias.empty())
+              throw ValueError("--lod-bias " + args->flags.lodBias +
+                               ": bench view times full resolution only (bench render --lod-bias times the levels)");
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
             const std::unique_ptr<io::FccInput> input = openFccInput(args->flags, false);

@@ -23,6 +23,17 @@
 namespace fcc::cli {
 namespace {
 
+// "levels: L0 120 bricks, L1 30, L2 4; 87.5% of the surface pixels at full resolution; bias 1": the frame's mix.
+std::string levelMixLine(const render::FrameStats& stats) {
+  std::string line = "levels:";
+  for (std::size_t k = 0; k < stats.bricksPerLevel.size(); ++k)
+    line += (k ? ", L" : " L") + std::to_string(k) + " " + std::to_string(stats.bricksPerLevel[k]) + (k ? "" : " bricks");
+  char tail[160];
+  std::snprintf(tail, sizeof tail, "; %.1f%% of the surface pixels at full resolution; bias %g%s", 100.0 * stats.fullResolutionFraction,
+                stats.lodBias, stats.lodRestarts ? " (raised: the GPU cache could not hold the bricks wanted)" : "");
+  return line + tail;
+}
+
 std::string formatNumber(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", v);
@@ -74,9 +85,11 @@ Command addRenderCommand(CLI::App& parent) {
             resolutionFromFlags(args->flags.res, width, height);
             checkOutputWritable(args->output, args->force);
             render::RenderOptions options = renderOptionsFromFlags(args->flags);
-            const RenderData data(args->flags, options.hostCacheBytes, args->quiet);
-            mark("open");
+            RenderData data(args->flags, options.hostCacheBytes, args->quiet);
             data.applyMode(args->flags, options);
+            // Level of detail only with --lod-bias: a complete frame is full resolution by default.
+            const int levels = data.applyLevels(args->flags, /*levelsByDefault=*/false, args->quiet, options);
+            mark("open");
             const bool dvr = options.mode == render::RenderMode::Dvr;
             const io::IsoChoice isoChoice = data.iso(args->flags);
             const float iso = isoChoice.value;
@@ -107,7 +120,10 @@ Command addRenderCommand(CLI::App& parent) {
               report.bricksUploaded = stats.bricksUploaded;
               report.passes = stats.passes;
               report.device = gl.renderer() + " (" + gl.platform() + ")";
-              std::fputs(renderJson(args->flags.file, args->output, args->flags.mode, width, height, {}, report.renderSeconds, {report}).c_str(),
+              const LevelReport levelReport{stats.bricksPerLevel, stats.fullResolutionFraction, stats.lodBias};
+              std::fputs(renderJson(args->flags.file, args->output, args->flags.mode, width, height, {}, report.renderSeconds, {report},
+                                    levelReport)
+                             .c_str(),
                          stdout);
             }
             if (args->timings) {
@@ -145,6 +161,9 @@ Command addRenderCommand(CLI::App& parent) {
                            stats.passes, (unsigned long long)stats.bricksUploaded,
                            (unsigned long long)stats.bricksNeeded, surfaces.size() > 1 ? "an isovalue" : "the isovalue",
                            stats.seconds, gl.renderer().c_str());
+            if (!args->quiet && raycaster.levelCount() > 1) std::fprintf(stderr, "%s\n", levelMixLine(stats).c_str());
+            else if (!args->quiet && levels > 1)
+              std::fprintf(stderr, "fccvdb: note: --lod-bias: several or translucent surfaces are drawn at full resolution\n");
             if (!args->quiet) std::fprintf(stderr, "camera: %s\n", cameraFlags(camera).c_str());
             const io::BrickStore::Damage damage = data.damage();
             if (damage.bricks > 0) {

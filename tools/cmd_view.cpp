@@ -68,6 +68,8 @@ RenderFlags flagsForAnotherFile(const RenderFlags& first, const std::string& pat
   f.unitDistance = first.unitDistance;
   f.densityScale = first.densityScale;
   f.terminationOpacity = first.terminationOpacity;
+  f.lodBias = first.lodBias;
+  f.fullResolution = first.fullResolution;
   return f;
 }
 
@@ -84,7 +86,7 @@ Command addViewCommand(CLI::App& parent) {
   args->flags.res = "1280x800";
   CLI::App* app = parent.add_subcommand(
       "view", "Interactive viewer: orbit/pan/zoom, isovalue or transfer function and shading panel, live streaming statistics (H for help)");
-  addRenderFlags(*app, args->flags);
+  addRenderFlags(*app, args->flags, /*levelsByDefault=*/true);
   app->get_option("--res")->description("Window size WxH");
   app->add_option("--screenshot", args->screenshot,
                   "Automation: after --frames frames, once streaming has settled, write OUT (.png: the window with "
@@ -118,6 +120,10 @@ Command addViewCommand(CLI::App& parent) {
               options.iso = d.iso;
               if (!d.surfaces.empty()) setSurfaces(options, d.surfaces);
               options.terminationOpacity = float(flags.terminationOpacity);
+              // A pyramid's levels at bias 0 (or --lod-bias) unless --full-resolution: coarse bricks
+              // stand in while finer ones stream, and the view converges to the full-resolution image
+              // where every brick wants level 0.
+              if (!d.dvr) d.data->applyLevels(flags, /*levelsByDefault=*/true, false, options);
               const io::BrickStore* store = d.data->fccStore();
               auto session = std::make_unique<render::ViewerSession>(
                   d.data->source(), store, options, d.data->camera(flags, window.aspect()),

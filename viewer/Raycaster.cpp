@@ -105,7 +105,7 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
     // The levels' variant, beside the full-resolution program (which stays the same text and speed).
     lodProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_ + "#define FCC_LOD 1\n"),
                                      "shaders/raycast.comp (level of detail)");
-    lodUniforms_ = uniformsOf(lodProgram_, false);
+    lodUniforms_ = uniformsOf(lodProgram_, false, true);
     const auto at = [this](const char* name) { return lodProgram_.uniformLocation(name); };
     lodExtra_ = LodUniforms{at("uLevelCount"), at("uLevelBrickMin"), at("uLevelBrickDims"), at("uLevelNodeDims"),
                             at("uLevelPageOffset"), at("uLevelNodeOffset"), at("uLevelScale"), at("uLevelSize"),
@@ -113,6 +113,8 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
     pool_->setUniforms(lodProgram_);
     levelHits_ = std::make_unique<GlBuffer>(kMaxLodLevels * sizeof(uint32_t));
     levelHits_->clear();
+    slotDrawn_ = std::make_unique<GlBuffer>(slots * sizeof(uint32_t));
+    slotDrawn_->clear();
   }
 
   residency_ = std::make_unique<Residency>(levelBoxes, uint32_t(slots));
@@ -143,10 +145,11 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   setSurfaces(surfaces);
 }
 
-Raycaster::Uniforms Raycaster::uniformsOf(const GlProgram& program, bool lenient) const {
+Raycaster::Uniforms Raycaster::uniformsOf(const GlProgram& program, bool lenient, bool anyInactive) const {
   // Uniforms one variant does not read are inactive there (-1: setting them is a no-op): DVR reads
   // none of the isosurface's, the compositing variant not the single surface's value and colour.
-  const auto at = [&program, lenient](const char* name) {
+  const auto at = [&program, lenient, anyInactive](const char* name) {
+    if (anyInactive) return glGetUniformLocation(program.id(), name);  // the LOD variant reads per-level ones
     static const char* const isoOnly[] = {"uNormalFromIndex", "uIso", "uFiniteDifferenceNormals", "uSurfaceColor", "uLightDir"};
     if (lenient && std::find_if(std::begin(isoOnly), std::end(isoOnly), [&](const char* n) { return std::strcmp(n, name) == 0; }) != std::end(isoOnly))
       return glGetUniformLocation(program.id(), name);
@@ -342,7 +345,11 @@ LevelMix Raycaster::levelMix() const {
   mix.lodBias = lodBias();
   const int levels = levelCount();
   mix.bricksPerLevel.assign(std::size_t(levels), 0);
-  const std::vector<uint32_t> slotUse = readSlotUse();
+  // Drawn, not loaded: the level-of-detail program stamps the slots it draws from apart (the coarsest
+  // level is loaded up front); without levels the slots' last use (a pass's reads, or its uploads).
+  std::vector<uint32_t> slotUse(residency_->slotCount());
+  if (lodDrawing()) slotDrawn_->read(slotUse);
+  else slotUse_->read(slotUse);
   for (uint32_t slot = 0; slot < residency_->slotCount(); ++slot) {
     const int64_t index = residency_->slotBrick(slot);
     if (index < 0 || slotUse[slot] < viewFirstPass_) continue;
@@ -452,6 +459,8 @@ void Raycaster::restartRays(int width, int height) {
   }
   if (compositesSurfaces(options_) && (transmittance_.width() != width || transmittance_.height() != height))
     transmittance_ = GlTexture2D(GL_R32F, width, height);
+  if (lodDrawing() && (resumeState_.width() != width || resumeState_.height() != height))
+    resumeState_ = GlTexture2D(GL_R32F, width, height);
   firstPass_ = true;  // every ray starts at t = 0; the first pass writes every pixel's resume value
   viewFirstPass_ = pass_ + 1;
   uploadedThisView_ = 0;
@@ -539,6 +548,8 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
     // frame.up is scaled by tan(fov / 2): a pixel is 2 tan(fov / 2) / height at unit distance.
     glProgramUniform1f(p, lu.pixelAngle, float(2.0 * glm::length(frame.up) / double(height)));
     levelHits_->bindBase(GL_SHADER_STORAGE_BUFFER, 8);
+    slotDrawn_->bindBase(GL_SHADER_STORAGE_BUFFER, 9);
+    resumeState_.bindImage(4, GL_READ_WRITE);
   }
   if (composite) {
     const std::vector<Isosurface> surfaces = surfacesOf(options_);
@@ -706,7 +717,7 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
   }
   // No glFinish: the last pass's read-back waited for every command of the frame.
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  finishLevelMix(stats);
+  if (options_.frameLevelMix || lodDrawing()) finishLevelMix(stats);  // the bias's rule reads it too
   return stats;
 }
 

@@ -97,6 +97,9 @@ struct RenderOptions {
   // frame wants, instead of streaming them through it pass after pass; lower it back once a frame
   // uses under an eighth of the pool.
   bool lodAdaptBias = true;
+  // Fill FrameStats' level mix after each render(): reads every slot's last use back (4 bytes a slot;
+  // outside FrameStats::seconds). Benchmarks timing full resolution turn it off.
+  bool frameLevelMix = true;
 };
 
 // The most pyramid levels the raycaster draws (shaders/raycast.comp's FCC_MAX_LEVELS).
@@ -239,6 +242,7 @@ class Raycaster {
   void setFiniteDifferenceNormals(bool on);
   void setSurfaceColor(const glm::vec3& rgb);
   void setLightInCamera(const glm::vec3& direction);
+  void setFrameLevelMix(bool on) { options_.frameLevelMix = on; }
 
  private:
   Raycaster(std::unique_ptr<BrickSource> owned, const RenderOptions& options);  // keeps `owned`
@@ -304,7 +308,7 @@ class Raycaster {
     GLint resolution, eye, forward, right, up, indexFromWorld, normalFromIndex, iso, brickMin, brickDims, nodeDims,
         pass, firstPass, firstColumn, columnOffset, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir, clipLo, clipHi;
   } uniforms_{}, surfacesUniforms_{};
-  Uniforms uniformsOf(const GlProgram& program, bool dvr) const;
+  Uniforms uniformsOf(const GlProgram& program, bool dvr, bool anyInactive = false) const;
   std::unique_ptr<GlReadbackBuffer> passResultsReadback_;
   const uint32_t* passResults_ = nullptr;  // the last pass's header and first requests, as read back
   std::vector<LevelBrick> lastRequests_;
@@ -325,7 +329,8 @@ class Raycaster {
   struct LodUniforms {
     GLint levelCount, brickMin, brickDims, nodeDims, pageOffset, nodeOffset, scale, size, bias, pixelAngle;
   } lodExtra_{};
-  std::unique_ptr<GlBuffer> levelHits_;
+  std::unique_ptr<GlBuffer> levelHits_, slotDrawn_;  // raycast.comp's LevelHits and SlotDrawn
+  GlTexture2D resumeState_;                          // FCC_LOD: what a provisional ray's march carried
   std::unique_ptr<GpuInterval> passTimer_;
   std::unique_ptr<BrickPool> pool_;
   std::unique_ptr<GlBuffer> slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;

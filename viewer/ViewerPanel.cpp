@@ -157,6 +157,18 @@ void ViewerSession::drawPanel(int windowHeight) {
     row("not loaded", count(stats_.missing) + (stats_.complete ? " (no ray reaches them)" : " (streaming or unreached)"));
     row("requested", count(stats_.requested) + " (last pass)");
     row("streaming", count(stats_.streaming) + " bricks");
+    if (raycaster_.levelCount() > 1) {
+      // The level mix: bricks drawn per pyramid level (coarse ones stand in while finer ones stream),
+      // the share of the surface's final pixels drawn at full resolution, and the bias in effect.
+      std::string mix;
+      for (std::size_t k = 0; k < stats_.levels.bricksPerLevel.size(); ++k)
+        mix += (k ? "  L" : "L") + std::to_string(k) + " " + count(stats_.levels.bricksPerLevel[k]);
+      row("levels", mix);
+      char full[96];
+      std::snprintf(full, sizeof full, "%.0f%% of surface pixels, bias %g%s", 100.0 * stats_.levels.fullResolutionFraction,
+                    stats_.levels.lodBias, raycaster_.lodBias() > double(raycaster_.options().lodBias) ? " (raised: GPU cache)" : "");
+      row("full res", full);
+    }
     usageBar("GPU cache", double(stats_.resident) * double(raycaster_.slotBytes()), double(raycaster_.poolBytes()));
     const HostCacheUse hostCache = raycaster_.hostCacheUse();
     if (hostCache.budgetBytes > 0) usageBar("host cache", double(hostCache.bytesUsed), double(hostCache.budgetBytes));

@@ -284,7 +284,9 @@ void ViewerSession::updateStats(const StepStats& step, double imageDrawn, bool u
     rateWindowStart_ = now;
     framesInWindow_ = 0;
     imageDrawnInWindow_ = 0.0;
+    if (raycaster_.levelCount() > 1) stats_.levels = raycaster_.levelMix();
   }
+  if (step.complete && !stats_.complete && raycaster_.levelCount() > 1) stats_.levels = raycaster_.levelMix();
   stats_.imageDrawn = imageDrawn;
   stats_.uiDrawn = uiDrawn;
   stats_.resident = raycaster_.residentCount();

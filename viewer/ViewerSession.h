@@ -88,6 +88,9 @@ struct ViewerStats {
   // (what the panel shows: a figure changing every frame would make the panel change every frame).
   double imageDrawn = 0.0, imageDrawnAverage = 0.0;
   bool uiDrawn = false;          // ImGui drew the last frame (else the back buffer already showed it)
+  // Level of detail (a file with a pyramid, not --full-resolution): the levels the view draws from,
+  // refreshed with the rates and when a frame completes (it reads the GPU's slot use back).
+  LevelMix levels;
 };
 
 class ViewerSession {
