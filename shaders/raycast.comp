@@ -114,8 +114,10 @@ uniform float uLodBias;     // added to log2 of a brick's pixels per voxel (the 
 uniform float uPixelAngle;  // a pixel's height at unit distance from the eye: 2 tan(fov / 2) / height
 // Per level: the pixels whose final hit was drawn from it (the frame's level mix).
 layout(std430, binding = 8) buffer LevelHits { uint levelHits[]; };
-// Per slot: the last pass that drew from it (slotLastUse also counts uploads, for eviction).
+// Per slot: the last pass that drew from it for a ray that wanted its level (slotLastUse also counts
+// uploads, for eviction), and the last that drew from it as a coarser stand-in.
 layout(std430, binding = 9) buffer SlotDrawn { uint slotDrawnPass[]; };
+layout(std430, binding = 10) buffer SlotStandIn { uint slotStandInPass[]; };
 // Where a provisional ray resumes, what the march carried there: (prevLevel + 1) * 3 + prevSign + 1,
 // so that the resumed march is the very march a ray drawing the wanted levels throughout makes.
 layout(binding = 4, r32f) uniform image2D uResumeState;
@@ -434,7 +436,8 @@ void main() {
         prevLevel = -1;
       } else {
         slotLastUse[entry] = uPass;
-        slotDrawnPass[entry] = uPass;
+        if (tProvisional < 0.0) slotDrawnPass[entry] = uPass;
+        else slotStandInPass[entry] = uPass;
         if (level != prevLevel) prevSign = 0;  // another level is another spline
         prevLevel = level;
         // Level 0 marches with o, d and invD themselves: scaled by 1 they would be the same numbers, but

@@ -115,6 +115,8 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
     levelHits_->clear();
     slotDrawn_ = std::make_unique<GlBuffer>(slots * sizeof(uint32_t));
     slotDrawn_->clear();
+    slotStandIn_ = std::make_unique<GlBuffer>(slots * sizeof(uint32_t));
+    slotStandIn_->clear();
   }
 
   residency_ = std::make_unique<Residency>(levelBoxes, uint32_t(slots));
@@ -357,6 +359,12 @@ LevelMix Raycaster::levelMix() const {
     if (level < levels) ++mix.bricksPerLevel[std::size_t(level)];
   }
   if (lodDrawing()) {
+    mix.standInBricksPerLevel.assign(std::size_t(levels), 0);
+    slotStandIn_->read(slotUse);
+    for (uint32_t slot = 0; slot < residency_->slotCount(); ++slot) {
+      const int64_t index = residency_->slotBrick(slot);
+      if (index >= 0 && slotUse[slot] >= viewFirstPass_) ++mix.standInBricksPerLevel[std::size_t(residency_->levelOf(uint32_t(index)))];
+    }
     std::vector<uint32_t> hits(kMaxLodLevels);
     levelHits_->read(hits);
     uint64_t all = 0;
@@ -549,6 +557,7 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
     glProgramUniform1f(p, lu.pixelAngle, float(2.0 * glm::length(frame.up) / double(height)));
     levelHits_->bindBase(GL_SHADER_STORAGE_BUFFER, 8);
     slotDrawn_->bindBase(GL_SHADER_STORAGE_BUFFER, 9);
+    slotStandIn_->bindBase(GL_SHADER_STORAGE_BUFFER, 10);
     resumeState_.bindImage(4, GL_READ_WRITE);
   }
   if (composite) {

@@ -129,9 +129,13 @@ struct FrameImages {
 
 // Which pyramid levels a frame drew from.
 struct LevelMix {
-  // Per level (level 0 first; one entry without levels): the bricks the frame drew, i.e. the resident
-  // bricks its passes read plus those it loaded.
+  // Per level (level 0 first; one entry without levels): the bricks the frame drew for rays that wanted
+  // their level (a complete frame: the bricks its image is drawn from). Without levels: the bricks its
+  // passes read plus those it loaded.
   std::vector<uint64_t> bricksPerLevel;
+  // Per level: bricks drawn in the frame's passes as stand-ins for finer ones not yet resident (a
+  // complete frame's image shows none of them; a progressive frame's may).
+  std::vector<uint64_t> standInBricksPerLevel;
   // Of the pixels whose ray hit the surface, the share whose hit was drawn from level 0 (1 when no
   // pixel hit, or without levels). Progressive frames count final hits only.
   double fullResolutionFraction = 1.0;
@@ -329,7 +333,7 @@ class Raycaster {
   struct LodUniforms {
     GLint levelCount, brickMin, brickDims, nodeDims, pageOffset, nodeOffset, scale, size, bias, pixelAngle;
   } lodExtra_{};
-  std::unique_ptr<GlBuffer> levelHits_, slotDrawn_;  // raycast.comp's LevelHits and SlotDrawn
+  std::unique_ptr<GlBuffer> levelHits_, slotDrawn_, slotStandIn_;  // raycast.comp's LevelHits, SlotDrawn, SlotStandIn
   GlTexture2D resumeState_;                          // FCC_LOD: what a provisional ray's march carried
   std::unique_ptr<GpuInterval> passTimer_;
   std::unique_ptr<BrickPool> pool_;

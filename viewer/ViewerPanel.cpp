@@ -164,6 +164,11 @@ void ViewerSession::drawPanel(int windowHeight) {
       for (std::size_t k = 0; k < stats_.levels.bricksPerLevel.size(); ++k)
         mix += (k ? "  L" : "L") + std::to_string(k) + " " + count(stats_.levels.bricksPerLevel[k]);
       row("levels", mix);
+      std::string standIn;
+      for (std::size_t k = 0; k < stats_.levels.standInBricksPerLevel.size(); ++k)
+        if (stats_.levels.standInBricksPerLevel[k])
+          standIn += (standIn.empty() ? "L" : "  L") + std::to_string(k) + " " + count(stats_.levels.standInBricksPerLevel[k]);
+      if (!standIn.empty()) row("stand-ins", standIn);
       char full[96];
       std::snprintf(full, sizeof full, "%.0f%% of surface pixels, bias %g%s", 100.0 * stats_.levels.fullResolutionFraction,
                     stats_.levels.lodBias, raycaster_.lodBias() > double(raycaster_.options().lodBias) ? " (raised: GPU cache)" : "");
