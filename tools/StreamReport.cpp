@@ -181,6 +181,14 @@ void writeStreamPlots(const StreamReport& r, const std::string& stem, bool overw
     hitRate.series.push_back(series.second);
   }
   fps.references.push_back({"frame budget's fps", 1e3 / r.frameBudgetMs});
+  // Sweeps over powers of two read better on a logarithmic axis.
+  double gpuLo = 0.0, gpuHi = 0.0;
+  for (const StreamRun& run : r.runs) {
+    const double mib = run.gpuBudgetBytes / kMiB;
+    gpuLo = gpuLo == 0.0 ? mib : std::min(gpuLo, mib);
+    gpuHi = std::max(gpuHi, mib);
+  }
+  fps.logX = hitRate.logX = gpuHi >= 8.0 * gpuLo;
   hitRate.references.push_back({"all resident", 1.0});
 
   // The working set of complete views against the image size, with the data's size and the budgets.

@@ -68,11 +68,15 @@ std::vector<double> niceTicks(double lo, double hi, int target) {
 }
 
 std::string tickLabel(double value, double step) {
-  char text[32];
-  for (int digits = 1; digits <= 15; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    // Enough digits when the label's value is within a hundredth of a step of the tick.
-    if (std::abs(std::strtod(text, nullptr) - value) <= std::abs(step) * 1e-2) break;
+  char text[40];
+  step = std::abs(step);
+  const double magnitude = std::max(std::abs(value), step);
+  if (step > 0.0 && step >= 1e-4 && magnitude < 1e7) {
+    // Fixed notation with as many decimals as the step needs (steps are 1, 2 or 5 x 10^k).
+    const int decimals = std::max(0, int(-std::floor(std::log10(step) + 1e-9)));
+    std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  } else {
+    std::snprintf(text, sizeof text, "%.3g", value);
   }
   return text;
 }
