@@ -53,17 +53,26 @@ std::vector<double> niceTicks(double lo, double hi, int target) {
     hi += pad;
   }
   const double rough = (hi - lo) / std::max(1, target);
-  const double magnitude = std::pow(10.0, std::floor(std::log10(rough)));
-  double step = magnitude;
-  for (double m : {1.0, 2.0, 5.0, 10.0})
-    if (m * magnitude >= rough) {
-      step = m * magnitude;
+  const int exponent = int(std::floor(std::log10(rough)));
+  double mantissa = 10.0;
+  for (double m : {1.0, 2.0, 5.0})
+    if (m * std::pow(10.0, exponent) >= rough) {
+      mantissa = m;
       break;
     }
+  // A tick is k * mantissa * 10^exponent, computed from the integer k * mantissa and an exact power of
+  // ten so that it is the double nearest its decimal value (3e-5, not 2.9999999999999997e-5).
+  const double power = std::pow(10.0, std::abs(exponent));
+  const auto tick = [&](long k) { return exponent < 0 ? double(k) * mantissa / power : double(k) * mantissa * power; };
+  const double step = exponent < 0 ? mantissa / power : mantissa * power;
   std::vector<double> ticks;
-  const long first = long(std::floor(lo / step + 1e-9)), last = long(std::ceil(hi / step - 1e-9));
-  for (long k = first; k <= last && ticks.size() < 100; ++k) ticks.push_back(double(k) * step);
-  if (ticks.size() < 2) ticks.push_back(ticks.empty() ? lo : ticks.back() + step);
+  long first = long(std::floor(lo / step)), last = long(std::ceil(hi / step));
+  while (tick(first) > lo) --first;  // rounding of the divisions
+  while (tick(last) < hi) ++last;
+  while (first < last && tick(first + 1) <= lo) ++first;
+  while (last > first && tick(last - 1) >= hi) --last;
+  for (long k = first; k <= last && ticks.size() < 100; ++k) ticks.push_back(tick(k));
+  if (ticks.size() < 2) ticks.push_back(tick(last + 1));
   return ticks;
 }
 
@@ -117,8 +126,8 @@ std::string svgText(const SvgPlot& plot) {
     xr.hi = xTicks.back();
   }
   const std::vector<double> yTicks = niceTicks(yr.lo, yr.hi, 6);
-  yr.lo = yTicks.front();
-  yr.hi = yTicks.back();
+  yr.lo = std::min(yr.lo, yTicks.front());
+  yr.hi = std::max(yr.hi, yTicks.back());
   const double xStep = xTicks.size() > 1 ? xTicks[1] - xTicks[0] : 1.0;
   const double yStep = yTicks.size() > 1 ? yTicks[1] - yTicks[0] : 1.0;
 
