@@ -54,7 +54,7 @@ inline constexpr double kBudgetTolerance = 1.02;  // issue 19: never more than 2
 struct WorkingSetPoint {
   int width = 0, height = 0;
   uint64_t bricks = 0, bytes = 0;
-  bool atLeast = false;  // the pool evicted during the frame: the view needs more than it held
+  bool atLeast = false;  // the pool evicted during the frame: `bricks` may be a lower bound
 };
 
 struct StreamReport {

@@ -56,8 +56,8 @@ constexpr const char* kCpuRes = "160x90";
 constexpr int kDefaultFrames = 120;
 
 // The working set of complete views: for each image size, the most bricks any of the path's first,
-// middle and last views drew in a complete frame (render(); the pool evicting meanwhile makes it a
-// lower bound).
+// middle and last views drew in a complete frame (render(); the pool evicting meanwhile may make it a
+// lower bound: WorkingSetPoint::atLeast).
 std::vector<WorkingSetPoint> measureWorkingSet(render::Raycaster& raycaster, const std::vector<render::Camera>& path,
                                                int width, int height) {
   std::vector<WorkingSetPoint> points;
@@ -68,10 +68,12 @@ std::vector<WorkingSetPoint> measureWorkingSet(render::Raycaster& raycaster, con
     p.height = std::max(1, height / divisor);
     if (!points.empty() && points.back().width == p.width && points.back().height == p.height) continue;
     for (std::size_t v : views) {
+      const uint64_t residentBefore = raycaster.residentCount();
       const render::FrameStats s = raycaster.render(path[v], p.width, p.height);
       const uint64_t drawn = s.bricksPerLevel.empty() ? 0 : s.bricksPerLevel[0];
       p.bricks = std::max(p.bricks, drawn);
-      p.atLeast = p.atLeast || s.bricksUploaded > raycaster.slotCount();
+      // Slots evicted during the frame may have been drawn earlier in it: then the count is a lower bound.
+      p.atLeast = p.atLeast || residentBefore + s.bricksUploaded > raycaster.slotCount();
     }
     p.bytes = p.bricks * raycaster.slotBytes();
     points.push_back(p);
