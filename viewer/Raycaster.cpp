@@ -474,7 +474,7 @@ Raycaster::PassResult Raycaster::collectPass() {
   return result;
 }
 
-std::vector<glm::ivec3> Raycaster::requestedBricks(uint32_t requestCount) const {
+std::vector<glm::ivec3> Raycaster::requestedBricks(uint32_t requestCount, uint32_t* stopped) const {
   const uint32_t n = std::min(requestCount, requestCapacity_);
   const uint32_t copied = std::min(n, options_.requestsReadBack);
   std::vector<uint32_t> raw(passResults_ + kRequestsHeaderWords, passResults_ + kRequestsHeaderWords + copied);
@@ -487,11 +487,18 @@ std::vector<glm::ivec3> Raycaster::requestedBricks(uint32_t requestCount) const 
   bricks.reserve(n);
   for (uint32_t r : raw)
     if (!(r & 0x80000000u)) bricks.push_back(residency_->brickAt(r));
+  if (stopped) *stopped = uint32_t(bricks.size());
   for (uint32_t r : raw)
     if (r & 0x80000000u) bricks.push_back(residency_->brickAt(r & 0x7FFFFFFFu));
   // No more than the pool holds: every brick loaded in a pass keeps its slot through the pass.
   if (bricks.size() > residency_->slotCount()) bricks.resize(residency_->slotCount());
   return bricks;
+}
+
+uint64_t Raycaster::slotsUsedSince(uint32_t pass) const {
+  uint64_t n = 0;
+  for (uint32_t stamp : readSlotUse()) n += stamp > pass && stamp <= pass_;
+  return n;
 }
 
 std::vector<uint32_t> Raycaster::readSlotUse() const {
@@ -532,6 +539,7 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
   stepKey_ = StepKey{};  // a later step() starts over
   FrameStats stats;
   stats.bricksNeeded = residency_->neededCount();
+  const uint32_t passBefore = pass_;
   for (;;) {
     ++stats.passes;
     dispatchPass(frame, width, height, 0);
@@ -554,6 +562,7 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
     updatePageTable();
     stats.bricksUploaded += uploaded;
   }
+  if (options_.countBricksDrawn) stats.bricksPerLevel = {slotsUsedSince(passBefore)};
   // No glFinish: the last pass's read-back waited for every command of the frame.
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
@@ -596,6 +605,7 @@ void Raycaster::startStep(const Camera& camera, int width, int height, double up
     loader_->recycle(std::move(loaded));
   } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < uploadSeconds);
   if (stats.uploaded) updatePageTable();
+  stats.bytesUploaded = uint64_t(stats.uploaded) * slotBlockFloats(source_.slotBlock()) * sizeof(float);
 
   stepStarted_ = true;
   if (stepComplete_) return;
@@ -612,7 +622,9 @@ StepStats Raycaster::finishStep() {
     stats.requested = pass.requested;
     stats.gpuSeconds = pass.gpuSeconds;
     if (stats.requested == 0) stepComplete_ = true;
-    else loader_->request(lastRequests_ = requestedBricks(stats.requested));
+    else loader_->request(lastRequests_ = requestedBricks(stats.requested, &stats.missing));
+    // Slots uploaded before the pass carry the pass before's stamp: only what the rays drew counts.
+    if (options_.countBricksDrawn) stats.bricksPerLevel = {slotsUsedSince(pass_ - 1)};
   }
   stats.complete = stepComplete_;
   stats.streaming = loader_->pending();

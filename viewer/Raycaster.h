@@ -74,6 +74,9 @@ struct RenderOptions {
   int lookahead = 2;       // bricks a stopped ray requests beyond its first missing one
   bool finiteDifferenceNormals = false;  // central differences instead of the analytic gradient
   bool timeGpu = false;    // time every raycasting pass on the GPU (FrameStats::gpuSeconds; benchmarks)
+  // Count the bricks each pass drew (StepStats/FrameStats::bricksPerLevel; `bench stream`): reads the
+  // pool slots' pass stamps back after the pass (4 bytes a slot), which the viewer does not pay for.
+  bool countBricksDrawn = false;
   // Requested bricks read back with a pass's header (16 KiB); a pass asking for more reads the rest
   // from the buffer itself, which waits for anything queued after the pass. (Tests lower it.)
   uint32_t requestsReadBack = 4096;
@@ -115,6 +118,11 @@ struct FrameStats {
   uint64_t bricksNeeded = 0;     // bricks whose bounds hold the isovalue
   double seconds = 0.0;
   double gpuSeconds = 0.0;       // the passes on the GPU alone (RenderOptions::timeGpu; else 0)
+  // Bricks drawn per level of detail, level 0 first (RenderOptions::countBricksDrawn; else empty).
+  // One level so far: the pool slots the frame's passes stamped, which includes look-ahead bricks
+  // uploaded for the frame that no ray reached.
+  std::vector<uint64_t> bricksPerLevel;
+  double fullResolutionFraction = 1.0;  // share of hit pixels drawn from level-0 bricks (1: one level)
 };
 
 // What one step() of a progressive frame did.
@@ -122,10 +130,16 @@ struct StepStats {
   bool restarted = false;      // the view or a setting changed: every ray started over
   bool complete = false;       // every ray has finished: the image is final for this view
   bool dispatched = false;     // a pass ran (a complete frame needs none)
-  uint32_t requested = 0;      // bricks the pass's rays asked for
+  uint32_t requested = 0;      // bricks the pass's rays asked for (where they stopped, and look-ahead)
+  uint32_t missing = 0;        // of those, the bricks rays stopped at: their pixels wait for them
   uint32_t uploaded = 0;       // bricks uploaded into the pool this step
+  uint64_t bytesUploaded = 0;  // the blocks of those bricks, as staged for the GPU
   std::size_t streaming = 0;   // bricks queued or decoding on the loader thread
   double gpuSeconds = 0.0;     // the pass on the GPU alone (RenderOptions::timeGpu; else 0)
+  // Resident bricks the pass's rays drew, per level of detail, level 0 first
+  // (RenderOptions::countBricksDrawn; else empty). One level so far.
+  std::vector<uint64_t> bricksPerLevel;
+  double fullResolutionFraction = 1.0;  // share of hit pixels drawn from level-0 bricks (1: one level)
 };
 
 class Raycaster {
@@ -211,7 +225,9 @@ class Raycaster {
   static constexpr std::size_t kRequestsHeaderWords = kPassResultsHeaderBytes / sizeof(uint32_t);
   void dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn);
   PassResult collectPass();  // waits for the pass dispatched last and reads what it tells the host
-  std::vector<glm::ivec3> requestedBricks(uint32_t requestCount) const;  // after collectPass()
+  // After collectPass(): the bricks rays stopped at first (`stopped` of them), then look-ahead ones.
+  std::vector<glm::ivec3> requestedBricks(uint32_t requestCount, uint32_t* stopped = nullptr) const;
+  uint64_t slotsUsedSince(uint32_t pass) const;  // slots stamped by a pass after `pass`
   uint32_t upload(const std::vector<LoadedBrick>& loaded);  // after residency_->startAssigning
   std::vector<uint32_t> readSlotUse() const;
   void uploadPageTable();  // the whole page and node tables (a new isovalue or skip setting)
