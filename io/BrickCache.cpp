@@ -80,14 +80,29 @@ std::size_t BrickCache::bytesUsed() const {
   return bricks * kBytesPerBrick;
 }
 
-BrickContent BrickValuesMemo::content(const glm::ivec3& brick) {
-  for (const auto& [b, content] : held_)
-    if (b == brick) return content;
+void BrickValuesMemo::clear() {
+  held_.clear();
+  held_.reserve(kMaxHeld);
+  slotHeld_.fill(-1);
+}
+
+const BrickContent& BrickValuesMemo::content(const glm::ivec3& brick) {
+  std::size_t slot = (brickKey(brick) * 0x9E3779B97F4A7C15ull) >> 40 & (kSlots - 1);
+  for (;; slot = (slot + 1) & (kSlots - 1)) {
+    const int16_t i = slotHeld_[slot];
+    if (i < 0) break;
+    if (held_[std::size_t(i)].first == brick) return held_[std::size_t(i)].second;
+  }
+  if (held_.size() == kMaxHeld) {
+    clear();
+    return content(brick);
+  }
+  slotHeld_[slot] = int16_t(held_.size());
   held_.emplace_back(brick, source_.content(brick));
   return held_.back().second;
 }
 
-void assembleHaloBlock(const BrickStore& /*store*/, BrickValuesSource& source, const glm::ivec3& brick, float* out) {
+void assembleHaloBlock(const BrickStore& /*store*/, BrickValuesMemo& source, const glm::ivec3& brick, float* out) {
   constexpr int D = kBrickPackedDim, H = kHaloBlockDim;
   static_assert(sizeof(openvdb::Vec4f) == 4 * sizeof(float), "Vec4f packs four floats");
   // The 27 bricks the block touches: the centre and its neighbours (only their border layer is used).
@@ -101,7 +116,7 @@ void assembleHaloBlock(const BrickStore& /*store*/, BrickValuesSource& source, c
           lo[a] = n[a] < 0 ? 0 : (n[a] == 0 ? 1 : D + 1);
           hi[a] = n[a] < 0 ? 1 : (n[a] == 0 ? D + 1 : H);
         }
-        const BrickContent content = source.content(brick + n);
+        const BrickContent& content = source.content(brick + n);
         const int run = hi.x - lo.x;
         // Block voxel (x, y, z) is packed voxel 8b - 1 + (x, y, z); in the neighbour, (x, y, z) - 1 - 8n.
         const int lx = lo.x - 1 - n.x * D;

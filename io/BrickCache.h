@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -78,22 +79,29 @@ class BrickCache : public BrickValuesSource {
 
 // A few bricks' contents held for a batch of halo blocks, in front of a cache: neighbouring blocks
 // share most of their 27 bricks, and each lookup in the shared cache takes a lock that all loader
-// threads contend for (and two tree probes for a brick without a leaf). Not thread-safe: one a thread.
-class BrickValuesMemo : public BrickValuesSource {
+// threads contend for (and two tree probes for a brick without a leaf). Lookups return a reference,
+// not a copy: copying the shared pointer 27 times a block moved reference counts that other loader
+// threads' blocks touch too. Found through a small open-addressing table, not a scan of what is held.
+// Not thread-safe: one a thread.
+class BrickValuesMemo {
  public:
-  explicit BrickValuesMemo(BrickValuesSource& source) : source_(source) {}
-  BrickContent content(const glm::ivec3& brick) override;
-  void clear() { held_.clear(); }
+  explicit BrickValuesMemo(BrickValuesSource& source) : source_(source) { clear(); }
+  // Valid until the next call (or clear()).
+  const BrickContent& content(const glm::ivec3& brick);
+  void clear();
 
  private:
+  static constexpr std::size_t kSlots = 512;         // a power of two
+  static constexpr std::size_t kMaxHeld = kSlots / 2;  // then cleared: probes stay short
   BrickValuesSource& source_;
   std::vector<std::pair<glm::ivec3, BrickContent>> held_;
+  std::array<int16_t, kSlots> slotHeld_{};  // index into held_, or -1
 };
 
 // The packed voxels [8b - 1, 8b + 9)^3 of brick b (the brick and the one-voxel halo its cells'
 // stencils reach), x fastest, as four floats each: what one pool slot of the renderer holds.
 inline constexpr int kHaloBlockDim = kBrickPackedDim + 2;
 inline constexpr int kHaloBlockVoxels = kHaloBlockDim * kHaloBlockDim * kHaloBlockDim;
-void assembleHaloBlock(const BrickStore& store, BrickValuesSource& values, const glm::ivec3& brick, float* out);
+void assembleHaloBlock(const BrickStore& store, BrickValuesMemo& values, const glm::ivec3& brick, float* out);
 
 }  // namespace fcc::io

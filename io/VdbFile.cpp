@@ -28,8 +28,28 @@ void checkReadableVdb(const std::string& path) {
     throw InputError(path + ": not an OpenVDB file (no VDB magic number); valid inputs are .vdb files written by OpenVDB");
 }
 
-// What the child does: read the grids (to `depth`), then walk every tree once: a file that reads but
-// holds an inconsistent tree should fail here, in the child, rather than later in the parent.
+// Every tile and every leaf of a tree, visited one after the other: a tree that reads but is
+// inconsistent fails here, in the child. Serially, never through TBB (OpenVDB's activeVoxelCount()
+// is a parallel reduce): the child is forked from a process whose TBB workers may be mid-flight, and
+// a child's parallel loop then waited forever for a worker that fork had not copied (seen in CI, and
+// caught by gdb: wait_on_address under activeVoxelCount's reduce), so a good file was called corrupt.
+struct WalkTreeSerially {
+  template <class GridT>
+  void operator()(const GridT& grid) const {
+    using TreeT = typename GridT::TreeType;
+    openvdb::Index64 count = 0;
+    auto tile = grid.tree().cbeginValueAll();
+    tile.setMaxDepth(TreeT::ValueAllCIter::LEAF_DEPTH - 1);  // tiles only: leaves are walked below
+    for (; tile; ++tile) count += tile.isValueOn();
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) count += leaf->onVoxelCount();
+    (void)count;
+  }
+};
+
+// The grid types whose trees the child walks: OpenVDB's own and ours (the FCC grid, the bounds grid).
+using WalkedGridTypes = openvdb::GridTypes::Append<FccGrid, BoundsGrid>;
+
+// What the child does: read the grids (to `depth`), then walk every tree once. No TBB (see above).
 void readInChild(const std::string& path, GuardDepth depth) {
   initializeVdb();
   openvdb::io::File file(path);
@@ -38,7 +58,7 @@ void readInChild(const std::string& path, GuardDepth depth) {
   openvdb::GridPtrVecPtr grids = file.getGrids();
   for (const auto& g : *grids) {
     if (depth == GuardDepth::Topology && !isFccGrid(*g)) g->baseTree().readNonresidentBuffers();
-    (void)g->activeVoxelCount();
+    g->apply<WalkedGridTypes>(WalkTreeSerially{});
   }
   file.close();
 }

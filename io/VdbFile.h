@@ -24,7 +24,9 @@ void guardVdbFile(const std::string& path, GuardDepth depth = GuardDepth::Everyt
 
 // The same guard around any reading: `read` runs in a child process with the time limit; its crash,
 // hang or exception becomes an InputError naming the file. For parsing done by OpenVDB (topology),
-// which this process then repeats once the child came through.
+// which this process then repeats once the child came through. `read` must not use TBB (no parallel
+// algorithm, none of OpenVDB's threaded tools such as activeVoxelCount()): the child is forked while
+// this process's TBB workers may be running, and a parallel loop in the child can wait forever.
 void guardVdbRead(const std::string& path, const std::function<void()>& read);
 
 struct GridInfo {

@@ -35,6 +35,7 @@ Command addBenchConvertCommand(CLI::App& bench);     // under `bench`
 Command addBenchRenderCommand(CLI::App& bench);      // under `bench`
 Command addBenchPreprocessCommand(CLI::App& bench);  // under `bench`
 Command addBenchViewCommand(CLI::App& bench);        // under `bench`
+Command addBenchStreamCommand(CLI::App& bench);      // under `bench`
 
 // Validators shared by several subcommands.
 CLI::Validator tripleValidator(const std::string& what);  // "X,Y,Z"

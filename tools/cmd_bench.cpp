@@ -12,6 +12,7 @@ Command addBenchCommand(CLI::App& parent) {
   benchmarks->push_back(addBenchConvertCommand(*app));
   benchmarks->push_back(addBenchPreprocessCommand(*app));
   benchmarks->push_back(addBenchRenderCommand(*app));
+  benchmarks->push_back(addBenchStreamCommand(*app));
   benchmarks->push_back(addBenchViewCommand(*app));
   return {app, [benchmarks]() {
             for (const Command& c : *benchmarks)

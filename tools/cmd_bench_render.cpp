@@ -175,6 +175,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
             if (options.mode == render::RenderMode::Iso)  // several surfaces: --iso's list, their colours and opacities
               setSurfaces(options, surfacesFromFlags(args->flags, io::IsoChoice{iso, "--iso"}));
             options.timeGpu = args->gpuTime;
+            options.countBricksDrawn = true;  // the first frame's level mix (timed frames: with levels only)
             resolutionFromFlags(args->workGroup, options.workGroup.x, options.workGroup.y, "--work-group");
 
             // Frames to render: per layout one cold frame, then warm-up and timed frames per variant.
@@ -198,7 +199,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
               render::Raycaster& raycaster = *made;
               const render::FrameStats c = raycaster.render(camera, width, height);
               tick();
-              raycaster.setFrameLevelMix(lod);
+              raycaster.setCountBricksDrawn(lod);
               const std::string layoutName = render::brickLayoutName(*raycaster.options().layout);
               if (coldLayout.empty()) {
                 cold = c;

@@ -103,6 +103,7 @@ Command addRenderCommand(CLI::App& parent) {
             mark("egl");
             options.iso = iso;
             if (!dvr) setSurfaces(options, surfaces);
+            options.countBricksDrawn = true;  // the level mix for the summary and --json (one frame)
             render::Raycaster raycaster(data.source(), options);
             mark("renderer");
             const auto frameStart = std::chrono::steady_clock::now();

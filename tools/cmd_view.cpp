@@ -10,10 +10,12 @@
 #include "RenderData.h"
 #include "RenderFlags.h"
 #include "SurfaceFlags.h"
+#include "io/AtomicOutput.h"
 #include "io/Convert.h"
 #include "io/PatientMetadata.h"
 #include "sparse/Error.h"
 #include "viewer/CameraFile.h"
+#include "viewer/CameraPath.h"
 #include "viewer/DatasetSummary.h"
 #include "viewer/OpenAnotherFile.h"
 #include "viewer/ViewerWindow.h"
@@ -79,6 +81,7 @@ Command addViewCommand(CLI::App& parent) {
   struct Args {
     RenderFlags flags;
     std::string screenshot;
+    std::string recordPath;
     int frames = 30;
     bool convert = false, force = false;
   };
@@ -94,13 +97,17 @@ Command addViewCommand(CLI::App& parent) {
   app->add_option("--frames", args->frames, "Frames before --screenshot is taken")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  app->add_flag("--force", args->force, "Overwrite an existing --screenshot file");
+  app->add_option("--record-path", args->recordPath,
+                  "Record the camera of every frame drawn of FILE into PATH.json (written on exit; a camera path: "
+                  "`fccvdb bench stream FILE --path PATH.json` replays it, docs/VIEWER.md)");
+  app->add_flag("--force", args->force, "Overwrite an existing --screenshot or --record-path file");
   // Cartesian inputs are converted (and cached) without being asked now; the flag stays for old scripts.
   app->add_flag("--convert", args->convert, "Accepted for old scripts: Cartesian inputs are always converted")->group("");
   return {app, [args]() {
             int width = 0, height = 0;
             resolutionFromFlags(args->flags.res, width, height);
             if (!args->screenshot.empty()) checkOutputWritable(args->screenshot, args->force);
+            if (!args->recordPath.empty()) io::checkOutputPath(args->recordPath, args->force);
             // A bad camera file is one line before any window opens (it is read again for the camera).
             if (!args->flags.camera.empty()) render::readCameraFile(args->flags.camera);
 
@@ -132,6 +139,10 @@ Command addViewCommand(CLI::App& parent) {
               return session;
             };
             std::unique_ptr<render::ViewerSession> session = newSession(data);
+            // --record-path: the first file's frames (a file opened from the window ends the recording:
+            // a path belongs to the data it was recorded over).
+            render::CameraPathRecorder recorder(args->flags.file);
+            if (!args->recordPath.empty()) session->recordPath(&recorder);
             // Another file dropped on the window or typed after O replaces the dataset; the window,
             // budgets and layout stay. One that does not open leaves the old one, and says why.
             render::runOpeningFiles(
@@ -144,6 +155,11 @@ Command addViewCommand(CLI::App& parent) {
                   window.setTitle("fccvdb — " + path);
                   print("opened " + path);
                 });
+            if (!args->recordPath.empty()) {
+              if (recorder.path().points.empty()) throw Error("--record-path " + args->recordPath + ": no frame was drawn, nothing recorded");
+              render::writeCameraPathFile(args->recordPath, recorder.path(), args->force);
+              print("camera path of " + std::to_string(recorder.path().points.size()) + " frames written to " + args->recordPath);
+            }
             return 0;
           }};
 }

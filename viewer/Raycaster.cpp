@@ -342,7 +342,7 @@ std::vector<glm::ivec3> Raycaster::lastRequests() const {
   return level0;
 }
 
-LevelMix Raycaster::levelMix() const {
+LevelMix Raycaster::levelMix(uint32_t firstPass) const {
   LevelMix mix;
   mix.lodBias = lodBias();
   const int levels = levelCount();
@@ -354,7 +354,7 @@ LevelMix Raycaster::levelMix() const {
   else slotUse_->read(slotUse);
   for (uint32_t slot = 0; slot < residency_->slotCount(); ++slot) {
     const int64_t index = residency_->slotBrick(slot);
-    if (index < 0 || slotUse[slot] < viewFirstPass_) continue;
+    if (index < 0 || slotUse[slot] < firstPass) continue;
     const int level = residency_->levelOf(uint32_t(index));
     if (level < levels) ++mix.bricksPerLevel[std::size_t(level)];
   }
@@ -363,7 +363,7 @@ LevelMix Raycaster::levelMix() const {
     slotStandIn_->read(slotUse);
     for (uint32_t slot = 0; slot < residency_->slotCount(); ++slot) {
       const int64_t index = residency_->slotBrick(slot);
-      if (index >= 0 && slotUse[slot] >= viewFirstPass_) ++mix.standInBricksPerLevel[std::size_t(residency_->levelOf(uint32_t(index)))];
+      if (index >= 0 && slotUse[slot] >= firstPass) ++mix.standInBricksPerLevel[std::size_t(residency_->levelOf(uint32_t(index)))];
     }
     std::vector<uint32_t> hits(kMaxLodLevels);
     levelHits_->read(hits);
@@ -628,7 +628,7 @@ Raycaster::PassResult Raycaster::collectPass() {
   return result;
 }
 
-std::vector<LevelBrick> Raycaster::requestedBricks(uint32_t requestCount) const {
+std::vector<LevelBrick> Raycaster::requestedBricks(uint32_t requestCount, uint32_t* stopped) const {
   const uint32_t n = std::min(requestCount, requestCapacity_);
   const uint32_t copied = std::min(n, options_.requestsReadBack);
   std::vector<uint32_t> raw(passResults_ + kRequestsHeaderWords, passResults_ + kRequestsHeaderWords + copied);
@@ -642,6 +642,7 @@ std::vector<LevelBrick> Raycaster::requestedBricks(uint32_t requestCount) const 
   const auto add = [&](uint32_t index) { bricks.push_back(LevelBrick{residency_->brickAt(index), residency_->levelOf(index)}); };
   for (uint32_t r : raw)
     if (!(r & 0x80000000u)) add(r);
+  if (stopped) *stopped = uint32_t(bricks.size());
   for (uint32_t r : raw)
     if (r & 0x80000000u) add(r & 0x7FFFFFFFu);
   // Coarse levels first: a few coarse bricks give every waiting ray something to draw, finer ones
@@ -651,6 +652,12 @@ std::vector<LevelBrick> Raycaster::requestedBricks(uint32_t requestCount) const 
   // No more than the pool holds: every brick loaded in a pass keeps its slot through the pass.
   if (bricks.size() > residency_->slotCount()) bricks.resize(residency_->slotCount());
   return bricks;
+}
+
+uint64_t Raycaster::slotsUsedSince(uint32_t pass) const {
+  uint64_t n = 0;
+  for (uint32_t stamp : readSlotUse()) n += stamp > pass && stamp <= pass_;
+  return n;
 }
 
 std::vector<uint32_t> Raycaster::readSlotUse() const {
@@ -726,7 +733,10 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
   }
   // No glFinish: the last pass's read-back waited for every command of the frame.
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (options_.frameLevelMix || lodDrawing()) finishLevelMix(stats);  // the bias's rule reads it too
+  // The mix reads the slots' stamps back (4 bytes a slot), outside the frame's time; the bias's rule
+  // reads it too.
+  if (options_.countBricksDrawn || (lodDrawing() && autoBias_ > 0.0f)) finishLevelMix(stats);
+  stats.lodBias = lodBias();
   return stats;
 }
 
@@ -809,6 +819,7 @@ void Raycaster::startStep(const Camera& camera, int width, int height, double up
     requestCoarsest();
     stats.restarted = true;
   }
+  stats.bytesUploaded = uint64_t(stats.uploaded) * slotBlockFloats(source_.slotBlock()) * sizeof(float);
 
   stepStarted_ = true;
   if (stepComplete_) return;
@@ -828,7 +839,19 @@ StepStats Raycaster::finishStep() {
       stepComplete_ = true;
       if (lodDrawing() && autoBias_ > 0.0f) noteFrameUse(levelMix());
     } else {
-      loader_->request(lastRequests_ = requestedBricks(stats.requested));
+      loader_->request(lastRequests_ = requestedBricks(stats.requested, &stats.missing));
+    }
+    // Slots uploaded before the pass carry the pass before's stamp: only what the rays drew counts
+    // (with levels: the slots this pass drew from, wanted or stand-in, per level).
+    if (options_.countBricksDrawn) {
+      if (lodDrawing()) {
+        const LevelMix mix = levelMix(pass_);
+        stats.bricksPerLevel = mix.bricksPerLevel;
+        for (std::size_t k = 0; k < mix.standInBricksPerLevel.size(); ++k) stats.bricksPerLevel[k] += mix.standInBricksPerLevel[k];
+        stats.fullResolutionFraction = mix.fullResolutionFraction;
+      } else {
+        stats.bricksPerLevel = {slotsUsedSince(pass_ - 1)};
+      }
     }
   }
   stats.complete = stepComplete_;

@@ -74,6 +74,9 @@ struct RenderOptions {
   int lookahead = 2;       // bricks a stopped ray requests beyond its first missing one
   bool finiteDifferenceNormals = false;  // central differences instead of the analytic gradient
   bool timeGpu = false;    // time every raycasting pass on the GPU (FrameStats::gpuSeconds; benchmarks)
+  // Count the bricks each pass drew (StepStats/FrameStats::bricksPerLevel; `bench stream`): reads the
+  // pool slots' pass stamps back after the pass (4 bytes a slot), which the viewer does not pay for.
+  bool countBricksDrawn = false;
   // Requested bricks read back with a pass's header (16 KiB); a pass asking for more reads the rest
   // from the buffer itself, which waits for anything queued after the pass. (Tests lower it.)
   uint32_t requestsReadBack = 4096;
@@ -97,9 +100,6 @@ struct RenderOptions {
   // frame wants, instead of streaming them through it pass after pass; lower it back once a frame
   // uses under an eighth of the pool.
   bool lodAdaptBias = true;
-  // Fill FrameStats' level mix after each render(): reads every slot's last use back (4 bytes a slot;
-  // outside FrameStats::seconds). Benchmarks timing full resolution turn it off.
-  bool frameLevelMix = true;
 };
 
 // The most pyramid levels the raycaster draws (shaders/raycast.comp's FCC_MAX_LEVELS).
@@ -148,8 +148,10 @@ struct FrameStats {
   uint64_t bricksNeeded = 0;     // bricks whose bounds hold the isovalue (every level's)
   double seconds = 0.0;
   double gpuSeconds = 0.0;       // the passes on the GPU alone (RenderOptions::timeGpu; else 0)
-  std::vector<uint64_t> bricksPerLevel;  // LevelMix::bricksPerLevel
-  double fullResolutionFraction = 1.0;   // LevelMix::fullResolutionFraction
+  // Bricks drawn per level of detail, level 0 first (LevelMix::bricksPerLevel), and the share of hit
+  // pixels drawn from level 0: RenderOptions::countBricksDrawn (else empty and 1).
+  std::vector<uint64_t> bricksPerLevel;
+  double fullResolutionFraction = 1.0;
   double lodBias = 0.0;                  // LevelMix::lodBias at the frame's end
   int lodRestarts = 0;                   // times the frame started over with a raised bias
 };
@@ -159,10 +161,16 @@ struct StepStats {
   bool restarted = false;      // the view or a setting changed: every ray started over
   bool complete = false;       // every ray has finished: the image is final for this view
   bool dispatched = false;     // a pass ran (a complete frame needs none)
-  uint32_t requested = 0;      // bricks the pass's rays asked for
+  uint32_t requested = 0;      // bricks the pass's rays asked for (where they stopped, and look-ahead)
+  uint32_t missing = 0;        // of those, the bricks rays stopped at: their pixels wait for them
   uint32_t uploaded = 0;       // bricks uploaded into the pool this step
+  uint64_t bytesUploaded = 0;  // the blocks of those bricks, as staged for the GPU
   std::size_t streaming = 0;   // bricks queued or decoding on the loader thread
   double gpuSeconds = 0.0;     // the pass on the GPU alone (RenderOptions::timeGpu; else 0)
+  // Resident bricks the pass's rays drew, per level of detail, level 0 first
+  // (RenderOptions::countBricksDrawn; else empty). One level so far.
+  std::vector<uint64_t> bricksPerLevel;
+  double fullResolutionFraction = 1.0;  // share of hit pixels drawn from level-0 bricks (1: one level)
 };
 
 class Raycaster {
@@ -235,7 +243,8 @@ class Raycaster {
   // GPU's per-slot use: not for every frame of a benchmark).
   int levelCount() const { return lodDrawing() ? residency_->levelCount() : 1; }
   double lodBias() const { return double(options_.lodBias) + double(autoBias_); }
-  LevelMix levelMix() const;
+  LevelMix levelMix() const { return levelMix(viewFirstPass_); }
+  LevelMix levelMix(uint32_t firstPass) const;  // counting the slots drawn from pass `firstPass` on
   // Whether every needed brick of the coarsest level is resident (a progressive frame's rays never
   // wait for a brick after that; true without levels).
   bool coarsestResident() const;
@@ -246,7 +255,7 @@ class Raycaster {
   void setFiniteDifferenceNormals(bool on);
   void setSurfaceColor(const glm::vec3& rgb);
   void setLightInCamera(const glm::vec3& direction);
-  void setFrameLevelMix(bool on) { options_.frameLevelMix = on; }
+  void setCountBricksDrawn(bool on) { options_.countBricksDrawn = on; }
 
  private:
   Raycaster(std::unique_ptr<BrickSource> owned, const RenderOptions& options);  // keeps `owned`
@@ -267,7 +276,10 @@ class Raycaster {
   static constexpr std::size_t kRequestsHeaderWords = kPassResultsHeaderBytes / sizeof(uint32_t);
   void dispatchPass(const CameraFrame& frame, int width, int height, int firstColumn);
   PassResult collectPass();  // waits for the pass dispatched last and reads what it tells the host
-  std::vector<LevelBrick> requestedBricks(uint32_t requestCount) const;  // after collectPass()
+  // After collectPass(): the bricks rays stopped at first (`stopped` of them), then look-ahead ones;
+  // with levels, coarsest level first.
+  std::vector<LevelBrick> requestedBricks(uint32_t requestCount, uint32_t* stopped = nullptr) const;
+  uint64_t slotsUsedSince(uint32_t pass) const;  // slots stamped by a pass after `pass`
   uint32_t upload(const std::vector<LoadedBrick>& loaded);  // after residency_->startAssigning
   std::vector<uint32_t> readSlotUse() const;
   void uploadPageTable();  // the whole page and node tables (a new isovalue or skip setting)

@@ -303,6 +303,7 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   fbHeight_ = fbHeight;
   windowHeight_ = windowHeight;
   handleInput(windowHeight);
+  if (pathRecorder_) pathRecorder_->record(camera_);  // the camera this frame renders
   panelWidth_ = kPanelWidth * ImGui::GetIO().FontGlobalScale;
   // The panel is opaque: the columns wholly under it get no rays and no image. Framebuffer pixels
   // per window unit: fbHeight / windowHeight.

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "Camera.h"
+#include "CameraPath.h"
 #include "CursorProbe.h"
 #include "DatasetSummary.h"
 #include "DvrTransfer.h"
@@ -160,6 +161,9 @@ class ViewerSession {
 
   const Camera& camera() const { return camera_; }
   void setCamera(const Camera& camera) { camera_ = camera; }
+  // `view --record-path`: every frame from now on records the camera it renders into `recorder`
+  // (null: stop). The recorder outlives the session or is replaced first.
+  void recordPath(CameraPathRecorder* recorder) { pathRecorder_ = recorder; }
   const ViewerSettings& settings() const { return settings_; }
   ViewerSettings& settings() { return settings_; }
   const ViewerStats& stats() const { return stats_; }
@@ -219,6 +223,7 @@ class ViewerSession {
   float panelWidth_ = 0.0f;
   int fbWidth_ = 0, fbHeight_ = 0, windowHeight_ = 0;  // of the last frame
   bool screenshotRequested_ = false;
+  CameraPathRecorder* pathRecorder_ = nullptr;
   std::optional<std::string> openRequest_;
   struct OpenField {
     bool shown = false, focus = false;

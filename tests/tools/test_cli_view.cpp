@@ -247,5 +247,29 @@ TEST(CliView, RawInputTakesDimsAndTypeAndScreenshotNeedsForce) {
   EXPECT_EQ(std::filesystem::last_write_time(shot), written) << "overwritten without --force";
 }
 
+
+// `view --record-path` writes the camera of every frame on exit (here after --screenshot's frames, at
+// least --frames of them), in the format `bench stream --path` reads; an existing file needs --force,
+// refused in one line before the window opens.
+TEST(CliView, RecordPathWritesEveryFrameOnExit) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
+  TempDir dir;
+  const std::string vdb = dir / "blobs.vdb", shot = dir / "view.png", path = dir / "path.json";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 48,48,48 --quiet").status, 0);
+  const CommandResult view = runView(vdb + " --res 480x270 --screenshot " + shot + " --frames 4 --record-path " + path);
+  ASSERT_EQ(view.status, 0) << view.err;
+  EXPECT_NE(view.out.find("camera path of"), std::string::npos) << view.out;
+  EXPECT_EQ(test::checkJsonWithPython(dir, test::readText(path),
+                                      "f = rows['frames']\nassert rows['fccvdb_camera_path'] == 1\n"
+                                      "assert len(f) >= 4, len(f)\n"
+                                      "assert all(a['t'] <= b['t'] for a, b in zip(f, f[1:]))\n"
+                                      "assert all(x['eye'] == f[0]['eye'] for x in f)  # no input: the camera stayed\n"),
+            0);
+  const CommandResult again = runView(vdb + " --res 480x270 --screenshot " + (dir / "b.png") + " --frames 1 --record-path " + path);
+  EXPECT_NE(again.status, 0);
+  EXPECT_EQ(lineCount(again.err), 1) << again.err;
+  EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+}
+
 }  // namespace
 }  // namespace fcc

@@ -79,6 +79,7 @@ render::RenderOptions isoOptions(std::size_t gpuBytes = std::size_t(256) << 20) 
   render::RenderOptions o;
   o.iso = kIso;
   o.gpuCacheBytes = gpuBytes;
+  o.countBricksDrawn = true;
   return o;
 }
 

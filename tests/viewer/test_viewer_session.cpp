@@ -14,6 +14,7 @@
 #include "SessionHarness.h"
 #include "tests/tools/ExrRead.h"
 #include "viewer/CameraFile.h"
+#include "viewer/CameraPath.h"
 #include "viewer/HistogramAxis.h"
 #include "viewer/OpenAnotherFile.h"
 #include "viewer/OrbitControls.h"
@@ -602,6 +603,66 @@ TEST_F(ViewerSession, SecondSurfaceFromThePanelShowsAndGoesAgain) {
   std::printf("second surface: %d channels changed; removed: %d differ from the single surface's image\n", changed,
               differingChannels(single, h.pixels(), panel));
   EXPECT_EQ(differingChannels(single, h.pixels(), panel), 0) << "removed: the single surface's image again";
+}
+
+
+// `view --record-path`: the session records the camera of every frame it draws (the mouse's orbit
+// included), the file comes back with those cameras, and `bench stream --path` replays it: in real
+// time at the frame budget without --frames, or over --frames frames.
+TEST_F(ViewerSession, RecordedPathHoldsEveryFrameAndReplaysInBenchStream) {
+  TempDir dir;
+  const std::string blobs = test::writeSmallBlobs(dir);
+  SessionHarness h(blobs);
+  render::CameraPathRecorder recorder(blobs);
+  h.session->recordPath(&recorder);
+  std::vector<render::Camera> shown;
+  const float x = SessionHarness::kWidth - 60.0f, y = 120.0f;
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(x, y); });
+  shown.push_back(h.session->camera());
+  h.frame([&](ImGuiIO& io) { io.MouseDown[0] = true; });
+  shown.push_back(h.session->camera());
+  for (int i = 1; i <= 6; ++i) {  // a drag: the camera orbits a little every frame
+    h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(x + 15.0f * i, y); });
+    shown.push_back(h.session->camera());
+  }
+  h.frame([&](ImGuiIO& io) { io.MouseDown[0] = false; });
+  shown.push_back(h.session->camera());
+  h.session->recordPath(nullptr);
+  h.frame();  // not recorded
+  const render::CameraPath& path = recorder.path();
+  ASSERT_EQ(path.points.size(), shown.size());
+  for (std::size_t i = 0; i < shown.size(); ++i) {
+    EXPECT_EQ(path.points[i].camera.eye, shown[i].eye) << i;
+    if (i) EXPECT_GE(path.points[i].seconds, path.points[i - 1].seconds);
+  }
+  EXPECT_NE(shown.front().eye, shown.back().eye) << "the drag moved nothing: nothing was recorded of it";
+
+  const std::string file = dir / "path.json";
+  render::writeCameraPathFile(file, path, false);
+  const render::CameraPath back = render::readCameraPathFile(file);
+  ASSERT_EQ(back.points.size(), shown.size());
+  EXPECT_EQ(back.points.back().camera.eye, shown.back().eye);
+
+  const std::string json = dir / "replay.json";
+  const test::CommandResult r = test::runFccvdb("bench stream " + blobs + " --path " + file +
+                                                " --res 64x48 --gpu-cache 4 --host-cache 4 --frame-budget-ms 100 --json " + json);
+  if (test::failedForLackOfGl(r)) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
+  // Real time: a frame every 100 ms of the recording's duration.
+  const int expected = int(std::floor(back.duration() / 0.1 + 1e-9)) + 1;
+  EXPECT_EQ(test::checkJsonWithPython(dir, test::readText(json),
+                                      "assert rows['frames'] == " + std::to_string(expected) + ", rows['frames']\n"
+                                      "assert len(rows['runs'][0]['frames']) == rows['frames']\n"
+                                      "assert rows['path'].endswith('path.json')\n"),
+            0);
+  const std::string json5 = dir / "replay5.json";
+  const test::CommandResult r5 = test::runFccvdb("bench stream " + blobs + " --path " + file +
+                                                 " --res 64x48 --frames 5 --gpu-cache 4 --host-cache 4 --frame-budget-ms 1 --json " + json5);
+  ASSERT_EQ(r5.status, 0) << r5.err;
+  EXPECT_EQ(test::checkJsonWithPython(dir, test::readText(json5),
+                                      "f = rows['runs'][0]['frames']\nassert len(f) == 5, len(f)\n"
+                                      "assert f[0]['restarted'] and sum(x['bricks_uploaded'] for x in f) > 0\n"),
+            0);
 }
 
 }  // namespace
