@@ -191,7 +191,7 @@ Command addBenchStreamCommand(CLI::App& bench) {
             resolutionFromFlags(flags.res, width, height);
 
             // The data once, its caches unused (each run makes its own at its budget).
-            const RenderData data(flags, std::size_t(1) << 20, false);
+            RenderData data(flags, std::size_t(1) << 20, false);
             render::RenderOptions options = renderOptionsFromFlags(flags);
             const float iso = data.iso(flags).value;
             options.iso = iso;
@@ -200,6 +200,8 @@ Command addBenchStreamCommand(CLI::App& bench) {
               data.warnIfIsoOutside(iso);
               setSurfaces(options, surfacesFromFlags(flags, io::IsoChoice{iso, "--iso"}));
             }
+            // --lod-bias: the pyramid's levels (their host caches are kept across runs: only level 0's is fresh).
+            data.applyLevels(flags, /*levelsByDefault=*/false, false, options);
             options.countBricksDrawn = true;
             const render::Camera start = data.camera(flags, double(width) / height);
 
