@@ -28,6 +28,19 @@ BrickCache::BrickCache(const BrickStore& store, std::size_t budgetBytes)
   bricksPerShard_ = budgetBytes / kBytesPerBrick / shards_.size();
 }
 
+void BrickCache::setBudgetBytes(std::size_t budgetBytes) {
+  budgetBytes_ = budgetBytes;
+  const std::size_t perShard = budgetBytes / kBytesPerBrick / shards_.size();
+  bricksPerShard_ = perShard;
+  for (Shard& shard : shards_) {
+    std::lock_guard<std::mutex> lock(shard.mutex);
+    while (!shard.lru.empty() && shard.entries.size() > perShard) {
+      shard.entries.erase(shard.lru.back());
+      shard.lru.pop_back();
+    }
+  }
+}
+
 BrickContent BrickCache::content(const glm::ivec3& brick) {
   BrickContent c;
   if (store_.hasLeaf(brick)) c.leaf = leafValues(brick);

@@ -49,7 +49,10 @@ class BrickCache : public BrickValuesSource {
   // returned values stay valid while held, even if evicted meanwhile.
   BrickContent content(const glm::ivec3& brick) override;
 
-  std::size_t budgetBytes() const { return budgetBytes_; }
+  std::size_t budgetBytes() const { return budgetBytes_.load(std::memory_order_relaxed); }
+  // A new budget, evicting least recently used bricks now if the cache holds more (the renderer gives
+  // part of --host-cache to the coarser levels of a pyramid once it knows the file has them).
+  void setBudgetBytes(std::size_t budgetBytes);
   std::size_t bytesUsed() const;
   uint64_t decodedCount() const { return decoded_.load(std::memory_order_relaxed); }  // bricks decoded so far
   uint64_t hitCount() const { return hits_.load(std::memory_order_relaxed); }
@@ -71,8 +74,8 @@ class BrickCache : public BrickValuesSource {
   Shard& shardOf(uint64_t key) { return shards_[(key * 0x9E3779B97F4A7C15ull) >> 54 & (shards_.size() - 1)]; }
 
   const BrickStore& store_;
-  std::size_t budgetBytes_;
-  std::size_t bricksPerShard_;
+  std::atomic<std::size_t> budgetBytes_;
+  std::atomic<std::size_t> bricksPerShard_;
   std::vector<Shard> shards_;  // a power of two of them
   std::atomic<uint64_t> decoded_{0}, hits_{0};
 };

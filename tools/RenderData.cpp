@@ -81,7 +81,10 @@ int RenderData::applyLevels(const RenderFlags& flags, bool levelsByDefault, bool
     note("--mode " + render::renderModeName(options.mode) + " draws level 0 only so far");
     return 1;
   }
-  if (!levels_) levels_ = std::make_unique<render::PyramidLevels>(*fccStore_, options.hostCacheBytes);
+  if (!levels_ || levels_->builtForHostBytes() != options.hostCacheBytes)
+    levels_ = std::make_unique<render::PyramidLevels>(*fccStore_, options.hostCacheBytes);
+  // --host-cache is the total: level 0's cache gives the coarser levels their share.
+  static_cast<render::FccBrickSource&>(*source_).setHostCacheBytes(options.hostCacheBytes - levels_->hostCacheBytes());
   if (levels_->size() == 0) {
     note(fccStore_->path() + " has no pyramid (`fccvdb pyramid` adds one)");
     return 1;

@@ -44,6 +44,9 @@ class RenderData {
   // Returns the levels drawn (1: full resolution). A note on stderr (unless `quiet`) when --lod-bias
   // names a file without a pyramid, or a mode that draws full resolution only.
   int applyLevels(const RenderFlags& flags, bool levelsByDefault, bool quiet, render::RenderOptions& options);
+  // Closes the pyramid's levels (and their host caches): the next applyLevels opens them afresh.
+  // Raycasters given their sources must be gone.
+  void closeLevels() { levels_.reset(); }
   // Damaged bricks met so far (FCC files: rendered as holes; a damaged Cartesian leaf fails the frame).
   io::BrickStore::Damage damage() const;
 

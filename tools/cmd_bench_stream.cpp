@@ -200,7 +200,8 @@ Command addBenchStreamCommand(CLI::App& bench) {
               data.warnIfIsoOutside(iso);
               setSurfaces(options, surfacesFromFlags(flags, io::IsoChoice{iso, "--iso"}));
             }
-            // --lod-bias: the pyramid's levels (their host caches are kept across runs: only level 0's is fresh).
+            // --lod-bias: the pyramid's levels; opened again for every run below, with fresh host caches
+            // shared out of that run's --host-cache.
             data.applyLevels(flags, /*levelsByDefault=*/false, false, options);
             options.countBricksDrawn = true;
             const render::Camera start = data.camera(flags, double(width) / height);
@@ -246,6 +247,8 @@ Command addBenchStreamCommand(CLI::App& bench) {
               for (std::size_t hostBytes : hostBudgets) {
                 options.gpuCacheBytes = gpuBytes;
                 options.hostCacheBytes = hostBytes;
+                data.closeLevels();
+                data.applyLevels(flags, /*levelsByDefault=*/false, /*quiet=*/true, options);
                 // Fresh caches a run: FCC data gets a host cache of this budget (a Cartesian grid has none).
                 std::unique_ptr<render::Raycaster> made =
                     data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), options)

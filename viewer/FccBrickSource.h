@@ -20,6 +20,7 @@ class FccBrickSource : public BrickSource {
 
   const io::BrickStore& store() const { return store_; }
   const io::BrickCache& cache() const { return *cache_; }
+  void setHostCacheBytes(std::size_t bytes) { cache_->setBudgetBytes(bytes); }
 
   const std::string& path() const override { return store_.path(); }
   const ReconstructionInfo& reconstruction() const override;

@@ -11,7 +11,7 @@
 
 namespace fcc::render {
 
-PyramidLevels::PyramidLevels(const io::BrickStore& level0, std::size_t hostCacheBytes) {
+PyramidLevels::PyramidLevels(const io::BrickStore& level0, std::size_t hostCacheBytes) : builtFor_(hostCacheBytes) {
   std::vector<std::string> names;
   for (const io::VdbGridEntry& g : io::VdbLeafReader::listGrids(level0.path())) names.push_back(g.name);
   const std::string base = level0.index().getName();
@@ -31,7 +31,8 @@ PyramidLevels::PyramidLevels(const io::BrickStore& level0, std::size_t hostCache
     if (worst > 1e-9 * std::max(scale, 1.0))
       throw InputError(level0.path() + ": pyramid level " + name + "'s transform is not level 0's scaled by " +
                        std::to_string(1 << k) + " (rebuild it with `fccvdb pyramid`)");
-    const std::size_t budget = std::max<std::size_t>(hostCacheBytes >> (k + 1), std::size_t(4) << 20);
+    const std::size_t budget = hostCacheBytes >> (3 * k);
+    hostCacheBytes_ += budget;
     sources_.push_back(std::make_unique<FccBrickSource>(*store, budget));
     stores_.push_back(std::move(store));
   }

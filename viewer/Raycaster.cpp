@@ -37,8 +37,18 @@ BrickLayout chooseBrickLayout(const BrickSource& source, std::size_t gpuCacheByt
   return scalarBytes <= gpuCacheBytes ? BrickLayout::TextureScalar : BrickLayout::TextureVec4;
 }
 
+namespace {
+// Level 0's share of --host-cache: what the pyramid's coarser levels (which have caches of their own,
+// render::PyramidLevels) leave of it.
+std::size_t levelZeroHostBytes(const RenderOptions& options) {
+  std::size_t coarser = 0;
+  for (const BrickSource* level : options.coarserLevels) coarser += level->hostCacheUse().budgetBytes;
+  return options.hostCacheBytes > coarser ? options.hostCacheBytes - coarser : 0;
+}
+}  // namespace
+
 Raycaster::Raycaster(const io::BrickStore& store, const RenderOptions& options)
-    : Raycaster(std::make_unique<FccBrickSource>(store, options.hostCacheBytes), options) {}
+    : Raycaster(std::make_unique<FccBrickSource>(store, levelZeroHostBytes(options)), options) {}
 
 Raycaster::Raycaster(std::unique_ptr<BrickSource> owned, const RenderOptions& options)
     : Raycaster(*owned, options) {

@@ -225,7 +225,16 @@ class Raycaster {
   static constexpr std::size_t kPassResultsHeaderBytes = 5 * sizeof(uint32_t);
 
   uint32_t slotCount() const { return residency_->slotCount(); }
-  HostCacheUse hostCacheUse() const { return source_.hostCacheUse(); }
+  // Of every level drawn: level 0's source and the pyramid's coarser levels.
+  HostCacheUse hostCacheUse() const {
+    HostCacheUse sum;
+    for (const BrickSource* level : levelSources_) {
+      const HostCacheUse use = level->hostCacheUse();
+      sum.bytesUsed += use.bytesUsed;
+      sum.budgetBytes += use.budgetBytes;
+    }
+    return sum;
+  }
   const BrickSource& source() const { return source_; }
   uint32_t residentCount() const { return residency_->residentCount(); }
   std::size_t neededCount() const { return residency_->neededCount(); }

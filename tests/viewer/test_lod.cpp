@@ -140,6 +140,32 @@ TEST_F(Lod, BiasDrawsCoarserLevelsAndTheMixSaysSo) {
   EXPECT_GT(agree, kW * kH * 95 / 100) << "the coarsest sphere covers nearly the same pixels";
 }
 
+// --host-cache is the total over every level: the coarser levels take level k's share, 1/8^k of it,
+// and level 0's cache the rest; what the caches hold after a frame drawn from several levels stays
+// within it.
+TEST_F(Lod, HostCacheBudgetIsSharedByTheLevels) {
+  TempDir dir;
+  const SphereFiles files = writeSpheres(dir);
+  constexpr std::size_t kHostBytes = std::size_t(2) << 20;  // smaller than the data: caches fill up
+  const io::BrickStore store(files.pyramid);
+  const render::PyramidLevels levels(store, kHostBytes);
+  ASSERT_GE(levels.size(), 2u);
+  std::size_t expected = 0;
+  for (std::size_t k = 1; k <= levels.size(); ++k) expected += kHostBytes >> (3 * k);
+  EXPECT_EQ(levels.hostCacheBytes(), expected);
+  EXPECT_LT(levels.hostCacheBytes(), kHostBytes / 7 + 1);
+  render::RenderOptions lod = isoOptions();
+  lod.hostCacheBytes = kHostBytes;
+  lod.coarserLevels = levels.sources();
+  lod.lodBias = 1.0f;  // some bricks at level 0, some coarser
+  render::Raycaster raycaster(store, lod);
+  EXPECT_EQ(raycaster.hostCacheUse().budgetBytes, kHostBytes);
+  const render::FrameStats stats = raycaster.render(nearCamera(), kW, kH);
+  const render::HostCacheUse use = raycaster.hostCacheUse();
+  EXPECT_GT(use.bytesUsed, 0u);
+  EXPECT_LE(use.bytesUsed, kHostBytes) << "levels drawn: " << stats.bricksPerLevel.size();
+}
+
 // Progressive steps over a pool of a few dozen slots (the bias kept at 0): coarse first, finer bricks
 // replacing them. What is tested, precisely: once the coarsest level is resident and one pass has run
 // with it, every pixel that the converged image hits and whose 8 neighbours it hits too (the
