@@ -34,7 +34,9 @@ void ViewerSession::drawHistogram() {
   const ImVec2 pad = ImGui::GetStyle().FramePadding;
   const float x0 = outerLo.x + pad.x, x1 = outerHi.x - pad.x;
   const auto positionOfMouse = [&] { return x1 > x0 ? (ImGui::GetIO().MousePos.x - x0) / (x1 - x0) : 0.5f; };
-  if (ImGui::IsItemHovered()) {
+  const bool plotHovered = ImGui::IsItemHovered();
+  if (dvr_) ImGui::SetItemAllowOverlap();  // the transfer-function editor's button over it takes the mouse
+  if (plotHovered) {
     // Replaces ImGui's own tooltip (the bin's index and log count).
     const int bin = axis.binAt(positionOfMouse());
     char tip[128];
@@ -50,6 +52,7 @@ void ViewerSession::drawHistogram() {
   }
   if (dvr_) {
     drawOpacityCurve(x0, x1, outerHi.y - pad.y, outerLo.y + pad.y);
+    editOpacityPoints(x0, x1, outerHi.y - pad.y, outerLo.y + pad.y, axis.min, axis.max);  // viewer/PanelTransfer.cpp
   } else if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
     // Where a surface can be: the samples' range may reach past the spline's.
     // The selected surface's isovalue (the Surfaces section selects it).

@@ -234,5 +234,41 @@ TEST_F(RenderDvr, SkippingAndSmallCachesChangeNothing) {
   EXPECT_GT(visible, w * h / 10);
 }
 
+// Another transfer function on a live renderer (the viewer's editor) gives the image a new renderer
+// with it gives, bit for bit; one whose zero entries did not move (other colours, other non-zero
+// opacities) uploads the table alone: no recomputation of the bricks needed.
+TEST_F(RenderDvr, NewTransferFunctionOnALiveRendererIsItsImage) {
+  TempDir dir;
+  const std::string path = test::writeSmallBlobs(dir);
+  const render::Camera camera = test::smallBlobsCamera();
+  const int w = 48, h = 48;
+  const io::BrickStore store(path);
+  const render::FccBrickSource source(store, std::size_t(64) << 20);
+  const TransferTable first = rampTable(0.2, 1.0, 2.0);
+  // The same zeros (below 0.2), other colours and opacities above them.
+  const TransferFunction recoloured({{0.2, {0.9, 0.1, 0.1}}, {1.0, {0.1, 0.9, 0.3}}}, {{0.2, 0.0}, {0.5, 0.9}, {1.0, 0.3}});
+  const TransferTable second(recoloured, first.vmin(), first.vmax(), first.size(), OpticalScale{2.0, 1.0});
+  ASSERT_EQ(second.nonZeroPrefix(), first.nonZeroPrefix());
+  // Zero up to 0.5 over the same range: fewer bricks.
+  const TransferFunction narrower({{0.2, {0.9, 0.1, 0.1}}, {1.0, {0.1, 0.9, 0.3}}}, {{0.5, 0.0}, {1.0, 0.6}});
+  const TransferTable third(narrower, first.vmin(), first.vmax(), first.size(), OpticalScale{2.0, 1.0});
+  ASSERT_NE(third.nonZeroPrefix(), first.nonZeroPrefix());
+
+  render::Raycaster live(source, dvrOptions(first));
+  live.render(camera, w, h);
+  const render::FrameImages firstImage = live.readImages();
+  const uint64_t updates = live.neededUpdates();
+  live.setTransfer(std::make_shared<const TransferTable>(second));
+  EXPECT_EQ(live.neededUpdates(), updates) << "the same zero entries: the bricks needed were recomputed";
+  live.render(camera, w, h);
+  const render::FrameImages secondImage = live.readImages();
+  EXPECT_NE(secondImage.rgba, firstImage.rgba) << "the new colours must show";
+  EXPECT_EQ(secondImage.rgba, renderSource(source, camera, w, h, dvrOptions(second)).rgba);
+  live.setTransfer(std::make_shared<const TransferTable>(third));
+  EXPECT_GT(live.neededUpdates(), updates) << "zero entries moved: the bricks needed must be recomputed";
+  live.render(camera, w, h);
+  EXPECT_EQ(live.readImages().rgba, renderSource(source, camera, w, h, dvrOptions(third)).rgba);
+}
+
 }  // namespace
 }  // namespace fcc
