@@ -68,6 +68,7 @@ RenderFlags flagsForAnotherFile(const RenderFlags& first, const std::string& pat
   f.unitDistance = first.unitDistance;
   f.densityScale = first.densityScale;
   f.terminationOpacity = first.terminationOpacity;
+  f.shading = first.shading;
   return f;
 }
 
@@ -118,6 +119,7 @@ Command addViewCommand(CLI::App& parent) {
               options.iso = d.iso;
               if (!d.surfaces.empty()) setSurfaces(options, d.surfaces);
               options.terminationOpacity = float(flags.terminationOpacity);
+              options.dvrShading = flags.shading == "on";
               const io::BrickStore* store = d.data->fccStore();
               auto session = std::make_unique<render::ViewerSession>(
                   d.data->source(), store, options, d.data->camera(flags, window.aspect()),

@@ -27,18 +27,14 @@ ImRectF lastRect() {
 
 }  // namespace
 
-// Over the histogram's frame (layout_.histogram), an invisible button takes the mouse: the value axis
-// is the histogram's, [axisMin, axisMax] from x0 to x1, the opacity 0 at yLo and 1 at yHi.
-void ViewerSession::editOpacityPoints(float x0, float x1, float yLo, float yHi, float axisMin, float axisMax) {
+// Over the histogram's frame (layout_.histogram), an invisible button takes the mouse (drawHistogram
+// submits it: hoveredItem, active): the value axis is the histogram's, [axisMin, axisMax] from x0 to
+// x1, the opacity 0 at yLo and 1 at yHi.
+void ViewerSession::editOpacityPoints(float x0, float x1, float yLo, float yHi, float axisMin, float axisMax,
+                                     bool hoveredItem, bool active) {
   layout_.opacityPoints.clear();
   if (!(x1 > x0) || !(yLo > yHi) || !(axisMax > axisMin)) return;
   const ImRectF frame = layout_.histogram;
-  const ImVec2 after = ImGui::GetCursorScreenPos();
-  ImGui::SetCursorScreenPos(ImVec2(frame.x0, frame.y0));
-  ImGui::InvisibleButton("##opacity points", ImVec2(frame.x1 - frame.x0, frame.y1 - frame.y0),
-                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
-  const bool hoveredItem = ImGui::IsItemHovered(), active = ImGui::IsItemActive();
-  ImGui::SetCursorScreenPos(after);  // the rest of the section follows the histogram as before
 
   const ImGuiIO& io = ImGui::GetIO();
   const double valuePerPixel = double(axisMax - axisMin) / double(x1 - x0);
@@ -65,9 +61,6 @@ void ViewerSession::editOpacityPoints(float x0, float x1, float yLo, float yHi, 
     editor_->remove(ImGui::IsMouseClicked(ImGuiMouseButton_Right) ? hovered : target);  // never the last point
     dragPoint_ = -1;
   }
-  if (hoveredItem || active)
-    ImGui::SetTooltip("click: add a point; drag: move it; right-click or Delete: remove it\n%d opacity points",
-                      int(editor_->points().size()));
 
   // The points as handles: a light disc in a dark ring, the one under the mouse or held larger.
   ImDrawList& draw = *ImGui::GetWindowDrawList();

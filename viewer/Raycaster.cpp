@@ -70,7 +70,8 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source.reconstruction().deviceId) + "\n";
   const bool dvr = options.mode == RenderMode::Dvr;
   if (dvr && !options.transfer) throw ValueError("direct volume rendering needs a transfer function");
-  const std::string modeDefines = dvr ? "#define FCC_MODE_DVR 1\n" : "";
+  const std::string modeDefines =
+      dvr ? std::string("#define FCC_MODE_DVR 1\n") + (options.dvrShading ? "#define FCC_DVR_SHADING 1\n" : "") : "";
   const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
                                    "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
   raycastDefines_ = defines + modeDefines + groupDefines;

@@ -55,6 +55,7 @@ struct RenderOptions {
   // RenderMode::Dvr: the transfer function as the GPU reads it (sparse/TransferFunction.h; its optical
   // scale applied); bricks and cells whose values it maps to zero extinction are skipped.
   std::shared_ptr<const TransferTable> transfer;
+  bool dvrShading = false;  // DVR: gradient shading (shaders/dvr.glsl, FCC_DVR_SHADING; docs/DVR.md)
   float terminationOpacity = 0.995f;  // DVR: a ray stops once this opaque (and asks for no brick behind)
   // The clipping box, world space: rays are cut to it and bricks outside it are never loaded. The
   // default holds everything.

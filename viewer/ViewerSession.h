@@ -200,7 +200,8 @@ class ViewerSession {
   void drawOpacityCurve(float x0, float x1, float yLo, float yHi);  // viewer/PanelHistogram.cpp
   // viewer/PanelTransfer.cpp: the opacity points over the histogram (mouse and Delete), and the
   // colour-map combo, file field, Load and Save below it.
-  void editOpacityPoints(float x0, float x1, float yLo, float yHi, float axisMin, float axisMax);
+  void editOpacityPoints(float x0, float x1, float yLo, float yHi, float axisMin, float axisMax, bool hovered,
+                         bool active);
   void drawTransferFiles();
   TransferFunction baseFunction(const std::string& name) const;  // a preset, --tf's or a loaded one, fitted
   void addColorMapsOf(const std::string& spec);  // a ParaView file's maps, for the colour-map combo
