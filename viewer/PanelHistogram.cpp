@@ -48,7 +48,7 @@ void ViewerSession::drawHistogram() {
   if (plotHovered) {
     // Replaces ImGui's own tooltip (the bin's index and log count).
     const int bin = axis.binAt(positionOfMouse());
-    char tip[128];
+    char tip[256];
     const double v = axis.valueAt(positionOfMouse());
     if (dvr_)
       std::snprintf(tip, sizeof tip,
