@@ -547,70 +547,6 @@ TEST_F(ViewerSession, DvrShowsTheVolumeAndThePanelChangesTheTransferFunction) {
   EXPECT_NE(h.session->notice().find("density scale"), std::string::npos) << h.session->notice();
 }
 
-// The panel's clipping box: dragging a range cuts the image (fewer pixels show the blobs); "no
-// clipping" gives the unclipped image back, bit for bit.
-TEST_F(ViewerSession, ClippingBoxCutsTheViewAndComesBack) {
-  TempDir dir;
-  SessionHarness h(test::writeSmallBlobs(dir));
-  ASSERT_TRUE(h.settle());
-  const int panel = int(std::ceil(h.session->panelWidth()));
-  const std::vector<unsigned char> whole = h.pixels();
-  const int shown = pixelsNotBackground(whole, h.session->settings().background, panel);
-  h.session->settings().clipLo = glm::dvec3(-1e30);
-  h.session->settings().clipHi = glm::dvec3(48.0, 1e30, 1e30);  // the blobs' half x < 48
-  ASSERT_TRUE(h.settle());
-  const int cut = pixelsNotBackground(h.pixels(), h.session->settings().background, panel);
-  std::printf("clip: %d pixels show the blobs, %d with the half box\n", shown, cut);
-  EXPECT_LT(cut, shown) << "half the blobs must show fewer pixels";
-  EXPECT_GT(cut, 0);
-  h.session->settings().clipHi = glm::dvec3(1e30);
-  ASSERT_TRUE(h.settle());
-  EXPECT_EQ(differingChannels(whole, h.pixels(), panel), 0) << "no box: the unclipped image again";
-}
-
-// The panel's Surfaces section: "add surface" adds a second, translucent surface (selected, so the
-// isovalue keys move it and not the first), which changes the image; "remove" takes it away and the
-// image is the single surface's again, pixel for pixel.
-TEST_F(ViewerSession, SecondSurfaceFromThePanelShowsAndGoesAgain) {
-  TempDir dir;
-  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes);
-  ASSERT_TRUE(h.settle());
-  const int panel = int(std::ceil(h.session->panelWidth()));
-  const std::vector<unsigned char> single = h.pixels();
-  const render::ImRectF add = h.session->panelLayout().addSurface;
-  ASSERT_FALSE(add.empty());
-  ASSERT_LT(add.y1, float(SessionHarness::kHeight)) << "the button must be on screen for the click";
-  h.click(add.centreX(), add.centreY());
-  ASSERT_EQ(h.session->settings().moreSurfaces.size(), 1u);
-  EXPECT_EQ(h.session->settings().selectedSurface, 1) << "the added surface is selected";
-  EXPECT_LT(h.session->settings().moreSurfaces[0].opacity, 1.0f);
-  // Outside the first surface (the blobs are high inside), so it shows in front of it.
-  h.session->settings().moreSurfaces[0].iso = 0.15f;
-  ASSERT_TRUE(h.settle());
-  const std::vector<unsigned char> two = h.pixels();
-  const int changed = differingChannels(single, two, panel);
-  EXPECT_GT(changed, 100) << "a second surface must change the image";
-
-  // The keys move the selected surface only.
-  const render::DatasetSummary& s = h.session->summary();
-  const float range = s.valueMax - s.valueMin;
-  h.press(GLFW_KEY_EQUAL);
-  EXPECT_EQ(h.session->settings().iso, 0.3f) << "the first surface stays";
-  EXPECT_NEAR(h.session->settings().moreSurfaces[0].iso, 0.15f + 0.01f * range, 1e-5f * range);
-  ASSERT_TRUE(h.settle());
-
-  const render::ImRectF remove = h.session->panelLayout().removeLastSurface;
-  ASSERT_FALSE(remove.empty());
-  ASSERT_LT(remove.y1, float(SessionHarness::kHeight));
-  h.click(remove.centreX(), remove.centreY());
-  EXPECT_TRUE(h.session->settings().moreSurfaces.empty());
-  EXPECT_EQ(h.session->settings().iso, 0.3f);
-  ASSERT_TRUE(h.settle());
-  std::printf("second surface: %d channels changed; removed: %d differ from the single surface's image\n", changed,
-              differingChannels(single, h.pixels(), panel));
-  EXPECT_EQ(differingChannels(single, h.pixels(), panel), 0) << "removed: the single surface's image again";
-}
-
 // The transfer table the session's renderer uses, as uploaded.
 std::vector<glm::vec4> tableInUse(const SessionHarness& h) { return h.session->transfer()->table()->entries(); }
 
@@ -745,6 +681,70 @@ TEST_F(ViewerSession, DvrEditorSavesLoadsAndRenderReadsTheSameFunction) {
   h.click(load.centreX(), load.centreY());
   EXPECT_NE(h.session->notice().find("missing"), std::string::npos) << h.session->notice();
   EXPECT_EQ(tableInUse(h), edited);
+}
+
+// The panel's clipping box: dragging a range cuts the image (fewer pixels show the blobs); "no
+// clipping" gives the unclipped image back, bit for bit.
+TEST_F(ViewerSession, ClippingBoxCutsTheViewAndComesBack) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir));
+  ASSERT_TRUE(h.settle());
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  const std::vector<unsigned char> whole = h.pixels();
+  const int shown = pixelsNotBackground(whole, h.session->settings().background, panel);
+  h.session->settings().clipLo = glm::dvec3(-1e30);
+  h.session->settings().clipHi = glm::dvec3(48.0, 1e30, 1e30);  // the blobs' half x < 48
+  ASSERT_TRUE(h.settle());
+  const int cut = pixelsNotBackground(h.pixels(), h.session->settings().background, panel);
+  std::printf("clip: %d pixels show the blobs, %d with the half box\n", shown, cut);
+  EXPECT_LT(cut, shown) << "half the blobs must show fewer pixels";
+  EXPECT_GT(cut, 0);
+  h.session->settings().clipHi = glm::dvec3(1e30);
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(differingChannels(whole, h.pixels(), panel), 0) << "no box: the unclipped image again";
+}
+
+// The panel's Surfaces section: "add surface" adds a second, translucent surface (selected, so the
+// isovalue keys move it and not the first), which changes the image; "remove" takes it away and the
+// image is the single surface's again, pixel for pixel.
+TEST_F(ViewerSession, SecondSurfaceFromThePanelShowsAndGoesAgain) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes);
+  ASSERT_TRUE(h.settle());
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  const std::vector<unsigned char> single = h.pixels();
+  const render::ImRectF add = h.session->panelLayout().addSurface;
+  ASSERT_FALSE(add.empty());
+  ASSERT_LT(add.y1, float(SessionHarness::kHeight)) << "the button must be on screen for the click";
+  h.click(add.centreX(), add.centreY());
+  ASSERT_EQ(h.session->settings().moreSurfaces.size(), 1u);
+  EXPECT_EQ(h.session->settings().selectedSurface, 1) << "the added surface is selected";
+  EXPECT_LT(h.session->settings().moreSurfaces[0].opacity, 1.0f);
+  // Outside the first surface (the blobs are high inside), so it shows in front of it.
+  h.session->settings().moreSurfaces[0].iso = 0.15f;
+  ASSERT_TRUE(h.settle());
+  const std::vector<unsigned char> two = h.pixels();
+  const int changed = differingChannels(single, two, panel);
+  EXPECT_GT(changed, 100) << "a second surface must change the image";
+
+  // The keys move the selected surface only.
+  const render::DatasetSummary& s = h.session->summary();
+  const float range = s.valueMax - s.valueMin;
+  h.press(GLFW_KEY_EQUAL);
+  EXPECT_EQ(h.session->settings().iso, 0.3f) << "the first surface stays";
+  EXPECT_NEAR(h.session->settings().moreSurfaces[0].iso, 0.15f + 0.01f * range, 1e-5f * range);
+  ASSERT_TRUE(h.settle());
+
+  const render::ImRectF remove = h.session->panelLayout().removeLastSurface;
+  ASSERT_FALSE(remove.empty());
+  ASSERT_LT(remove.y1, float(SessionHarness::kHeight));
+  h.click(remove.centreX(), remove.centreY());
+  EXPECT_TRUE(h.session->settings().moreSurfaces.empty());
+  EXPECT_EQ(h.session->settings().iso, 0.3f);
+  ASSERT_TRUE(h.settle());
+  std::printf("second surface: %d channels changed; removed: %d differ from the single surface's image\n", changed,
+              differingChannels(single, h.pixels(), panel));
+  EXPECT_EQ(differingChannels(single, h.pixels(), panel), 0) << "removed: the single surface's image again";
 }
 
 }  // namespace
