@@ -10,6 +10,7 @@
 #include <sstream>
 #include <sys/stat.h>
 
+#include "AtomicOutput.h"
 #include "sparse/Error.h"
 
 namespace fcc::io {
@@ -225,14 +226,67 @@ TransferFunction readTransferFunctionFile(const std::string& path, const std::st
   return parseTransferFunctionText(text, path);
 }
 
+std::vector<TransferFunction> readParaViewColorMaps(const std::string& path) {
+  const std::string text = readWhole(path);
+  // The first map checks the file as a whole (empty, not JSON, no maps) with the reader's messages.
+  std::vector<TransferFunction> maps{parseParaViewColorMaps(text, path)};
+  const Json doc = Json::parse(text);
+  for (std::size_t i = 1; doc.is_array() && i < doc.size(); ++i) {
+    if (!doc[i].is_object()) fail(path, "entry " + std::to_string(i + 1) + " is not an object", kJsonValid);
+    maps.push_back(colorMapFromJson(doc[i], i, path));
+  }
+  return maps;
+}
+
+std::string paraViewColorMapJson(const TransferFunction& tf, const std::string& name) {
+  Json rgb = Json::array(), points = Json::array();
+  for (const ColorPoint& p : tf.colors()) {
+    rgb.push_back(p.x);
+    for (int c = 0; c < 3; ++c) rgb.push_back(p.rgb[c]);
+  }
+  for (const OpacityPoint& p : tf.opacities()) {
+    points.push_back(p.x);
+    points.push_back(p.alpha);
+    points.push_back(0.5);  // midpoint and sharpness: ParaView's linear segments
+    points.push_back(0.0);
+  }
+  Json map = Json::object();
+  map["Name"] = name;
+  map["ColorSpace"] = "RGB";
+  map["Creator"] = "fccvdb";
+  map["RGBPoints"] = std::move(rgb);
+  map["Points"] = std::move(points);
+  // nlohmann-json writes a double in the fewest digits that read back to the same double.
+  return Json::array({map}).dump(1) + "\n";
+}
+
+void writeParaViewColorMap(const std::string& path, const TransferFunction& tf, const std::string& name,
+                           bool overwrite) {
+  writeTextFile(path, paraViewColorMapJson(tf, name), overwrite);
+}
+
+TransferFunctionSpec splitTransferFunctionSpec(const std::string& spec) {
+  struct stat st {};
+  if (::stat(spec.c_str(), &st) == 0) return {spec, ""};  // a file whose name holds ".json:" itself
+  std::string lower = spec;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::size_t at = lower.rfind(".json:");
+  if (at == std::string::npos) return {spec, ""};
+  return {spec.substr(0, at + 5), spec.substr(at + 6)};
+}
+
 TransferFunction transferFunctionFromSpec(const std::string& spec) {
   if (isTransferFunctionPreset(spec)) return transferFunctionPreset(spec);
   struct stat st {};
   if (::stat(spec.c_str(), &st) == 0) return readTransferFunctionFile(spec);
+  const TransferFunctionSpec named = splitTransferFunctionSpec(spec);
+  if (!named.colorMapName.empty() && ::stat(named.path.c_str(), &st) == 0)
+    return readTransferFunctionFile(named.path, named.colorMapName);
   std::string valid;
   for (const std::string& n : transferFunctionPresetNames()) valid += (valid.empty() ? "" : ", ") + n;
   throw ValueError("--tf '" + spec + "' is neither a preset (" + valid +
-                   ") nor a file (ParaView colour-map .json, or a text file of 'value r g b alpha' lines)");
+                   ") nor a file (ParaView colour-map .json, FILE.json:NAME for its map NAME, or a text file of "
+                   "'value r g b alpha' lines)");
 }
 
 }  // namespace fcc::io

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "sparse/TransferFunction.h"
 
@@ -29,8 +30,30 @@ TransferFunction parseParaViewColorMaps(const std::string& text, const std::stri
                                         const std::string& colorMapName = "");
 TransferFunction parseTransferFunctionText(const std::string& text, const std::string& path);
 
+// Every colour map of a ParaView JSON file, in the file's order (each named by its "Name", else by
+// the file's path), for the viewer's colour-map choice.
+std::vector<TransferFunction> readParaViewColorMaps(const std::string& path);
+
+// `tf` as ParaView's colour-map JSON: a list of one map {"Name", "ColorSpace": "RGB", "RGBPoints",
+// "Points" (midpoint 0.5, sharpness 0.0: linear)}, numbers written so that they read back bit for bit.
+std::string paraViewColorMapJson(const TransferFunction& tf, const std::string& name);
+// The same written to `path` atomically (io/AtomicOutput.h; OutputError as writeTextFile's).
+void writeParaViewColorMap(const std::string& path, const TransferFunction& tf, const std::string& name,
+                           bool overwrite);
+
+// `--tf SPEC` split into a file and a colour map's name: "FILE.json:NAME" (the last ".json:" in SPEC,
+// any case) names the map NAME of FILE.json, unless SPEC itself is an existing file; anything else is
+// the file (or preset) alone, with an empty name.
+struct TransferFunctionSpec {
+  std::string path;
+  std::string colorMapName;
+};
+TransferFunctionSpec splitTransferFunctionSpec(const std::string& spec);
+
 // What `--tf SPEC` names: a preset (transferFunctionPreset: normalized, to be stretched onto the
-// data's range), else a file. A SPEC that is neither: a ValueError naming the presets and formats.
+// data's range), else a file, or a ParaView file's map by name ("FILE.json:NAME"; an InputError lists
+// the file's names when none matches). A SPEC that is neither: a ValueError naming the presets and
+// formats.
 TransferFunction transferFunctionFromSpec(const std::string& spec);
 
 }  // namespace fcc::io

@@ -23,6 +23,15 @@ uniform float uTfBinMax[kTfBins];
 uniform int uTfBinEntries;
 uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
 
+// 1: gradient shading (RenderOptions::dvrShading, `--shading on`): each sub-step's emission times a
+// headlight's two-sided Lambert term of the reconstruction's analytic gradient at its midpoint, over an
+// ambient floor: kDvrAmbient + (1 - kDvrAmbient) |cos| of the angle between the world gradient and the
+// ray, 1 where the gradient is 0 (sparse/ReferenceDvr.h's dvrShade, the same formula). Absorption is
+// unchanged, so opacity and depth are those of the unshaded image. 0: the unshaded code, unchanged.
+#ifndef FCC_DVR_SHADING
+#define FCC_DVR_SHADING 0
+#endif
+
 // At most this optical depth per sub-step, and at most this many sub-steps per piece segment.
 const float kDvrStepDepth = 0.0625;
 const int kDvrMaxSteps = 64;
@@ -32,6 +41,34 @@ struct DvrState {
   float transmittance;
   float depthHalf;     // where the opacity first reached 0.5 (+inf: not yet)
 };
+
+#if FCC_DVR_SHADING
+const float kDvrAmbient = 0.3;
+// The ray and the unit cell integrateCell is in (dvrBeginCell), for the gradient at a sub-step.
+vec3 gDvrO, gDvrD;
+ivec3 gDvrCell;
+// march_fcc.glsl's or march_cc.glsl's: the reconstruction's index-space gradient at xyz in unit cell
+// `cell` (xyz kept inside it, so the stencil stays inside the slot's halo).
+vec3 dvrGradient(ivec3 cell, vec3 xyz);
+
+// The shading factor at ray parameter t: uNormalFromIndex turns the index-space gradient into the world
+// one, and d (index displacement per world unit) gives dot(world gradient, unit world direction).
+float dvrShadeAt(float t) {
+  vec3 g = dvrGradient(gDvrCell, gDvrO + t * gDvrD);
+  float len = length(uNormalFromIndex * g);
+  if (!(len > 0.0)) return 1.0;
+  return kDvrAmbient + (1.0 - kDvrAmbient) * min(abs(dot(g, gDvrD)) / len, 1.0);
+}
+#endif
+
+// Called by integrateCell before its segments: what dvrShadeAt needs (nothing without shading).
+void dvrBeginCell(ivec3 cell, vec3 o, vec3 d) {
+#if FCC_DVR_SHADING
+  gDvrCell = cell;
+  gDvrO = o;
+  gDvrD = d;
+#endif
+}
 
 float tfPosition(float v) { return clamp((v - uTfMin) * uTfScale, 0.0, float(uTfSize - 1)); }
 
@@ -67,7 +104,11 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
   vec4 e = tfLookup(v);
   if (e.a <= 0.0) return;  // zero extinction emits nothing either (premultiplied entries)
   float a = 1.0 - exp(-e.a * h);
+#if FCC_DVR_SHADING
+  st.color += st.transmittance * (e.rgb / e.a) * a * dvrShadeAt(ta + 0.5 * h);
+#else
   st.color += st.transmittance * (e.rgb / e.a) * a;
+#endif
   float before = st.transmittance;
   st.transmittance *= 1.0 - a;
   if (isinf(st.depthHalf) && st.transmittance <= 0.5) st.depthHalf = ta + log(2.0 * before) / e.a;

@@ -46,12 +46,20 @@ bool hitInCell(ivec3 b, ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout in
 #if FCC_MODE_DVR
 // Emission-absorption through the cell between t0 and t1 (dvr.glsl): the cubic along the ray.
 bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
+  dvrBeginCell(cell, o, d);
   FccCorners8 c = gatherCorners(cell);
   FccRange range = fcc_corners_range(c);
   if (tfZeroOn(range.lo, range.hi)) return false;
   vec3 origin = vec3(cell);
   return dvrSegment3(fcc_multiaffine_segment_bernstein(c, o + t0 * d - origin, o + t1 * d - origin, 0.0), t0, t1, st);
 }
+
+#if FCC_DVR_SHADING
+// The trilinear interpolant's gradient at xyz (inside the cell).
+vec3 dvrGradient(ivec3 cell, vec3 xyz) {
+  return cc_trilinear_value_gradient(gatherCorners(cell), cell, clamp(xyz, vec3(cell), vec3(cell + 1))).gradient;
+}
+#endif
 #endif
 
 #else  // FCC_RECON_TRICUBIC: B-spline coefficients (prefiltered or the samples themselves)
@@ -90,12 +98,28 @@ bool hitInCell(ivec3 b, ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout in
 #if FCC_MODE_DVR
 // Emission-absorption through the cell between t0 and t1 (dvr.glsl): the degree-9 polynomial along
 // the ray.
+#if FCC_DVR_SHADING
+FccCoeffs64 gDvrCoefficients;  // the cell's, for dvrGradient: gathered once per cell, not per sub-step
+#endif
 bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
+  dvrBeginCell(cell, o, d);
+#if FCC_DVR_SHADING
+  gDvrCoefficients = gatherCoefficients(cell);
+  FccCoeffs64 bezier = cc_tricubic_bezier(gDvrCoefficients);
+#else
   FccCoeffs64 bezier = cc_tricubic_bezier(gatherCoefficients(cell));
+#endif
   FccRange range = cc_tricubic_range(bezier);
   if (tfZeroOn(range.lo, range.hi)) return false;
   vec3 origin = vec3(cell);
   return dvrSegment9(cc_tricubic_segment_bernstein(bezier, o + t0 * d - origin, o + t1 * d - origin, 0.0), t0, t1, st);
 }
+
+#if FCC_DVR_SHADING
+// The tricubic spline's gradient at xyz (inside the cell).
+vec3 dvrGradient(ivec3 cell, vec3 xyz) {
+  return cc_tricubic_value_gradient(gDvrCoefficients, cell, clamp(xyz, vec3(cell), vec3(cell + 1))).gradient;
+}
+#endif
 #endif
 #endif

@@ -14,6 +14,7 @@ float valueAt(vec3 xyz) {
 // Emission-absorption through unit cell `cell` between t0 and t1 (dvr.glsl), piece by piece; true
 // once the ray is opaque enough to stop.
 bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
+  dvrBeginCell(cell, o, d);
   vec4 splits = fcc_cell_splits(cell, o, d, t0, t1);
   float s0 = t0;
   for (int k = 0; k < 5 && s0 < t1; ++k) {
@@ -28,4 +29,13 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   }
   return false;
 }
+
+#if FCC_DVR_SHADING
+// The box spline's gradient at xyz (the piece there: the spline is C2, so a rounding across a piece
+// boundary changes nothing that matters).
+vec3 dvrGradient(ivec3 cell, vec3 xyz) {
+  FccFrame frame = fcc_locate(clamp(xyz, vec3(cell), vec3(cell + 1)));
+  return fcc_gradient(gatherStencil(frame), frame);
+}
+#endif
 #endif

@@ -83,13 +83,22 @@ void integrateSpan(const Reconstruction& recon, const SiteValue& at, const DvrMe
   for (long k = 0; k < n && !acc.done(); ++k) {
     const double t = ta + double(k) * h;
     const glm::dvec3 p = ray.o + (t + 0.5 * h) * ray.d;
-    const double value = recon.evaluate(glm::vec3(p), at).value;
+    const spline::FccValueGradient vg = recon.evaluate(glm::vec3(p), at);
     ++acc.pixel.evaluations;
-    acc.add(medium.at(value), t, h);
+    glm::dvec4 e = medium.at(vg.value);
+    if (acc.options.shading)
+      e = glm::dvec4(glm::dvec3(e) * dvrShade(glm::dvec3(vg.gradient), ray.d, acc.options.normalFromIndex), e.a);
+    acc.add(e, t, h);
   }
 }
 
 }  // namespace
+
+double dvrShade(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, const glm::dmat3& normalFromIndex) {
+  const double len = glm::length(normalFromIndex * gradientIndex);
+  if (!(len > 0.0)) return 1.0;
+  return kDvrShadingAmbient + (1.0 - kDvrShadingAmbient) * std::min(std::abs(glm::dot(gradientIndex, dIndex)) / len, 1.0);
+}
 
 DvrPixel integrateDvrRay(const Reconstruction& recon, const SiteValue& at, const CellBounds* bounds,
                          const DvrMedium& medium, const DvrRay& ray, const DvrOptions& options) {

@@ -52,8 +52,19 @@ struct DvrRay {
 DvrRay dvrRayFromWorld(const glm::dmat4& indexFromWorld, const glm::dvec3& oWorld, const glm::dvec3& dWorld, double t0,
                        double t1);
 
+// Gradient shading (docs/DVR.md, shaders/dvr.glsl's FCC_DVR_SHADING): a sub-step's emission times
+// kDvrShadingAmbient + (1 - kDvrShadingAmbient) |cos| of the angle between the world gradient of the
+// reconstruction at its midpoint and the ray (a headlight, two-sided Lambert), 1 where the gradient is
+// 0. gradientIndex: index-space gradient; dIndex: the ray's index displacement per world unit (DvrRay::d);
+// normalFromIndex: the world gradient from the index-space one (the transpose of indexFromWorld's
+// linear part).
+inline constexpr double kDvrShadingAmbient = 0.3;
+double dvrShade(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, const glm::dmat3& normalFromIndex);
+
 struct DvrOptions {
   double step = 1e-3;                 // world units: the longest sub-step
+  bool shading = false;               // gradient shading (dvrShade), with this normalFromIndex
+  glm::dmat3 normalFromIndex{1.0};
   double terminationOpacity = 0.995;  // stop once the accumulated opacity reaches it (>= 1: only when the
                                       // transmittance is exactly 0)
 };

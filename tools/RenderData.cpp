@@ -55,7 +55,12 @@ render::DvrTransfer RenderData::dvrTransfer(const RenderFlags& flags) const {
 
 void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& options) const {
   options.mode = render::parseRenderMode(flags.mode);
-  if (options.mode != render::RenderMode::Dvr) return;
+  if (options.mode != render::RenderMode::Dvr) {
+    if (flags.shading == "on")
+      throw ValueError("--shading on applies to --mode dvr (the isosurface is always shaded)");
+    return;
+  }
+  options.dvrShading = flags.shading == "on";
   options.transfer = dvrTransfer(flags).table();
   const float background = source_->background();
   if (!options.transfer->zeroOn(background, background))

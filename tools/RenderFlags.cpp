@@ -64,6 +64,10 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("--stop-opacity", flags.terminationOpacity, "DVR: a ray stops once this opaque (and reads no brick behind)")
       ->capture_default_str()->check(CLI::Range(0.5, 1.0));
+  app.add_option("--shading", flags.shading,
+                 "DVR: on shades the emission by the reconstruction's gradient (a headlight's Lambert term over an "
+                 "ambient of 0.3; opacity unchanged); off: unshaded emission")
+      ->capture_default_str()->check(CLI::IsMember({"on", "off"}));
   app.add_option("--clip", flags.clip,
                  "Clipping box X0,Y0,Z0,X1,Y1,Z1 in world space (info --json gives the data's world_bounds): rays are "
                  "cut to it, bricks outside it are never read");

@@ -72,6 +72,7 @@ RenderFlags flagsForAnotherFile(const RenderFlags& first, const std::string& pat
   f.terminationOpacity = first.terminationOpacity;
   f.lodBias = first.lodBias;
   f.fullResolution = first.fullResolution;
+  f.shading = first.shading;
   return f;
 }
 
@@ -131,6 +132,7 @@ Command addViewCommand(CLI::App& parent) {
               // stand in while finer ones stream, and the view converges to the full-resolution image
               // where every brick wants level 0.
               if (!d.dvr) d.data->applyLevels(flags, /*levelsByDefault=*/true, false, options);
+              options.dvrShading = flags.shading == "on";
               const io::BrickStore* store = d.data->fccStore();
               auto session = std::make_unique<render::ViewerSession>(
                   d.data->source(), store, options, d.data->camera(flags, window.aspect()),

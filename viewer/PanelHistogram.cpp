@@ -26,22 +26,34 @@ void ViewerSession::drawHistogram() {
   char title[64];
   std::snprintf(title, sizeof title, "%s (log count)", what);
   const float scale = ImGui::GetIO().FontGlobalScale;
-  ImGui::PlotHistogram("##histogram", logCounts.data(), int(logCounts.size()), 0, title, 0.0f, FLT_MAX,
-                       ImVec2(ImGui::GetContentRegionAvail().x, 56.0f * scale));
+  const ImVec2 plotSize(ImGui::GetContentRegionAvail().x, 56.0f * scale);
+  // DVR: the editor's invisible button over the plot's frame (viewer/PanelTransfer.cpp) takes the
+  // mouse; submitted first, so that ImGui gives it the hover, not the plot drawn at the same place.
+  bool editorHovered = false, editorActive = false;
+  if (dvr_) {
+    const ImVec2 start = ImGui::GetCursorScreenPos();
+    ImGui::InvisibleButton("##opacity points", plotSize, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+    editorHovered = ImGui::IsItemHovered();
+    editorActive = ImGui::IsItemActive();
+    ImGui::SetCursorScreenPos(start);
+  }
+  ImGui::PlotHistogram("##histogram", logCounts.data(), int(logCounts.size()), 0, title, 0.0f, FLT_MAX, plotSize);
   const ImVec2 outerLo = ImGui::GetItemRectMin(), outerHi = ImGui::GetItemRectMax();
   layout_.histogram = {outerLo.x, outerLo.y, outerHi.x, outerHi.y};
   // The bars span the frame less its padding, as ImGui lays them out and picks the hovered one.
   const ImVec2 pad = ImGui::GetStyle().FramePadding;
   const float x0 = outerLo.x + pad.x, x1 = outerHi.x - pad.x;
   const auto positionOfMouse = [&] { return x1 > x0 ? (ImGui::GetIO().MousePos.x - x0) / (x1 - x0) : 0.5f; };
-  if (ImGui::IsItemHovered()) {
+  const bool plotHovered = dvr_ ? editorHovered && !editorActive : ImGui::IsItemHovered();
+  if (plotHovered) {
     // Replaces ImGui's own tooltip (the bin's index and log count).
     const int bin = axis.binAt(positionOfMouse());
-    char tip[128];
+    char tip[256];
     const double v = axis.valueAt(positionOfMouse());
     if (dvr_)
-      std::snprintf(tip, sizeof tip, "%.5g .. %.5g: %.0f %s\nopacity at %.5g: %.3g", axis.binLow(bin), axis.binHigh(bin),
-                    double(h[std::size_t(bin)]), what, v, dvr_->function.opacity(v));
+      std::snprintf(tip, sizeof tip,
+                    "%.5g .. %.5g: %.0f %s\nopacity at %.5g: %.3g\nclick: add a point; drag: move; right-click, Delete: remove",
+                    axis.binLow(bin), axis.binHigh(bin), double(h[std::size_t(bin)]), what, v, dvr_->function.opacity(v));
     else
       std::snprintf(tip, sizeof tip, "%.5g .. %.5g: %.0f %s\nclick: isovalue %.5g", axis.binLow(bin), axis.binHigh(bin),
                     double(h[std::size_t(bin)]), what, v);
@@ -50,6 +62,8 @@ void ViewerSession::drawHistogram() {
   }
   if (dvr_) {
     drawOpacityCurve(x0, x1, outerHi.y - pad.y, outerLo.y + pad.y);
+    editOpacityPoints(x0, x1, outerHi.y - pad.y, outerLo.y + pad.y, axis.min, axis.max, editorHovered,
+                      editorActive);  // viewer/PanelTransfer.cpp
   } else if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
     // Where a surface can be: the samples' range may reach past the spline's.
     // The selected surface's isovalue (the Surfaces section selects it).

@@ -94,7 +94,8 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source.reconstruction().deviceId) + "\n";
   const bool dvr = options.mode == RenderMode::Dvr;
   if (dvr && !options.transfer) throw ValueError("direct volume rendering needs a transfer function");
-  const std::string modeDefines = dvr ? "#define FCC_MODE_DVR 1\n" : "";
+  const std::string modeDefines =
+      dvr ? std::string("#define FCC_MODE_DVR 1\n") + (options.dvrShading ? "#define FCC_DVR_SHADING 1\n" : "") : "";
   const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
                                    "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
   raycastDefines_ = defines + modeDefines + groupDefines;
@@ -217,10 +218,16 @@ void Raycaster::uploadTransfer() {
 void Raycaster::setTransfer(std::shared_ptr<const TransferTable> transfer) {
   if (options_.mode != RenderMode::Dvr) throw Error("renderer: a transfer function outside DVR mode");
   if (!transfer) throw ValueError("direct volume rendering needs a transfer function");
+  // The bricks needed depend on the table only through where it is zero (TransferTable::zeroOn: its
+  // range, size and zero-prefix): an edit that moves no zero entry (a colour, an opacity above 0: the
+  // viewer's editor while a point is dragged) uploads the table alone.
+  const TransferTable& before = *options_.transfer;
+  const bool sameZeros = before.size() == transfer->size() && before.vmin() == transfer->vmin() &&
+                         before.vmax() == transfer->vmax() && before.nonZeroPrefix() == transfer->nonZeroPrefix();
   options_.transfer = std::move(transfer);
   uploadTransfer();
   ++settings_;
-  updateNeeded();
+  if (!sameZeros) updateNeeded();
 }
 
 Raycaster::~Raycaster() = default;
@@ -267,6 +274,7 @@ void Raycaster::setClip(const glm::dvec3& lo, const glm::dvec3& hi) {
 }
 
 void Raycaster::updateNeeded() {
+  ++neededUpdates_;
   // The clipping box in index space: the bounding box of its corners (conservative for a rotated
   // transform), clamped so that a box of +-1e30 stays finite in float.
   const glm::dmat4 indexFromWorld = glm::inverse(source_.worldFromIndex());

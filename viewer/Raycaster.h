@@ -55,6 +55,7 @@ struct RenderOptions {
   // RenderMode::Dvr: the transfer function as the GPU reads it (sparse/TransferFunction.h; its optical
   // scale applied); bricks and cells whose values it maps to zero extinction are skipped.
   std::shared_ptr<const TransferTable> transfer;
+  bool dvrShading = false;  // DVR: gradient shading (shaders/dvr.glsl, FCC_DVR_SHADING; docs/DVR.md)
   float terminationOpacity = 0.995f;  // DVR: a ray stops once this opaque (and asks for no brick behind)
   // The clipping box, world space: rays are cut to it and bricks outside it are never loaded. The
   // default holds everything.
@@ -190,6 +191,9 @@ class Raycaster {
   std::vector<Isosurface> surfaces() const { return surfacesOf(options_); }
   // DVR: another transfer function (the same: bricks needed change, resident ones stay).
   void setTransfer(std::shared_ptr<const TransferTable> transfer);
+  // How often the bricks needed were recomputed (a walk of the bricks and a page-table upload): a
+  // transfer function whose zero entries did not move costs none (setTransfer).
+  uint64_t neededUpdates() const { return neededUpdates_; }
   // Another clipping box (world space; lo > hi on an axis: nothing shows). Bricks needed change.
   void setClip(const glm::dvec3& lo, const glm::dvec3& hi);
   float iso() const { return options_.iso; }
@@ -316,6 +320,7 @@ class Raycaster {
   uint64_t settings_ = 1;  // bumped by every change of the isovalue or an option
   bool stepComplete_ = false;
   bool neededOnce_ = false;   // updateNeeded() has run (setSurfaces skips it when only colours change)
+  uint64_t neededUpdates_ = 0;
   bool stepStarted_ = false;  // startStep() ran, finishStep() has not
   StepStats startedStep_;     // what startStep() did
   GlProgram program_, slotBoundsProgram_, pageUpdateProgram_;

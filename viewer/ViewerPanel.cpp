@@ -81,6 +81,8 @@ void ViewerSession::drawPanel(int windowHeight) {
   ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);  // room for the labels
 
   layout_.isoLabel = layout_.isoSlider = layout_.transferCombo = layout_.densitySlider = {};
+  layout_.colorMapCombo = layout_.transferPathField = layout_.transferLoad = layout_.transferSave = {};
+  layout_.opacityPoints.clear();
   if (dvr()) {
     drawTransferSection();
   } else {
@@ -194,12 +196,16 @@ void ViewerSession::drawPanel(int windowHeight) {
 
 void ViewerSession::drawTransferSection() {
   if (!ImGui::CollapsingHeader("Transfer function", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  // The presets, and what --tf named when that is a file (kept as it was read).
+  // The presets, what --tf named when that is a file (kept as it was read), and files loaded here:
+  // the starting points of the editor (choosing one replaces the points).
   std::vector<std::string> names;
   if (!isTransferFunctionPreset(initialDvr_->spec)) names.push_back(initialDvr_->spec);
+  for (const auto& loaded : loadedFunctions_)
+    if (!isTransferFunctionPreset(loaded.first)) names.push_back(loaded.first);
   for (const std::string& preset : transferFunctionPresetNames()) names.push_back(preset);
   ImGui::SetNextItemWidth(-1.0f);
-  if (ImGui::BeginCombo("##transfer", settings_.transferFunction.c_str())) {
+  const std::string shown = settings_.transferFunction + (editor_->revision() != baseRevision_ ? " (edited)" : "");
+  if (ImGui::BeginCombo("##transfer", shown.c_str())) {
     for (const std::string& name : names)
       if (ImGui::Selectable(name.c_str(), name == settings_.transferFunction)) settings_.transferFunction = name;
     ImGui::EndCombo();
@@ -212,7 +218,8 @@ void ViewerSession::drawTransferSection() {
   char unit[48];
   std::snprintf(unit, sizeof unit, "%.4g world units", dvr_->scale.unitDistance);
   row("unit distance", unit);
-  drawHistogram();  // with the opacity curve over it
+  drawHistogram();  // with the opacity curve and the editor's points over it
+  drawTransferFiles();  // viewer/PanelTransfer.cpp
 }
 
 void ViewerSession::drawCameraSection() {

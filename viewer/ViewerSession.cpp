@@ -77,6 +77,18 @@ void ViewerSession::init(const RenderOptions& options) {
   if (dvr_) {
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
+    // Points may go anywhere on the histogram's axis (the samples' range), or the source's values
+    // without one; the editor widens that to the function's own points.
+    const bool axis = !summary_.histogram.empty() && summary_.histogramMax > summary_.histogramMin;
+    editor_.emplace(dvr_->function, axis ? summary_.histogramMin : source().valueMin(),
+                    axis ? summary_.histogramMax : source().valueMax());
+    appliedRevision_ = baseRevision_ = editor_->revision();
+    for (const std::string& preset : transferFunctionPresetNames())
+      colorMaps_.emplace_back(preset, fitTransferFunction(transferFunctionPreset(preset), source()).colors());
+    try {
+      addColorMapsOf(dvr_->spec);
+    } catch (const Error&) {  // read once already (--tf); a file changed since then offers no maps
+    }
   }
 }
 
@@ -243,20 +255,34 @@ float& ViewerSession::selectedIso() {
 }
 
 void ViewerSession::applyTransfer() {
-  if (settings_.transferFunction == dvr_->spec && settings_.densityScale == appliedDensityScale_) return;
+  // Another starting point (the combo, or Load) replaces the editor's points; else the editor's
+  // points and colours, when edited, are the function.
+  const bool newBase = settings_.transferFunction != dvr_->spec || std::exchange(reloadBase_, false);
+  const bool edited = editor_->revision() != appliedRevision_;
+  if (!newBase && !edited && settings_.densityScale == appliedDensityScale_) return;
   try {
     const std::string& name = settings_.transferFunction;
-    // What --tf named (a file's function, kept), else a preset fitted to the source as `render` fits it.
-    const TransferFunction function = name == initialDvr_->spec ? initialDvr_->function
-                                      : name == dvr_->spec     ? dvr_->function
-                                                               : fitTransferFunction(transferFunctionPreset(name), source());
+    const TransferFunction function = newBase ? baseFunction(name) : editor_->function(dvr_->function.name());
     DvrTransfer next{name, function, OpticalScale{dvr_->scale.unitDistance, double(settings_.densityScale)}};
-    raycaster_.setTransfer(next.table());  // validates the scale first: a throw changes nothing
+    // Validates the scale first: a throw changes nothing. Only the table is uploaded (and the bricks
+    // needed recomputed when its zero entries moved): resident bricks stay.
+    raycaster_.setTransfer(next.table());
     dvr_ = std::move(next);
+    if (newBase) {
+      editor_->reset(dvr_->function);
+      baseRevision_ = editor_->revision();
+      dragPoint_ = -1;
+    }
+    appliedRevision_ = editor_->revision();
     appliedDensityScale_ = settings_.densityScale;
   } catch (const Error& e) {  // a typed density scale below 0, say: the settings go back
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_;
+    if (edited) {
+      editor_->reset(dvr_->function);
+      appliedRevision_ = editor_->revision();
+      dragPoint_ = -1;
+    }
     notify(e.what());
   }
 }

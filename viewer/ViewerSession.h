@@ -23,6 +23,7 @@
 #include "Presenter.h"
 #include "Raycaster.h"
 #include "RedrawTracker.h"
+#include "TransferFunctionEditor.h"
 
 namespace fcc::render {
 
@@ -60,6 +61,10 @@ struct ImRectF {
 struct PanelLayout {
   ImRectF isoLabel, isoSlider, histogram, backgroundSwatch;
   ImRectF transferCombo, densitySlider;  // DVR mode's (empty in isosurface mode, as the iso ones in DVR)
+  // DVR's editor (viewer/PanelTransfer.cpp): the colour-map combo, the file field and its buttons, and
+  // a small square around each opacity point drawn over the histogram (the editor's order).
+  ImRectF colorMapCombo, transferPathField, transferLoad, transferSave;
+  std::vector<ImRectF> opacityPoints;
   ImRectF addSurface, removeLastSurface;  // the Surfaces section's buttons (empty when not shown)
   std::string histogramTooltip;  // the last one shown
   // The help window's rows: the rightmost end of a key's text and the leftmost start of a description;
@@ -146,6 +151,17 @@ class ViewerSession {
   // directory, copies its JSON to the clipboard, and says so. Returns the file's path.
   std::string saveCamera();
 
+  // DVR's transfer-function editor (docs/VIEWER.md): the function as edited (null outside DVR mode).
+  const TransferFunctionEditor* transferEditor() const { return editor_ ? &*editor_ : nullptr; }
+  // The panel's Save: the function in use as ParaView colour-map JSON in a new timestamped
+  // fccvdb-tf-*.json in the output directory (atomically; `--tf` and ParaView read it); says so and
+  // returns its path. OutputError when it cannot be written.
+  std::string saveTransferFunction();
+  // The panel's Load: what `--tf SPEC` would give (a preset, a file, FILE.json:NAME) becomes the
+  // function in use from the next frame on, and a ParaView file's maps join the colour-map choice.
+  // InputError / ValueError (one line) for a bad SPEC; nothing changes then.
+  void loadTransferFunction(const std::string& spec);
+
   // What is under the mouse, as of the last frame: the surface point (world, lattice index space),
   // the nearest FCC site and the spline's values; hit false over the background, the panel or
   // outside the window. Read back from the raycaster's depth only when the pixel or the image changed.
@@ -189,6 +205,13 @@ class ViewerSession {
   std::vector<Isosurface> surfacesOfSettings() const;  // settings_'s surfaces, the first from iso/surfaceColor
   float& selectedIso();        // the isovalue the keys and the histogram move
   void drawOpacityCurve(float x0, float x1, float yLo, float yHi);  // viewer/PanelHistogram.cpp
+  // viewer/PanelTransfer.cpp: the opacity points over the histogram (mouse and Delete), and the
+  // colour-map combo, file field, Load and Save below it.
+  void editOpacityPoints(float x0, float x1, float yLo, float yHi, float axisMin, float axisMax, bool hovered,
+                         bool active);
+  void drawTransferFiles();
+  TransferFunction baseFunction(const std::string& name) const;  // a preset, --tf's or a loaded one, fitted
+  void addColorMapsOf(const std::string& spec);  // a ParaView file's maps, for the colour-map combo
   void updateCursor(int fbWidth, int fbHeight, int windowHeight);
   void drawCursorSection();
   void updateStats(const StepStats& step, double imageDrawn, bool uiDrawn);
@@ -207,6 +230,16 @@ class ViewerSession {
   Raycaster raycaster_;
   std::optional<DvrTransfer> dvr_, initialDvr_;  // in use; what the session opened with (--tf)
   float appliedDensityScale_ = 1.0f;
+  // The editor over dvr_'s function, the revision the table was last built from, the point a drag
+  // holds (-1: none), functions loaded from the panel (spec, fitted function) and the colour maps
+  // offered (name, colours in data values: the presets fitted to the source, then files' maps).
+  std::optional<TransferFunctionEditor> editor_;
+  uint64_t appliedRevision_ = 0, baseRevision_ = 0;  // baseRevision_: right after the last reset (unedited)
+  int dragPoint_ = -1;
+  bool reloadBase_ = false;
+  std::vector<std::pair<std::string, TransferFunction>> loadedFunctions_;
+  std::vector<std::pair<std::string, std::vector<ColorPoint>>> colorMaps_;
+  char transferPath_[1024] = {};
   Presenter presenter_;
   RedrawTracker redraw_;
   Camera camera_, initialCamera_;

@@ -181,5 +181,68 @@ TEST(TransferFunctionFile, SpecsArePresetsThenFiles) {
   }
 }
 
+// `--tf FILE.json:NAME` takes the map NAME of a file of several; a NAME the file lacks is one line
+// listing the names it has. A file whose own name holds ".json:" is still the file.
+TEST(TransferFunctionFile, SpecNamesAParaViewMap) {
+  TempDir dir;
+  const std::string path = write(dir, "maps.json", kParaView);
+  EXPECT_EQ(io::transferFunctionFromSpec(path + ":No Opacity").name(), "No Opacity");
+  EXPECT_EQ(io::transferFunctionFromSpec(path + ":Two Tone").name(), "Two Tone");
+  const io::TransferFunctionSpec split = io::splitTransferFunctionSpec(path + ":No Opacity");
+  EXPECT_EQ(split.path, path);
+  EXPECT_EQ(split.colorMapName, "No Opacity");
+  EXPECT_EQ(io::splitTransferFunctionSpec(path).colorMapName, "");
+  try {
+    io::transferFunctionFromSpec(path + ":Three Tone");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    std::printf("%s\n", what.c_str());
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line";
+    for (const char* part : {"Three Tone", "'Two Tone'", "'No Opacity'", "maps.json"})
+      EXPECT_NE(what.find(part), std::string::npos) << part << " in: " << what;
+  }
+  // A text file (its name does not end in .json) that exists under that name is read as it is.
+  const std::string odd = write(dir, "odd.json:x", "0 0 0 0 0\n1 1 1 1 1\n");
+  EXPECT_EQ(io::splitTransferFunctionSpec(odd).path, odd);
+  EXPECT_EQ(io::transferFunctionFromSpec(odd).opacities().size(), 2u);
+}
+
+// Every map of a file, in order, for the viewer's colour-map choice.
+TEST(TransferFunctionFile, AllMapsOfAFileLoad) {
+  TempDir dir;
+  const std::vector<TransferFunction> maps = io::readParaViewColorMaps(write(dir, "maps.json", kParaView));
+  ASSERT_EQ(maps.size(), 2u);
+  EXPECT_EQ(maps[0].name(), "Two Tone");
+  EXPECT_EQ(maps[1].name(), "No Opacity");
+  EXPECT_THROW(io::readParaViewColorMaps(write(dir, "bad.json", "[{\"Name\": \"a\"}]")), InputError);
+}
+
+// What the viewer saves reads back as the same function, bit for bit (values a short decimal format
+// would round), through the same reader as --tf; ParaView's shape: RGBPoints and Points.
+TEST(TransferFunctionFile, SavedParaViewJsonReadsBackBitForBit) {
+  TempDir dir;
+  const TransferFunction tf({{-1.0 / 3.0, {0.1, 0.2 / 3.0, 1.0}}, {0.7071067811865476, {1.0 / 7.0, 0.5, 0.0}}},
+                            {{-1.0 / 3.0, 0.0}, {0.1234567890123456789, 0.3 / 7.0}, {0.7071067811865476, 1.0}});
+  const std::string path = dir / "saved.json";
+  io::writeParaViewColorMap(path, tf, "my map", /*overwrite=*/false);
+  const TransferFunction back = io::transferFunctionFromSpec(path);
+  EXPECT_EQ(back.name(), "my map");
+  ASSERT_EQ(back.colors().size(), tf.colors().size());
+  ASSERT_EQ(back.opacities().size(), tf.opacities().size());
+  for (std::size_t i = 0; i < tf.colors().size(); ++i) {
+    EXPECT_EQ(back.colors()[i].x, tf.colors()[i].x);
+    EXPECT_EQ(back.colors()[i].rgb, tf.colors()[i].rgb);
+  }
+  for (std::size_t i = 0; i < tf.opacities().size(); ++i) {
+    EXPECT_EQ(back.opacities()[i].x, tf.opacities()[i].x);
+    EXPECT_EQ(back.opacities()[i].alpha, tf.opacities()[i].alpha);
+  }
+  const std::string text = io::paraViewColorMapJson(tf, "my map");
+  EXPECT_NE(text.find("\"RGBPoints\""), std::string::npos);
+  EXPECT_NE(text.find("\"Points\""), std::string::npos);
+  EXPECT_THROW(io::writeParaViewColorMap(path, tf, "again", /*overwrite=*/false), OutputError) << "exists";
+}
+
 }  // namespace
 }  // namespace fcc

@@ -250,5 +250,49 @@ TEST(ReferenceDvr, ImagesAreTheirRays) {
   EXPECT_THROW(integrateDvrRay(*scene.recon, scene.samples.accessor(), nullptr, medium, rayAt(0, 0), options), ValueError);
 }
 
+// Gradient shading's factor: 1 where the gradient is 0 (flat regions keep their colour), 1 when the
+// gradient lies along the ray, the ambient floor across it, the Lambert term between; measured in world
+// space, whatever the grid's (anisotropic) transform.
+TEST(ReferenceDvr, ShadingIsAHeadlightLambertOverAnAmbientFloor) {
+  const glm::dmat3 identity(1.0);
+  EXPECT_EQ(dvrShade(glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0), identity), 1.0);
+  EXPECT_DOUBLE_EQ(dvrShade(glm::dvec3(0.0, 0.0, -3.0), glm::dvec3(0.0, 0.0, 1.0), identity), 1.0);
+  EXPECT_DOUBLE_EQ(dvrShade(glm::dvec3(2.0, 0.0, 0.0), glm::dvec3(0.0, 0.0, 1.0), identity), kDvrShadingAmbient);
+  const glm::dvec3 d60(std::sin(M_PI / 3.0), 0.0, std::cos(M_PI / 3.0));
+  EXPECT_NEAR(dvrShade(glm::dvec3(0.0, 0.0, 1.0), d60, identity), kDvrShadingAmbient + (1.0 - kDvrShadingAmbient) * 0.5, 1e-12);
+  // Index x = 4 world x (indexFromWorld = diag(4, 1, 1)): a world ray at 45 degrees in x-z and the field
+  // f = world x (index gradient (1/4, 0, 0)) meet at 45 degrees in world space.
+  const glm::dmat3 indexFromWorld(glm::dvec3(4.0, 0.0, 0.0), glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0, 0.0, 1.0));
+  const glm::dvec3 dWorld = glm::normalize(glm::dvec3(1.0, 0.0, 1.0));
+  EXPECT_NEAR(dvrShade(glm::dvec3(0.25, 0.0, 0.0), indexFromWorld * dWorld, glm::transpose(indexFromWorld)),
+              kDvrShadingAmbient + (1.0 - kDvrShadingAmbient) * std::sqrt(0.5), 1e-12);
+}
+
+// Through the sphere with shading on: the same opacity and depth, colour between the ambient floor and
+// the unshaded colour, and the unshaded colour exactly where it is off.
+TEST(ReferenceDvr, ShadingChangesOnlyTheEmission) {
+  const TransferFunction tf({{0.0, glm::dvec3(0.2, 0.4, 0.9)}, {1.0, glm::dvec3(1.0, 0.8, 0.1)}}, {{0.0, 0.05}, {1.0, 0.0}});
+  const DvrMedium medium = dvrMedium(tf, {kH, 1.0});
+  const SphereScene scene(findReconstruction("boxspline"));
+  DvrOptions off, on;
+  off.step = on.step = 2e-3;
+  on.shading = true;
+  on.normalFromIndex = glm::transpose(glm::dmat3(scene.indexFromWorld));
+  int darker = 0;
+  for (const TestRay& ray : testRays(12, 0.9, 5, scene.centreWorld())) {
+    const DvrRay indexRay = dvrRayFromWorld(scene.indexFromWorld, ray.o, ray.d, 0.0, 4.0);
+    const DvrPixel a = integrateDvrRay(*scene.recon, scene.samples.accessor(), &scene.bounds, medium, indexRay, off);
+    const DvrPixel b = integrateDvrRay(*scene.recon, scene.samples.accessor(), &scene.bounds, medium, indexRay, on);
+    EXPECT_EQ(a.rgba.a, b.rgba.a);
+    EXPECT_EQ(a.depth, b.depth);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(b.rgba[k], a.rgba[k] * (1.0 + 1e-12));
+      EXPECT_GE(b.rgba[k], kDvrShadingAmbient * a.rgba[k] * (1.0 - 1e-12));
+    }
+    darker += b.rgba.r < 0.99 * a.rgba.r;
+  }
+  EXPECT_GT(darker, 6) << "the sphere's gradient turns away from most rays somewhere";
+}
+
 }  // namespace
 }  // namespace fcc

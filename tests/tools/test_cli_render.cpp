@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -66,6 +67,40 @@ TEST(CliRender, CartesianReconstructionsAndDvrOutputs) {
   std::set<std::string> channels;
   for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) channels.insert(it.name());
   EXPECT_EQ(channels, (std::set<std::string>{"R", "G", "B", "A", "Z"}));
+}
+
+// --shading off is today's image, byte for byte, and on another; --shading on outside DVR is one line.
+// --tf FILE.json:NAME renders that map of a file of several; a NAME it lacks is one line naming them.
+TEST(CliRender, DvrShadingAndNamedParaViewMaps) {
+  TempDir dir;
+  const std::string vdb = dir / "b.vdb";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 32,32,32 --quiet").status, 0);
+  const std::string plain = dir / "plain.png", off = dir / "off.png", on = dir / "on.png";
+  const std::string common = " --res 40x30 --mode dvr --tf viridis --quiet";
+  const auto r = runFccvdb("render " + vdb + " " + plain + common);
+  if (failedForLackOfGl(r)) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(runFccvdb("render " + vdb + " " + off + common + " --shading off").status, 0);
+  ASSERT_EQ(runFccvdb("render " + vdb + " " + on + common + " --shading on").status, 0);
+  EXPECT_EQ(readText(plain), readText(off)) << "--shading off must be the unshaded image";
+  EXPECT_NE(readText(plain), readText(on)) << "--shading on must shade";
+  const auto iso = runFccvdb("render " + vdb + " " + (dir / "iso.png") + " --res 40x30 --shading on --quiet");
+  EXPECT_NE(iso.status, 0);
+  EXPECT_THAT(iso.err, HasSubstr("--shading on applies to --mode dvr"));
+  EXPECT_EQ(std::count(iso.err.begin(), iso.err.end(), '\n'), 1) << iso.err;
+
+  const std::string maps = dir / "maps.json";
+  std::ofstream(maps) << R"([{"Name": "First", "RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1]},
+                             {"Name": "Red Ramp", "RGBPoints": [0, 1, 0, 0, 1, 1, 0.5, 0.5], "Points": [0, 0, 0.5, 0, 1, 0.9, 0.5, 0]}])";
+  const std::string first = dir / "first.png", named = dir / "named.png";
+  ASSERT_EQ(runFccvdb("render " + vdb + " " + first + " --res 40x30 --mode dvr --quiet --tf " + maps).status, 0);
+  const auto byName = runFccvdb("render " + vdb + " " + named + " --res 40x30 --mode dvr --quiet --tf '" + maps + ":Red Ramp'");
+  ASSERT_EQ(byName.status, 0) << byName.err;
+  EXPECT_NE(readText(first), readText(named)) << "the named map must be the second one";
+  const auto missing = runFccvdb("render " + vdb + " " + (dir / "x.png") + " --res 40x30 --mode dvr --quiet --tf " + maps + ":Blue");
+  EXPECT_NE(missing.status, 0);
+  EXPECT_THAT(missing.err, HasSubstr("no colour map named 'Blue' (the file has 'First', 'Red Ramp')"));
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
 }
 
 // The camera render prints is the one it used: pasted back, it gives the same image bit for bit; by

@@ -234,5 +234,139 @@ TEST_F(RenderDvr, SkippingAndSmallCachesChangeNothing) {
   EXPECT_GT(visible, w * h / 10);
 }
 
+// Another transfer function on a live renderer (the viewer's editor) gives the image a new renderer
+// with it gives, bit for bit; one whose zero entries did not move (other colours, other non-zero
+// opacities) uploads the table alone: no recomputation of the bricks needed.
+TEST_F(RenderDvr, NewTransferFunctionOnALiveRendererIsItsImage) {
+  TempDir dir;
+  const std::string path = test::writeSmallBlobs(dir);
+  const render::Camera camera = test::smallBlobsCamera();
+  const int w = 48, h = 48;
+  const io::BrickStore store(path);
+  const render::FccBrickSource source(store, std::size_t(64) << 20);
+  const TransferTable first = rampTable(0.2, 1.0, 2.0);
+  // The same zeros (below 0.2), other colours and opacities above them.
+  const TransferFunction recoloured({{0.2, {0.9, 0.1, 0.1}}, {1.0, {0.1, 0.9, 0.3}}}, {{0.2, 0.0}, {0.5, 0.9}, {1.0, 0.3}});
+  const TransferTable second(recoloured, first.vmin(), first.vmax(), first.size(), OpticalScale{2.0, 1.0});
+  ASSERT_EQ(second.nonZeroPrefix(), first.nonZeroPrefix());
+  // Zero up to 0.5 over the same range: fewer bricks.
+  const TransferFunction narrower({{0.2, {0.9, 0.1, 0.1}}, {1.0, {0.1, 0.9, 0.3}}}, {{0.5, 0.0}, {1.0, 0.6}});
+  const TransferTable third(narrower, first.vmin(), first.vmax(), first.size(), OpticalScale{2.0, 1.0});
+  ASSERT_NE(third.nonZeroPrefix(), first.nonZeroPrefix());
+
+  render::Raycaster live(source, dvrOptions(first));
+  live.render(camera, w, h);
+  const render::FrameImages firstImage = live.readImages();
+  const uint64_t updates = live.neededUpdates();
+  live.setTransfer(std::make_shared<const TransferTable>(second));
+  EXPECT_EQ(live.neededUpdates(), updates) << "the same zero entries: the bricks needed were recomputed";
+  live.render(camera, w, h);
+  const render::FrameImages secondImage = live.readImages();
+  EXPECT_NE(secondImage.rgba, firstImage.rgba) << "the new colours must show";
+  EXPECT_EQ(secondImage.rgba, renderSource(source, camera, w, h, dvrOptions(second)).rgba);
+  live.setTransfer(std::make_shared<const TransferTable>(third));
+  EXPECT_GT(live.neededUpdates(), updates) << "zero entries moved: the bricks needed must be recomputed";
+  live.render(camera, w, h);
+  EXPECT_EQ(live.readImages().rgba, renderSource(source, camera, w, h, dvrOptions(third)).rgba);
+}
+
+// Gradient shading (--shading on) multiplies each sub-step's emission by a factor in [ambient, 1] and
+// leaves absorption alone: opacity and depth are the unshaded image's, bit for bit, every colour lies
+// between ambient times and once the unshaded one, and it darkens where the gradient turns away from the
+// view. On every lattice it agrees with the CPU reference shaded the same way, within the unshaded
+// bound (45 dB).
+TEST_F(RenderDvr, ShadingDarkensOnlyTheEmissionAndMatchesTheCpuReference) {
+  TempDir dir;
+  const int w = 48, h = 40;
+  const std::string ccPath = dir / "wavy.vdb";
+  test::writeCartesianFile(ccPath, test::wavy, 0.5, openvdb::Vec3d(-3.0, 1.0, 2.0));
+  const io::CartesianBrickStore ccStore(ccPath);
+  const std::string fccPath = dir / "blobs.vdb";
+  ASSERT_EQ(test::runFccvdb("synth blobs " + fccPath + " --dims 48,48,48 --quiet").status, 0);
+  const io::BrickStore store(fccPath);
+  const FccGrid::Ptr grid = io::readFccGrid(fccPath);
+
+  struct Case {
+    const char* name;
+    const render::BrickSource* source;
+    glm::dmat4 worldFromIndex;
+    TransferTable table;
+    double tMax;
+  };
+  const render::CartesianBrickSource trilinear(ccStore, findReconstruction("trilinear"));
+  const render::CartesianBrickSource tricubic(ccStore, findReconstruction("tricubic"));
+  const render::FccBrickSource boxSpline(store, std::size_t(64) << 20);
+  const std::vector<Case> cases{{"trilinear", &trilinear, ccStore.worldFromIndex(), rampTable(0.0, 1.5, 4.0, 1.95), 200.0},
+                                {"tricubic", &tricubic, ccStore.worldFromIndex(), rampTable(0.0, 1.5, 4.0, 1.95), 200.0},
+                                {"boxspline", &boxSpline, store.worldFromIndex(), rampTable(0.1, 1.2, 4.0), 300.0}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    render::Camera camera;
+    camera.lookat = glm::dvec3(c.worldFromIndex * glm::dvec4(24.0, 24.0, 24.0, 1.0));
+    camera.eye = camera.lookat + (c.source == &boxSpline ? glm::dvec3(60.0, 44.0, 72.0) : glm::dvec3(30.0, 22.0, 36.0));
+    camera.fovYDegrees = 35.0;
+    render::RenderOptions off = dvrOptions(c.table), on = off;
+    on.dvrShading = true;
+    const render::FrameImages plain = renderSource(*c.source, camera, w, h, off);
+    const render::FrameImages shaded = renderSource(*c.source, camera, w, h, on);
+    int darker = 0, shown = 0, alphaDiffers = 0;
+    double worstAlpha = 0.0, sumAlpha = 0.0;
+    for (std::size_t i = 0; i < std::size_t(w) * h; ++i) {
+      const double dAlpha = std::abs(double(shaded.rgba[4 * i + 3]) - double(plain.rgba[4 * i + 3]));
+      alphaDiffers += dAlpha > 0.0;
+      worstAlpha = std::max(worstAlpha, dAlpha);
+      sumAlpha += dAlpha;
+      EXPECT_EQ(shaded.normalDepth[4 * i + 3], plain.normalDepth[4 * i + 3]) << "shading changed the depth of pixel " << i;
+      const float slack = 1e-7f;
+      for (int k = 0; k < 3; ++k) {
+        const float a = shaded.rgba[4 * i + k], b = plain.rgba[4 * i + k];
+        EXPECT_LE(a, b * (1.0f + 1e-5f) + slack) << "pixel " << i;
+        EXPECT_GE(a, float(kDvrShadingAmbient) * b * (1.0f - 1e-5f) - slack) << "pixel " << i;
+      }
+      shown += plain.rgba[4 * i + 3] > 0.05f;
+      darker += plain.rgba[4 * i + 3] > 0.05f && shaded.rgba[4 * i] < 0.95f * plain.rgba[4 * i];
+    }
+    std::printf("%s: shading darkened %d of %d pixels that show the volume; opacity differs in %d pixels, "
+                "worst %.3g, mean %.3g\n", c.name, darker, shown, alphaDiffers, worstAlpha, sumAlpha / double(w * h));
+    EXPECT_EQ(alphaDiffers, 0) << "shading must leave the opacity alone, bit for bit";
+    EXPECT_GT(shown, w * h / 10);
+    EXPECT_GT(darker, shown / 10) << "shading must show";
+
+    // The CPU reference, shaded with the same normals.
+    const glm::dmat4 indexFromWorld = glm::inverse(c.worldFromIndex);
+    const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+    DvrOptions reference;
+    reference.shading = true;
+    reference.normalFromIndex = glm::transpose(glm::dmat3(indexFromWorld));
+    std::vector<DvrPixel> ref;
+    const auto rayAt = [&](int x, int y) {
+      return dvrRayFromWorld(indexFromWorld, camera.eye, render::pixelRay(frame, x, y, w, h), 0.0, c.tMax);
+    };
+    if (c.source == &boxSpline) {
+      const SiteValue at = [&](const glm::ivec3& ijk) {
+        const glm::ivec3 v = packedVoxelOfSite(ijk);
+        return grid->tree().getValue(openvdb::Coord(v.x, v.y, v.z))[channelOfSite(ijk)];
+      };
+      reference.step = 0.02;
+      ref = renderDvrImage(w, h, rayAt, *makeReconstruction("boxspline"), at, nullptr, dvrMedium(c.table), reference);
+    } else {
+      const ReconstructionInfo& info = findReconstruction(c.name);
+      const int pad = kBSplinePrefilterReach + 4;
+      LatticeSamples samples(Lattice::Cc, glm::ivec3(-pad), glm::ivec3(test::kDim + 2 * pad), test::kBackground);
+      samples.fill([](const glm::ivec3& ijk) {
+        const bool in = glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) && glm::all(glm::lessThan(ijk, glm::ivec3(test::kDim)));
+        return in ? test::wavy(ijk) : test::kBackground;
+      });
+      samples.prefilter(info.prefilter);
+      const CellBounds bounds(samples);
+      reference.step = 0.01;
+      ref = renderDvrImage(w, h, rayAt, *makeReconstruction(c.name), samples.accessor(), &bounds, dvrMedium(c.table), reference);
+    }
+    const double db = psnr(shaded, ref);
+    std::printf("%s shaded: PSNR %.1f dB against the shaded CPU reference\n", c.name, db);
+    EXPECT_GE(db, kMinPsnrDb);
+  }
+}
+
 }  // namespace
 }  // namespace fcc

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -172,6 +173,12 @@ TEST_F(ViewerSession, ScreenshotKeyWorksWhileThePanelHasFocusAndIsConfirmed) {
   h.press(GLFW_KEY_R);
   EXPECT_EQ(h.session->camera().eye, test::smallBlobsCamera().eye) << "R did nothing while the panel had focus";
   h.frame([&](ImGuiIO& io) { io.MouseDown[0] = false; });
+}
+
+// The mouse moved off the window (no tooltip over the image), then frames until settled.
+bool settleAway(SessionHarness& h) {
+  h.frame([](ImGuiIO& io) { io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX); });
+  return h.settle();
 }
 
 // Ctrl + click on the iso slider types its value (as the help says); S and R there are letters for the
@@ -539,6 +546,142 @@ TEST_F(ViewerSession, DvrShowsTheVolumeAndThePanelChangesTheTransferFunction) {
   h.frame();
   EXPECT_EQ(h.session->settings().densityScale, 8.0f) << "a refused scale goes back";
   EXPECT_NE(h.session->notice().find("density scale"), std::string::npos) << h.session->notice();
+}
+
+// The transfer table the session's renderer uses, as uploaded.
+std::vector<glm::vec4> tableInUse(const SessionHarness& h) { return h.session->transfer()->table()->entries(); }
+
+// A left drag from (x0, y0) to (x1, y1) in a few frames, released at the end.
+void drag(SessionHarness& h, float x0, float y0, float x1, float y1) {
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(x0, y0); });
+  h.frame([&](ImGuiIO& io) { io.MouseDown[0] = true; });
+  for (int k = 1; k <= 4; ++k)
+    h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(x0 + (x1 - x0) * float(k) / 4.0f, y0 + (y1 - y0) * float(k) / 4.0f); });
+  h.frame([&](ImGuiIO& io) { io.MouseDown[0] = false; });
+}
+
+// DVR's editor: a click on the histogram adds an opacity point there (the function passes through
+// it), dragging it moves it and changes the table and the image, a right-click removes it and gives
+// the first image back, bit for bit (the same table).
+TEST_F(ViewerSession, DvrEditorAddsDragsAndRemovesOpacityPoints) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), "grayscale");
+  ASSERT_TRUE(h.settle());
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  const std::vector<unsigned char> before = h.pixels();
+  const std::vector<glm::vec4> tableBefore = tableInUse(h);
+  const render::TransferFunctionEditor& editor = *h.session->transferEditor();
+  ASSERT_EQ(editor.points().size(), 2u);
+  const render::ImRectF plot = h.session->panelLayout().histogram;
+  ASSERT_FALSE(plot.empty());
+
+  // A click a third of the way along, three quarters up: a new point there.
+  const float padX = ImGui::GetStyle().FramePadding.x, padY = ImGui::GetStyle().FramePadding.y;
+  const float x = plot.x0 + padX + (plot.x1 - plot.x0 - 2.0f * padX) / 3.0f;
+  const float y = plot.y1 - padY - 0.75f * (plot.y1 - plot.y0 - 2.0f * padY);
+  h.click(x, y);
+  ASSERT_EQ(editor.points().size(), 3u) << "the click added no point";
+  const OpacityPoint added = editor.points()[1];
+  EXPECT_NEAR(added.alpha, 0.75, 0.05);
+  EXPECT_EQ(h.session->transfer()->function.opacity(added.x), added.alpha) << "the function passes through the point";
+  EXPECT_NE(tableInUse(h), tableBefore) << "the table must follow the new point";
+  ASSERT_TRUE(settleAway(h));
+  const std::vector<unsigned char> withPoint = h.pixels();
+  EXPECT_GT(differingChannels(before, withPoint, panel), 0) << "the new point must change the image";
+
+  // Dragged down and right: the point follows, the table and the image change again.
+  ASSERT_EQ(h.session->panelLayout().opacityPoints.size(), 3u);
+  const render::ImRectF handle = h.session->panelLayout().opacityPoints[1];
+  drag(h, handle.centreX(), handle.centreY(), handle.centreX() + 12.0f, plot.y1 - padY - 0.1f * (plot.y1 - plot.y0 - 2.0f * padY));
+  ASSERT_EQ(editor.points().size(), 3u) << "a drag must move the point, not add one";
+  const OpacityPoint moved = editor.points()[1];
+  EXPECT_GT(moved.x, added.x);
+  EXPECT_LT(moved.alpha, 0.3);
+  EXPECT_EQ(h.session->transfer()->function.opacity(moved.x), moved.alpha);
+  ASSERT_TRUE(settleAway(h));
+  EXPECT_GT(differingChannels(withPoint, h.pixels(), panel), 0) << "dragging the point must change the image";
+
+  // Right-click on it: gone; the function, the table and the image are the first ones again.
+  const render::ImRectF now = h.session->panelLayout().opacityPoints[1];
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(now.centreX(), now.centreY()); });
+  h.frame([&](ImGuiIO& io) { io.MouseDown[1] = true; });
+  h.frame([&](ImGuiIO& io) {
+    io.MouseDown[1] = false;
+    io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);  // away: no tooltip over the image
+  });
+  EXPECT_EQ(editor.points().size(), 2u) << "the right-click removed no point";
+  EXPECT_EQ(tableInUse(h), tableBefore);
+  ASSERT_TRUE(settleAway(h));
+  EXPECT_EQ(differingChannels(before, h.pixels(), panel), 0) << "the first function must give the first image";
+}
+
+// Save writes the function in use as ParaView JSON; Load (the field and its button) reads it back as
+// `--tf` does: the same table, bit for bit; and `render --tf` with the saved file draws the image the
+// session shows, bit for bit.
+TEST_F(ViewerSession, DvrEditorSavesLoadsAndRenderReadsTheSameFunction) {
+  TempDir dir;
+  const std::string blobs = test::writeSmallBlobs(dir);
+  SessionHarness h(blobs, "viridis");
+  h.session->setOutputDirectory(dir.path.string());
+  ASSERT_TRUE(h.settle());
+  const render::ImRectF plot = h.session->panelLayout().histogram;
+  h.click(plot.x0 + 0.4f * (plot.x1 - plot.x0), plot.centreY());  // an edit, so that the file is not a preset
+  ASSERT_EQ(h.session->transferEditor()->points().size(), 3u);
+  const std::vector<glm::vec4> edited = tableInUse(h);
+  const render::ImRectF save = h.session->panelLayout().transferSave;
+  ASSERT_FALSE(save.empty());
+  h.click(save.centreX(), save.centreY());
+  const std::vector<std::string> saved = filesWith(dir, ".json");
+  ASSERT_EQ(saved.size(), 1u) << "save wrote no file (or more than one)";
+  EXPECT_EQ(saved[0].find(dir.path.string() + "/fccvdb-tf-"), 0u) << saved[0];
+  EXPECT_NE(h.session->notice().find(saved[0]), std::string::npos) << h.session->notice();
+
+  // Another function, then the saved one loaded through the field.
+  h.session->settings().transferFunction = "inferno";
+  ASSERT_TRUE(h.settle());
+  EXPECT_NE(tableInUse(h), edited);
+  const render::ImRectF field = h.session->panelLayout().transferPathField;
+  h.click(field.centreX(), field.centreY());
+  ASSERT_TRUE(ImGui::GetIO().WantTextInput) << "the file field did not take the keyboard";
+  h.type(saved[0]);
+  h.press(GLFW_KEY_ENTER);
+  const render::ImRectF load = h.session->panelLayout().transferLoad;
+  h.click(load.centreX(), load.centreY());
+  h.frame();
+  EXPECT_EQ(h.session->transfer()->spec, saved[0]) << h.session->notice();
+  EXPECT_EQ(tableInUse(h), edited) << "save then load must give the same table, bit for bit";
+  ASSERT_TRUE(h.settle());
+
+  // render with the saved file and the session's camera: the same image.
+  const std::string camera = h.session->saveCamera();
+  const std::string shown = dir / "session.exr", rendered = dir / "render.exr";
+  h.session->writeExr(shown);
+  const test::CommandResult r = test::runFccvdb("render " + blobs + " --mode dvr --tf " + saved[0] + " --camera " + camera +
+                                                " --res " + std::to_string(SessionHarness::kWidth) + "x" +
+                                                std::to_string(SessionHarness::kHeight) + " -o " + rendered + " --quiet");
+  if (test::failedForLackOfGl(r)) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* channel : {"R", "G", "B", "A"}) {
+    int w = 0, hgt = 0, rw = 0, rh = 0;
+    const std::vector<float> a = test::readExrChannel(shown, channel, w, hgt);
+    const std::vector<float> b = test::readExrChannel(rendered, channel, rw, rh);
+    ASSERT_EQ(a.size(), b.size());
+    int differing = 0, shownPixels = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      differing += a[i] != b[i];
+      shownPixels += b[i] != 0.0f;
+    }
+    EXPECT_EQ(differing, 0) << "channel " << channel;
+    EXPECT_GT(shownPixels, int(a.size()) / 50) << "channel " << channel << ": the volume must show";
+  }
+
+  // A file that is not there: a notice, nothing changes.
+  h.click(field.centreX(), field.centreY());
+  h.type("-missing");
+  h.press(GLFW_KEY_ENTER);
+  h.click(load.centreX(), load.centreY());
+  EXPECT_NE(h.session->notice().find("missing"), std::string::npos) << h.session->notice();
+  EXPECT_EQ(tableInUse(h), edited);
 }
 
 // The panel's clipping box: dragging a range cuts the image (fewer pixels show the blobs); "no

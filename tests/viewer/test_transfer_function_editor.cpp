@@ -1,0 +1,154 @@
+// The viewer's transfer-function edit model (viewer/TransferFunctionEditor.h): points stay sorted,
+// inside the value range and [0, 1] whatever is asked, and the function made from them is what the
+// points say.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "sparse/Error.h"
+#include "viewer/TransferFunctionEditor.h"
+
+namespace fcc {
+namespace {
+
+using render::TransferFunctionEditor;
+
+TransferFunction viridisOn(double lo, double hi) { return transferFunctionPreset("viridis").stretchedTo(lo, hi); }
+
+// The invariants every edit keeps.
+void expectValid(const TransferFunctionEditor& e) {
+  ASSERT_FALSE(e.points().empty());
+  for (std::size_t i = 0; i < e.points().size(); ++i) {
+    const OpacityPoint& p = e.points()[i];
+    EXPECT_GE(p.x, e.lo());
+    EXPECT_LE(p.x, e.hi());
+    EXPECT_GE(p.alpha, 0.0);
+    EXPECT_LE(p.alpha, 1.0);
+    if (i > 0) {
+      EXPECT_LE(e.points()[i - 1].x, p.x) << "point " << i << " out of order";
+    }
+  }
+}
+
+TEST(TransferFunctionEditor, StartsFromTheFunctionAndGivesItBack) {
+  const TransferFunction tf = viridisOn(2.0, 6.0);
+  TransferFunctionEditor e(tf, 0.0, 8.0);
+  EXPECT_EQ(e.lo(), 0.0);
+  EXPECT_EQ(e.hi(), 8.0);
+  const TransferFunction back = e.function("edited");
+  EXPECT_FALSE(back.normalized());
+  for (double v = -1.0; v <= 9.0; v += 0.137) {
+    EXPECT_EQ(back.opacity(v), tf.opacity(v)) << v;
+    EXPECT_EQ(back.color(v), tf.color(v)) << v;
+  }
+  // A range narrower than the function widens to hold its points.
+  TransferFunctionEditor narrow(tf, 3.0, 4.0);
+  EXPECT_EQ(narrow.lo(), 2.0);
+  EXPECT_EQ(narrow.hi(), 6.0);
+  EXPECT_THROW(TransferFunctionEditor(tf, 1.0, 0.0), ValueError);
+}
+
+TEST(TransferFunctionEditor, InsertKeepsOrderClampsAndChangesTheFunctionThere) {
+  TransferFunctionEditor e(viridisOn(0.0, 1.0), 0.0, 1.0);
+  const uint64_t before = e.revision();
+  const int i = e.insert(0.25, 0.9);
+  EXPECT_GT(e.revision(), before);
+  expectValid(e);
+  EXPECT_EQ(e.points()[std::size_t(i)].x, 0.25);
+  EXPECT_EQ(e.function("f").opacity(0.25), 0.9) << "the function passes through the new point";
+  // Outside the range and [0, 1]: clamped, not refused.
+  const int low = e.insert(-5.0, -1.0), high = e.insert(7.0, 3.0);
+  expectValid(e);
+  EXPECT_EQ(e.points()[std::size_t(low)].x, 0.0);
+  EXPECT_EQ(e.points()[std::size_t(low)].alpha, 0.0);
+  EXPECT_EQ(e.points()[std::size_t(high)].x, 1.0);
+  EXPECT_EQ(e.points()[std::size_t(high)].alpha, 1.0);
+  // At a value already taken: after it, so the new point is the step's upper side.
+  const int step = e.insert(0.25, 0.1);
+  EXPECT_EQ(e.points()[std::size_t(step) - 1].x, 0.25);
+  EXPECT_EQ(e.function("f").opacity(0.25), 0.1) << "the value at a step is its last point's";
+}
+
+TEST(TransferFunctionEditor, MoveStaysBetweenTheNeighboursAndInsideTheRange) {
+  TransferFunctionEditor e(viridisOn(0.0, 10.0), 0.0, 10.0);  // points at 0 and 10
+  const int mid = e.insert(5.0, 0.5);
+  ASSERT_EQ(mid, 1);
+  e.move(mid, 7.5, 0.25);
+  EXPECT_EQ(e.points()[1].x, 7.5);
+  EXPECT_EQ(e.points()[1].alpha, 0.25);
+  e.move(mid, 20.0, 2.0);  // past the last point: stops at it
+  EXPECT_EQ(e.points()[1].x, 10.0);
+  EXPECT_EQ(e.points()[1].alpha, 1.0);
+  e.move(mid, -3.0, -0.5);
+  EXPECT_EQ(e.points()[1].x, 0.0);
+  EXPECT_EQ(e.points()[1].alpha, 0.0);
+  e.move(0, -7.0, 0.3);  // the first point: the range's low end
+  EXPECT_EQ(e.points()[0].x, 0.0);
+  expectValid(e);
+  const uint64_t r = e.revision();
+  e.move(0, e.points()[0].x, e.points()[0].alpha);
+  EXPECT_EQ(e.revision(), r) << "a move to where the point is changes nothing";
+  EXPECT_THROW(e.move(5, 0.0, 0.0), ValueError);
+  EXPECT_THROW(e.move(-1, 0.0, 0.0), ValueError);
+}
+
+TEST(TransferFunctionEditor, RemoveKeepsAtLeastOnePoint) {
+  TransferFunctionEditor e(viridisOn(0.0, 1.0), 0.0, 1.0);
+  const int i = e.insert(0.5, 1.0);
+  EXPECT_TRUE(e.remove(i));
+  EXPECT_EQ(e.points().size(), 2u);
+  EXPECT_NEAR(e.function("f").opacity(0.5), 0.5, 1e-12) << "the ramp is back";
+  EXPECT_TRUE(e.remove(0));
+  const uint64_t r = e.revision();
+  EXPECT_FALSE(e.remove(0)) << "the last point stays";
+  EXPECT_EQ(e.revision(), r);
+  EXPECT_EQ(e.points().size(), 1u);
+  EXPECT_THROW(e.remove(3), ValueError);
+}
+
+TEST(TransferFunctionEditor, PickFindsTheNearestPointWithinTheRadius) {
+  TransferFunctionEditor e(viridisOn(0.0, 100.0), 0.0, 100.0);  // (0, 0) and (100, 1)
+  e.insert(50.0, 0.5);
+  // 2 pixels per value unit, 100 pixels per unit of opacity.
+  EXPECT_EQ(e.pick(51.0, 0.52, 2.0, 100.0, 5.0), 1);
+  EXPECT_EQ(e.pick(53.0, 0.5, 2.0, 100.0, 5.0), -1) << "6 pixels away";
+  EXPECT_EQ(e.pick(99.0, 0.99, 2.0, 100.0, 5.0), 2);
+  EXPECT_EQ(e.pick(25.0, 0.25, 2.0, 100.0, 5.0), -1);
+}
+
+TEST(TransferFunctionEditor, ColourMapChangesColoursOnly) {
+  TransferFunctionEditor e(viridisOn(0.0, 1.0), 0.0, 1.0);
+  e.insert(0.3, 0.7);
+  const TransferFunction before = e.function("f");
+  const TransferFunction inferno = transferFunctionPreset("inferno");
+  e.setColors(inferno.colors(), "inferno");
+  EXPECT_EQ(e.colorMapName(), "inferno");
+  const TransferFunction after = e.function("f");
+  for (double v = 0.0; v <= 1.0; v += 0.05) {
+    EXPECT_EQ(after.opacity(v), before.opacity(v));
+    EXPECT_EQ(after.color(v), inferno.color(v));
+  }
+  EXPECT_THROW(e.setColors({}, "none"), ValueError);
+}
+
+// Random edits of every kind keep the invariants, and the function always constructs.
+TEST(TransferFunctionEditor, RandomEditsKeepTheInvariants) {
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<double> x(-2.0, 12.0), a(-0.5, 1.5);
+  TransferFunctionEditor e(viridisOn(2.0, 8.0), 0.0, 10.0);
+  for (int step = 0; step < 2000; ++step) {
+    const int n = int(e.points().size());
+    switch (rng() % 3) {
+      case 0: e.insert(x(rng), a(rng)); break;
+      case 1: e.move(int(rng() % unsigned(n)), x(rng), a(rng)); break;
+      default: e.remove(int(rng() % unsigned(n))); break;
+    }
+    expectValid(e);
+    if (HasFailure()) FAIL() << "after step " << step;
+    EXPECT_NO_THROW(e.function("f"));
+  }
+}
+
+}  // namespace
+}  // namespace fcc

@@ -1,0 +1,98 @@
+#include "TransferFunctionEditor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sparse/Error.h"
+
+namespace fcc::render {
+
+TransferFunctionEditor::TransferFunctionEditor(const TransferFunction& tf, double lo, double hi) {
+  if (!(std::isfinite(lo) && std::isfinite(hi) && lo <= hi))
+    throw ValueError("transfer function editor: value range [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                     "] is not a finite interval");
+  lo_ = std::min(lo, tf.domainMin());
+  hi_ = std::max(hi, tf.domainMax());
+  reset(tf);
+  revision_ = 0;
+}
+
+void TransferFunctionEditor::reset(const TransferFunction& tf) {
+  lo_ = std::min(lo_, tf.domainMin());
+  hi_ = std::max(hi_, tf.domainMax());
+  points_ = tf.opacities();
+  colors_ = tf.colors();
+  colorMapName_ = tf.name();
+  ++revision_;
+}
+
+void TransferFunctionEditor::checkIndex(int i) const {
+  if (i < 0 || i >= int(points_.size()))
+    throw ValueError("transfer function editor: no opacity point " + std::to_string(i) + " (there are " +
+                     std::to_string(points_.size()) + ")");
+}
+
+double TransferFunctionEditor::clampX(double x) const {
+  if (std::isnan(x)) return lo_;
+  return std::clamp(x, lo_, hi_);
+}
+
+int TransferFunctionEditor::insert(double x, double alpha) {
+  x = clampX(x);
+  alpha = std::isnan(alpha) ? 0.0 : std::clamp(alpha, 0.0, 1.0);
+  // After every point at or below x: the new point is a step's upper side where values are equal.
+  const auto at = std::upper_bound(points_.begin(), points_.end(), x,
+                                   [](double v, const OpacityPoint& p) { return v < p.x; });
+  const int index = int(at - points_.begin());
+  points_.insert(at, OpacityPoint{x, alpha});
+  ++revision_;
+  return index;
+}
+
+void TransferFunctionEditor::move(int i, double x, double alpha) {
+  checkIndex(i);
+  const double below = i > 0 ? points_[std::size_t(i) - 1].x : lo_;
+  const double above = i + 1 < int(points_.size()) ? points_[std::size_t(i) + 1].x : hi_;
+  x = std::clamp(clampX(x), below, above);
+  alpha = std::isnan(alpha) ? points_[std::size_t(i)].alpha : std::clamp(alpha, 0.0, 1.0);
+  OpacityPoint& p = points_[std::size_t(i)];
+  if (p.x == x && p.alpha == alpha) return;
+  p = {x, alpha};
+  ++revision_;
+}
+
+bool TransferFunctionEditor::remove(int i) {
+  checkIndex(i);
+  if (points_.size() <= 1) return false;
+  points_.erase(points_.begin() + i);
+  ++revision_;
+  return true;
+}
+
+int TransferFunctionEditor::pick(double x, double alpha, double xScale, double alphaScale, double radius) const {
+  int best = -1;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < points_.size(); ++k) {
+    const double d = std::hypot((points_[k].x - x) * xScale, (points_[k].alpha - alpha) * alphaScale);
+    // Ties (points on one another, a step) go to the later point, drawn on top.
+    if (d <= radius && d <= bestDistance) {
+      best = int(k);
+      bestDistance = d;
+    }
+  }
+  return best;
+}
+
+void TransferFunctionEditor::setColors(std::vector<ColorPoint> colors, std::string name) {
+  if (colors.empty()) throw ValueError("transfer function editor: a colour map without points");
+  colors_ = std::move(colors);
+  colorMapName_ = std::move(name);
+  ++revision_;
+}
+
+TransferFunction TransferFunctionEditor::function(const std::string& name) const {
+  return TransferFunction(colors_, points_, name, /*normalized=*/false);
+}
+
+}  // namespace fcc::render

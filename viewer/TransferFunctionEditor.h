@@ -1,0 +1,63 @@
+// The edit model behind the viewer's transfer-function editor (docs/VIEWER.md, "Transfer function"),
+// free of any GUI so that it is tested on its own: the opacity control points (sorted by value, each
+// inside the editor's value range, opacities in [0, 1]) with insert, move and remove, and the colour
+// map the function takes its colours from. The panel (viewer/PanelTransfer.cpp) turns mouse events
+// into these calls; the session rebuilds the GPU's table when revision() changes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sparse/TransferFunction.h"
+
+namespace fcc::render {
+
+class TransferFunctionEditor {
+ public:
+  // Starts from `tf` (data values: a preset already fitted to the source, or a file's function). Points
+  // may lie in [lo, hi] widened to tf's domain (the panel passes its histogram's axis). ValueError
+  // unless lo <= hi, both finite.
+  TransferFunctionEditor(const TransferFunction& tf, double lo, double hi);
+
+  double lo() const { return lo_; }
+  double hi() const { return hi_; }
+  const std::vector<OpacityPoint>& points() const { return points_; }
+  const std::vector<ColorPoint>& colors() const { return colors_; }
+  const std::string& colorMapName() const { return colorMapName_; }
+  // Counts every change that altered the function (a move to where a point already is does not).
+  uint64_t revision() const { return revision_; }
+
+  // A new point at value x with opacity alpha, both clamped (x into [lo, hi], alpha into [0, 1]),
+  // placed after the points already at its value (so it is the step's upper side). Returns its index.
+  int insert(double x, double alpha);
+  // Point i to (x, alpha), clamped: x into [lo, hi] and between its neighbours' values (a drag never
+  // reorders the points, so i stays the dragged point), alpha into [0, 1]. ValueError for a bad i.
+  void move(int i, double x, double alpha);
+  // Removes point i, unless it is the last one (a function needs an opacity point): false then.
+  // ValueError for a bad i.
+  bool remove(int i);
+  // The point nearest (x, alpha) within `radius`, distances measured as hypot((dx) * xScale,
+  // (dalpha) * alphaScale) (the panel passes pixels per unit of value and of opacity); -1 if none.
+  int pick(double x, double alpha, double xScale, double alphaScale, double radius) const;
+
+  // Another colour map (data values, e.g. a preset fitted to the source, or a ParaView file's map);
+  // the opacity points stay. ValueError for an empty list.
+  void setColors(std::vector<ColorPoint> colors, std::string name);
+  // Everything from `tf` again (a preset or a file chosen as the starting point).
+  void reset(const TransferFunction& tf);
+
+  // The function edited: colours and opacity points, in data values (not normalized).
+  TransferFunction function(const std::string& name) const;
+
+ private:
+  void checkIndex(int i) const;
+  double clampX(double x) const;
+  std::vector<OpacityPoint> points_;
+  std::vector<ColorPoint> colors_;
+  std::string colorMapName_;
+  double lo_, hi_;
+  uint64_t revision_ = 0;
+};
+
+}  // namespace fcc::render
