@@ -99,14 +99,14 @@ FCC_FUNC FccValueGradient cc_type6_value_gradient(FccCubic c, CcType6Frame f, FC
   FCC_VEC4 l = cc_type6_barycentric(cc_type6_canonical(f, xyz));
   FccQuadratic q = fcc_decasteljau_step3(c, l);
   FCC_VEC4 r = fcc_decasteljau_step2(q, l);
-  FccValueGradient out;
-  out.value = l.x * r.x + l.y * r.y + l.z * r.z + l.w * r.w;
+  FccValueGradient vg;
+  vg.value = l.x * r.x + l.y * r.y + l.z * r.z + l.w * r.w;
   // d/dlambda_m = 3 r_m; the barycentrics' derivatives along the canonical axes are constants.
   float gx = 6.0f * (r.x - r.y), gy = 3.0f * (r.w - r.z), gz = 3.0f * (r.z + r.w - 2.0f * r.y);
-  out.gradient = FCC_VEC3_FROM_IVEC3(fcc_unit_axis(f.axes.x)) * (FCC_FLOAT(f.signs.x) * gx) +
+  vg.gradient = FCC_VEC3_FROM_IVEC3(fcc_unit_axis(f.axes.x)) * (FCC_FLOAT(f.signs.x) * gx) +
                  FCC_VEC3_FROM_IVEC3(fcc_unit_axis(f.axes.y)) * (FCC_FLOAT(f.signs.y) * gy) +
                  FCC_VEC3_FROM_IVEC3(fcc_unit_axis(f.axes.z)) * (FCC_FLOAT(f.signs.z) * gz);
-  return out;
+  return vg;
 }
 
 // Bounds of the piece: its BB coefficients' min and max (convex hull).
