@@ -28,11 +28,12 @@ void markUsed(uint slot) {
   if (gl_GlobalInvocationID.x == 0u) slotLastUse[slot] = uPass;
 }
 
-#if FCC_RECON == FCC_RECON_TRILINEAR || FCC_RECON == FCC_RECON_TRICUBIC
-// A Cartesian slot (20^3 grid points, viewer/CartesianBrickSource.h): both reconstructions are convex
+#if FCC_RECON == FCC_RECON_TRILINEAR || FCC_RECON == FCC_RECON_TRICUBIC || FCC_RECON == FCC_RECON_TYPE6
+// A Cartesian slot (20^3 grid points, viewer/CartesianBrickSource.h): the reconstructions are convex
 // combinations of the coefficients their stencils read, so the voxel's 8 cells (2v .. 2v + 1 from the
 // brick's corner) lie within the hull of the points [2v, 2v + 3)^3 (trilinear) or [2v - 1, 2v + 4)^3
-// (tricubic). The raycaster then checks each cell's own corners or Bezier coefficients.
+// (tricubic; type 6: the cubes of the corners 2v .. 2v + 2, their samples 2v - 1 .. 2v + 3). The
+// raycaster then checks each cell's own corners, Bezier or BB coefficients.
 void main() {
   uint voxel = gl_GlobalInvocationID.x;
   if (voxel >= uint(kSlotVoxels)) return;

@@ -44,22 +44,23 @@ FCC_FUNC FCC_IVEC3 fcc_ifrom_stack(FCC_IVEC3 v, int n) {
 }
 
 // The parameters in (ta, tb) where a ray crosses the planes that cut one cell into a reconstruction's
-// pieces, sorted ascending (at most 8).
+// pieces, sorted ascending (at most FCC_MAX_SPLITS: the type-6 spline's cell has 9 planes).
+#define FCC_MAX_SPLITS 12
 FCC_STRUCT_BEGIN(FccSplits)
-  float t[8];
+  float t[FCC_MAX_SPLITS];
   int n;
 FCC_STRUCT_END(FccSplits)
 
 FCC_FUNC FccSplits fcc_splits_none() {
   FccSplits s;
   s.n = 0;
-  for (int i = 0; i < 8; ++i) s.t[i] = 0.0f;
+  for (int i = 0; i < FCC_MAX_SPLITS; ++i) s.t[i] = 0.0f;
   return s;
 }
 
 // s with t inserted in order if it lies strictly inside (ta, tb) and there is room.
 FCC_FUNC FccSplits fcc_splits_with(FccSplits s, float t, float ta, float tb) {
-  if (!(t > ta && t < tb) || s.n >= 8) return s;
+  if (!(t > ta && t < tb) || s.n >= FCC_MAX_SPLITS) return s;
   // Its place: after every entry not above it. Entries after it move up one, the index counted up
   // (Mesa's GLSL compiler mishandled a loop counting down: see fcc_bernstein9_restrict).
   int at = 0;

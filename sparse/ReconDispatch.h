@@ -17,6 +17,7 @@
 #include "FccRay.h"
 #include "CcTrilinear.h"
 #include "CcTricubic.h"
+#include "CcType6.h"
 #include "BccBarycentric.h"
 #include "BccShearedTrilinear.h"
 #include "BccBilinear.h"
@@ -43,6 +44,12 @@ FCC_FUNC FccValueGradient fcc_recon_value_gradient(int id, FCC_VEC3 xyz, FCC_IVE
     FccCoeffs64 c;
     for (int i = 0; i < 64; ++i) c.v[i] = FCC_SITE_VALUE(cc_tricubic_stencil_site(cell, i));
     return cc_tricubic_value_gradient(c, cell, xyz);
+  }
+  if (id == FCC_RECON_TYPE6) {
+    CcType6Frame frame = cc_type6_locate(xyz);
+    FccSamples27 s;
+    for (int i = 0; i < 27; ++i) s.v[i] = FCC_SITE_VALUE(cc_type6_stencil_site(frame, i));
+    return cc_type6_value_gradient(cc_type6_cubic(s), frame, xyz);
   }
   if (id == FCC_RECON_BARYCENTRIC) {
     BccTetFrame frame = bcc_barycentric_locate(xyz);
@@ -87,6 +94,12 @@ FCC_FUNC float fcc_recon_segment_root(int id, FCC_VEC3 a, FCC_VEC3 b, float iso,
     for (int i = 0; i < 64; ++i) c.v[i] = FCC_SITE_VALUE(cc_tricubic_stencil_site(cell, i));
     FCC_VEC3 origin = FCC_VEC3_FROM_IVEC3(cell);
     return fcc_first_root_bernstein9(cc_tricubic_segment_bernstein(cc_tricubic_bezier(c), a - origin, b - origin, iso));
+  }
+  if (id == FCC_RECON_TYPE6) {
+    CcType6Frame frame = cc_type6_locate(mid);
+    FccSamples27 s;
+    for (int i = 0; i < 27; ++i) s.v[i] = FCC_SITE_VALUE(cc_type6_stencil_site(frame, i));
+    return fcc_first_root_bernstein3(cc_type6_segment_bernstein(cc_type6_cubic(s), frame, a, b, iso));
   }
   if (id == FCC_RECON_BARYCENTRIC) {
     BccTetFrame frame = bcc_barycentric_locate(mid);

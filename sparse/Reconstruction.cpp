@@ -5,6 +5,7 @@
 #include "BccShearedTrilinear.h"
 #include "CcTricubic.h"
 #include "CcTrilinear.h"
+#include "CcType6.h"
 #include "Error.h"
 #include "ReconDispatch.h"
 
@@ -55,6 +56,10 @@ const std::vector<ReconstructionInfo>& reconstructionInfos() {
       {"bilinear", Lattice::Bcc, "bilinear in the nearest plane (paper 002, 3.1)", 4, 2, 0, -1, true, Prefilter::None, FCC_RECON_BILINEAR},
       {"boxspline", Lattice::Fcc, "six-direction box spline M_fcc, quasi-interpolating prefilter q_fcc", 19, 3, 2, 1,
        false, Prefilter::Fcc, FCC_RECON_BOXSPLINE},
+      // Last, so that the tests drawing random data for each reconstruction in turn give the others what
+      // they gave before it came.
+      {"type6", Lattice::Cc, "type-6 cubic C1 quasi-interpolating spline, 24 tetrahedra a cube (paper 003)", 27, 3, 1, 1,
+       false, Prefilter::None, FCC_RECON_TYPE6},
   };
   return infos;
 }
@@ -106,6 +111,20 @@ class Tricubic final : public Reconstruction {
   }
   FccSplits cellSplits(const glm::ivec3&, const glm::vec3&, const glm::vec3&, float, float) const override {
     return spline::fcc_splits_none();
+  }
+};
+
+// Sorokina and Zeilfelder's type-6 spline: the cube of the nearest site, its tetrahedron's 27 samples.
+class Type6 final : public Reconstruction {
+ public:
+  using Reconstruction::Reconstruction;
+  FccValueGradient evaluateInPiece(const glm::vec3& inside, const glm::vec3& xyz, const SiteValue& at) const override {
+    const spline::CcType6Frame frame = spline::cc_type6_locate(inside);
+    const auto s = gather<27, spline::FccSamples27>(at, [&](int i) { return spline::cc_type6_stencil_site(frame, i); });
+    return spline::cc_type6_value_gradient(spline::cc_type6_cubic(s), frame, xyz);
+  }
+  FccSplits cellSplits(const glm::ivec3& cell, const glm::vec3& o, const glm::vec3& d, float ta, float tb) const override {
+    return spline::cc_type6_cell_splits(cell, o, d, ta, tb);
   }
 };
 
@@ -189,6 +208,7 @@ std::unique_ptr<Reconstruction> makeReconstruction(std::string_view name) {
   switch (info.deviceId) {
     case FCC_RECON_TRILINEAR: return std::make_unique<Trilinear>(info);
     case FCC_RECON_TRICUBIC: return std::make_unique<Tricubic>(info);  // both B-splines: the prefilter differs
+    case FCC_RECON_TYPE6: return std::make_unique<Type6>(info);
     case FCC_RECON_BARYCENTRIC: return std::make_unique<Barycentric>(info);
     case FCC_RECON_SHEARED_TRILINEAR: return std::make_unique<ShearedTrilinear>(info);
     case FCC_RECON_BILINEAR_SPATIAL: return std::make_unique<PlaneScheme>(info, 1);

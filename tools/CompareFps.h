@@ -1,5 +1,5 @@
 // `compare`'s fps column: the real renderer (viewer/Raycaster.h) timed on each row's data, for the rows
-// whose lattice it stores (cc: trilinear, tricubic, tricubic-bspline; fcc: boxspline; BCC rows keep
+// whose lattice it stores (cc: trilinear, tricubic, tricubic-bspline, type6; fcc: boxspline; BCC rows keep
 // null). Per budget and lattice the row's samples — the sites inside the domain, the `samples` the
 // row counts — are written into a temporary .vdb (CC: a FloatGrid; FCC: the prefiltered grid with its
 // bounds, as `synth` writes one), whose worldFromIndex puts them where compare sampled them, opened

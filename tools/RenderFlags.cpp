@@ -46,8 +46,9 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
   app.add_option("--grid", flags.grid, "The FCC grid to render (default: the first); for a Cartesian .vdb, the float grid to convert or render");
   app.add_option("--reconstruction", flags.reconstruction,
                  "How the data between samples is reconstructed: boxspline (FCC data; the default, converting a "
-                 "Cartesian FILE), or trilinear, tricubic (interpolating B-spline), tricubic-bspline (approximating) "
-                 "to render a Cartesian .vdb float grid as it is, without converting");
+                 "Cartesian FILE), or trilinear, tricubic (interpolating B-spline), tricubic-bspline (approximating), "
+                 "type6 (Sorokina-Zeilfelder cubic C1 spline on 24 tetrahedra a cube, paper 003) to render a "
+                 "Cartesian .vdb float grid as it is, without converting");
   app.add_option("--mode", flags.mode, "iso: the isosurface; dvr: direct volume rendering (emission and absorption through the reconstructed field, with --tf)")
       ->capture_default_str()->check(CLI::IsMember({"iso", "dvr"}));
   std::string presets;

@@ -1,6 +1,6 @@
 // fccvdb render FILE OUT.(exr|png) (or -o OUT): one headless frame of the isosurface (FILE: an FCC
 // .vdb, or any input convert takes, converted once into the cache; or with --reconstruction trilinear,
-// tricubic or tricubic-bspline a Cartesian .vdb rendered as it is).
+// tricubic, tricubic-bspline or type6 a Cartesian .vdb rendered as it is).
 #include <chrono>
 #include <cstdio>
 #include <string>

@@ -35,7 +35,7 @@ Command addSynthCommand(CLI::App& parent) {
       ->required()->check(tripleValidator("--dims"));
   app->add_option("--lattice", args->lattice,
                   "fcc: an FCC grid with its bounds (streamed, bounded memory); cc: a Cartesian FloatGrid fog volume over "
-                  "the same world box as fcc with the same --dims, for `render --reconstruction trilinear|tricubic|"
+                  "the same world box as fcc with the same --dims, for `render --reconstruction trilinear|tricubic|type6|"
                   "tricubic-bspline` (built in memory: 4 bytes a point)")
       ->capture_default_str()->check(CLI::IsMember({"fcc", "cc"}));
   app->add_option("--seed", args->seed, "Random seed (blobs)")->capture_default_str();

@@ -83,6 +83,7 @@ TEST(Comparison, IsosurfacePointsLieOnTheIsosurface) {
 double valueErrorBoundForSquaredRadius(std::string_view name) {
   if (name == "trilinear") return 3 * 0.25;                      // unit edges along x, y, z
   if (name == "tricubic-bspline") return 1.0;                     // exactly: sum of 1/3 per axis (its 2nd moment)
+  if (name == "type6") return 3 * 0.25;                           // exactly: each pure square gains 1/4 (test_type6)
   if (name == "barycentric") return 1.25;                         // the Delaunay tetrahedron's circumradius^2
   if (name == "sheared-trilinear") return (4 + 4 + 3) * 0.25;     // edges (2,0,0), (0,2,0), (+-1,+-1,1)
   if (name == "bilinear-spatial") return (4 + 4) * 0.25 + 0.25;   // in-plane spacing 2, plane distance 1

@@ -37,7 +37,7 @@ TEST(CliCompare, JsonRowsCarryTheContractAndTheTableRecomputesFromThem) {
   const auto json = runFccvdb(flags + " --json");
   ASSERT_EQ(json.status, 0) << json.err;
   const auto rows = parseRows(json.out);
-  ASSERT_EQ(rows.size(), 16u) << json.out;
+  ASSERT_EQ(rows.size(), 18u) << json.out;
   std::map<std::string, int> lattices;
   for (const auto& row : rows) {
     for (const char* key : {"lattice", "reconstruction", "budget", "samples", "value_rms_error", "value_max_error",
@@ -46,7 +46,7 @@ TEST(CliCompare, JsonRowsCarryTheContractAndTheTableRecomputesFromThem) {
     EXPECT_EQ(row.at("fps"), "null");
     ++lattices[row.at("lattice")];
   }
-  EXPECT_EQ(lattices["\"cc\""], 6);
+  EXPECT_EQ(lattices["\"cc\""], 8);
   EXPECT_EQ(lattices["\"bcc\""], 8);
   EXPECT_EQ(lattices["\"fcc\""], 2);
 
@@ -131,7 +131,7 @@ TEST(CliCompare, FpsOfTheLatticesTheRendererStores) {
   EXPECT_THAT(report, HasSubstr("brick-paged raycaster on "));
   EXPECT_THAT(report, ::testing::Not(HasSubstr("not timed"))) << report;
   const auto rows = parseRows(r.out);
-  ASSERT_EQ(rows.size(), 8u) << r.out;
+  ASSERT_EQ(rows.size(), 9u) << r.out;
   int timed = 0;
   for (const auto& row : rows) {
     const std::string& lattice = row.at("lattice");
@@ -143,7 +143,7 @@ TEST(CliCompare, FpsOfTheLatticesTheRendererStores) {
     EXPECT_GT(std::stod(row.at("fps")), 0.0) << lattice << " " << row.at("reconstruction");
     ++timed;
   }
-  EXPECT_EQ(timed, 4);  // cc trilinear, tricubic, tricubic-bspline; fcc boxspline
+  EXPECT_EQ(timed, 5);  // cc trilinear, tricubic, tricubic-bspline, type6; fcc boxspline
   EXPECT_EQ(parseRows(readText(dir / "compare.json")), rows);
 }
 

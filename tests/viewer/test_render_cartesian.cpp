@@ -1,7 +1,8 @@
 // The brick-paged raycaster on Cartesian grids rendered as they are (viewer/CartesianBrickSource.h):
 // every CC reconstruction against the exact CPU reference raycaster (sparse/ReferenceRaycast.h) pixel
 // by pixel, the exact sphere of a quadratic field from the interpolating tricubic (it reproduces
-// cubics), and the image independent of the cache budgets.
+// cubics) and from the type-6 spline (|p|^2 + 3/4: the sphere of radius sqrt(r^2 - 3/4)), and the
+// image independent of the cache budgets.
 #include <gtest/gtest.h>
 
 #include <openvdb/openvdb.h>
@@ -61,7 +62,7 @@ TEST_F(RenderCartesian, EveryReconstructionMatchesTheCpuReference) {
   const float iso = 0.35f;
   const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
 
-  for (const char* name : {"trilinear", "tricubic-bspline", "tricubic"}) {
+  for (const char* name : {"trilinear", "tricubic-bspline", "tricubic", "type6"}) {
     SCOPED_TRACE(name);
     const ReconstructionInfo& info = findReconstruction(name);
     const render::FrameImages gpu = renderCartesian(path, name, camera, w, h, iso);
@@ -110,30 +111,29 @@ TEST_F(RenderCartesian, EveryReconstructionMatchesTheCpuReference) {
   }
 }
 
-// f = |x - c|^2 is quadratic, so the interpolating tricubic B-spline reproduces it and the isosurface
-// f = r^2 is the sphere of radius r about c: coverage, depth and normals against the analytic sphere.
+// f = |x - c|^2 sampled, rendered with `name` at iso r^2, against the analytic sphere of radius
+// `surfaceRadiusIndex` about c (index units): coverage, depth and normals.
 // The background (beyond the grid) is near the values at its faces (576 .. 1700), so the prefilter's
 // ringing at the jump stays far above the isovalue and dies out (0.27 per voxel) before the sphere.
-TEST_F(RenderCartesian, TricubicGivesTheExactSphereOfAQuadraticField) {
+void expectExactSphere(const char* name, double radiusIndex, double surfaceRadiusIndex) {
   TempDir dir;
   const std::string path = dir / "quadratic.vdb";
   const glm::dvec3 centerIndex(23.3, 24.1, 24.6);
-  const double scale = 0.25, radiusIndex = 9.5;
+  const double scale = 0.25;
   const openvdb::Vec3d origin(1.0, -2.0, 0.5);
   writeCartesianFile(path, [&](const glm::ivec3& ijk) {
     const glm::dvec3 r = glm::dvec3(ijk) - centerIndex;
     return float(glm::dot(r, r));
   }, scale, origin, /*background=*/800.0f);
   const glm::dvec3 center = glm::dvec3(origin.x(), origin.y(), origin.z()) + scale * centerIndex;
-  const double radius = scale * radiusIndex;
+  const double radius = scale * surfaceRadiusIndex;
 
   render::Camera camera;
   camera.lookat = center + glm::dvec3(0.3, -0.2, 0.1);
   camera.eye = center + glm::dvec3(9.0, 5.0, 7.0);
   camera.fovYDegrees = 30.0;
   const int w = 64, h = 56;
-  const render::FrameImages img =
-      renderCartesian(path, "tricubic", camera, w, h, float(radiusIndex * radiusIndex));
+  const render::FrameImages img = renderCartesian(path, name, camera, w, h, float(radiusIndex * radiusIndex));
   const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
   int hits = 0;
   double worstDepth = 0.0, worstAngle = 0.0;
@@ -158,8 +158,17 @@ TEST_F(RenderCartesian, TricubicGivesTheExactSphereOfAQuadraticField) {
       EXPECT_LT(angle, 0.05) << "pixel (" << px << ", " << py << ")";
     }
   EXPECT_GT(hits, w * h / 10);
-  std::printf("tricubic sphere: %d hits, worst depth error %.3g voxels, worst normal %.3g degrees\n", hits, worstDepth,
+  std::printf("%s sphere: %d hits, worst depth error %.3g voxels, worst normal %.3g degrees\n", name, hits, worstDepth,
               worstAngle);
+}
+
+// The interpolating tricubic B-spline reproduces the quadratic: the sphere of radius r.
+TEST_F(RenderCartesian, TricubicGivesTheExactSphereOfAQuadraticField) { expectExactSphere("tricubic", 9.5, 9.5); }
+
+// The type-6 spline makes |p - c|^2 into |p - c|^2 + 3/4 (test_type6): the isosurface at r^2 is exactly
+// the sphere of radius sqrt(r^2 - 3/4), rendered on the device with its hits and normals.
+TEST_F(RenderCartesian, Type6GivesTheExactSphereAtTheShiftedRadius) {
+  expectExactSphere("type6", 9.5, std::sqrt(9.5 * 9.5 - 0.75));
 }
 
 // Out of core: a pool of a few slots gives the image of an unbounded one, bit for bit.
