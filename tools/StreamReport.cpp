@@ -1,5 +1,6 @@
 #include "StreamReport.h"
 
+#include <numeric>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -39,8 +40,13 @@ double percentile(std::vector<double> sorted, double p) {
 
 }  // namespace
 
+namespace {
+// Bricks drawn at every level: with a pyramid, a coarse brick drawn is a hit as much as a level-0 one.
+uint64_t bricksDrawn(const std::vector<uint64_t>& levelMix) { return std::accumulate(levelMix.begin(), levelMix.end(), uint64_t(0)); }
+}  // namespace
+
 double StreamFrame::gpuHitRate() const {
-  const uint64_t drawn = levelMix.empty() ? 0 : levelMix[0];
+  const uint64_t drawn = bricksDrawn(levelMix);
   const uint64_t reached = drawn + missing;
   return reached ? double(drawn) / double(reached) : std::numeric_limits<double>::quiet_NaN();
 }
@@ -57,7 +63,7 @@ StreamSummary summarize(const StreamRun& run, double frameBudgetMs) {
     s.completeFrames += f.complete;
     s.bricksUploaded += f.uploaded;
     s.bytesUploaded += f.bytesUploaded;
-    const uint64_t d = f.levelMix.empty() ? 0 : f.levelMix[0];
+    const uint64_t d = bricksDrawn(f.levelMix);
     drawn += d;
     reached += d + f.missing;
     s.maxGpuBytes = std::max(s.maxGpuBytes, f.gpuBytes);

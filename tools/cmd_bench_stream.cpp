@@ -3,6 +3,7 @@
 // frame, never waiting for the file), over every pair of --gpu-cache and --host-cache sizes; per frame
 // the time, passes, bricks requested/uploaded/missing, bytes uploaded, level mix, GPU hit rate and
 // the memory against the budgets; a JSON file and SVG plots (docs/BENCHMARKS.md, "bench stream").
+#include <numeric>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -70,7 +71,8 @@ std::vector<WorkingSetPoint> measureWorkingSet(render::Raycaster& raycaster, con
     for (std::size_t v : views) {
       const uint64_t residentBefore = raycaster.residentCount();
       const render::FrameStats s = raycaster.render(path[v], p.width, p.height);
-      const uint64_t drawn = s.bricksPerLevel.empty() ? 0 : s.bricksPerLevel[0];
+      // Every level's bricks: with --lod-bias a view is drawn mostly from coarser levels.
+      const uint64_t drawn = std::accumulate(s.bricksPerLevel.begin(), s.bricksPerLevel.end(), uint64_t(0));
       p.bricks = std::max(p.bricks, drawn);
       // Slots evicted during the frame may have been drawn earlier in it: then the count is a lower bound.
       p.atLeast = p.atLeast || residentBefore + s.bricksUploaded > raycaster.slotCount();

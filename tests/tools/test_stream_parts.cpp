@@ -1,5 +1,5 @@
 // The parts of `fccvdb bench stream` that need no GPU: its camera paths (tools/StreamPaths.h) by their
-// geometric properties, and the hand-written SVG plots (tools/bench/SvgPlot.h).
+// geometric properties, the hand-written SVG plots (tools/bench/SvgPlot.h), and the report's hit rate.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 
 #include "RunCommand.h"
 #include "StreamPaths.h"
+#include "StreamReport.h"
 #include "bench/SvgPlot.h"
 #include "viewer/OrbitControls.h"
 
@@ -105,6 +106,22 @@ TEST(StreamPaths, RecordedPathReplaysInRealTimeOrOverTheFramesAskedFor) {
   ASSERT_EQ(five.size(), 5u);
   EXPECT_EQ(five.back().eye, recorded.points.back().camera.eye);
   EXPECT_NEAR(five[2].eye.x, recorded.points[5].camera.eye.x, 1e-9);
+}
+
+// A brick drawn from any level of the pyramid was resident: the hit rate counts every level's bricks
+// (with --lod-bias most are coarse; counting level 0 alone gave 0 on the H200).
+TEST(StreamReport, HitRateCountsBricksDrawnAtEveryLevel) {
+  StreamFrame f;
+  f.levelMix = {10, 20, 0, 30};
+  f.missing = 20;
+  EXPECT_DOUBLE_EQ(f.gpuHitRate(), 60.0 / 80.0);
+  StreamRun run;
+  run.frames = {f, f};
+  run.frames[1].levelMix = {0, 20};
+  run.frames[1].missing = 0;
+  EXPECT_DOUBLE_EQ(summarize(run, 16.7).gpuHitRate, (60.0 + 20.0) / (80.0 + 20.0));
+  StreamFrame none;
+  EXPECT_TRUE(std::isnan(none.gpuHitRate()));
 }
 
 TEST(SvgPlot, TicksAreNiceAndCoverTheRange) {
