@@ -21,13 +21,19 @@
 namespace fcc::io {
 namespace {
 
-TEST(VdbGuard, GoodFileReadsWhileTheParentsTbbWorkersRun) {
-  test::TempDir dir;
+// A small level set every guard read must accept.
+std::string writeGoodFile(const test::TempDir& dir) {
   initializeVdb();
   auto grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(20.0f, openvdb::Vec3f(0.0f), 1.0f, 3.0f);
   grid->setName("ls");
   const std::string path = dir / "ls.vdb";
   openvdb::io::File(path).write({grid});
+  return path;
+}
+
+TEST(VdbGuard, GoodFileReadsWhileTheParentsTbbWorkersRun) {
+  test::TempDir dir;
+  const std::string path = writeGoodFile(dir);
 
   std::atomic<bool> stop{false};
   std::atomic<long> rounds{0};
@@ -67,11 +73,7 @@ TEST(VdbGuard, GoodFileReadsWhileTheParentsTbbWorkersRun) {
 
 TEST(VdbGuard, GoodFileReadsRightAfterTheParentsParallelLoops) {
   test::TempDir dir;
-  initializeVdb();
-  auto grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(20.0f, openvdb::Vec3f(0.0f), 1.0f, 3.0f);
-  grid->setName("ls");
-  const std::string path = dir / "ls.vdb";
-  openvdb::io::File(path).write({grid});
+  const std::string path = writeGoodFile(dir);
   for (int i = 0; i < 100; ++i) {
     std::atomic<double> sink{0.0};
     tbb::parallel_for(0, 1 << 12, [&](int k) { sink = std::sqrt(double(k)); });
