@@ -10,6 +10,9 @@
 #include <chrono>
 #include <cstring>
 #include <fstream>
+#include <cstdlib>
+#include <iterator>
+#include <sstream>
 
 #include "AtomicOutput.h"
 #include "sparse/Error.h"
@@ -69,39 +72,60 @@ void guardVdbFile(const std::string& path, GuardDepth depth) {
   guardVdbRead(path, [&] { readInChild(path, depth); });
 }
 
-void guardVdbRead(const std::string& path, const std::function<void()>& read) {
-  checkReadableVdb(path);
-  struct stat st {};
-  ::stat(path.c_str(), &st);
-  // Generous: reading runs at hundreds of MB/s; a hang is what this limit catches.
-  const auto limit = std::chrono::seconds(20 + st.st_size / (20 << 20));
+namespace {
 
+// The CPU time (user + system, in clock ticks) a process has used, or -1 if /proc cannot say.
+long long cpuTicksOf(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t paren = stat.rfind(')');
+  if (paren == std::string::npos) return -1;
+  std::istringstream fields(stat.substr(paren + 1));
+  std::string field;
+  long long utime = -1, stime = -1;
+  for (int i = 3; i <= 15 && (fields >> field); ++i) {  // field 3 is the state; 14 utime, 15 stime
+    if (i == 14) utime = std::atoll(field.c_str());
+    if (i == 15) stime = std::atoll(field.c_str());
+  }
+  return utime < 0 || stime < 0 ? -1 : utime + stime;
+}
+
+enum class ChildEnd { Exited, TimedOut, Stalled };
+
+// One forked child running `read`, watched until it exits, passes `limit`, or stalls: uses no CPU
+// time for kStalledSeconds while it has not finished. OpenVDB stuck on a damaged file spins; a child
+// that uses no CPU at all is waiting on a lock fork copied from a parent thread that is not in the
+// child (TBB's, or an allocator's: forking a threaded process is only safe for async-signal-safe
+// work, and OpenVDB's reading is not), which says nothing of the file.
+ChildEnd runChild(const std::function<void()>& read, std::chrono::seconds limit, int& status, std::string& message) {
+  constexpr int kStalledSeconds = 5;
   int fds[2];
   if (::pipe(fds) != 0) throw Error(std::string("pipe: ") + std::strerror(errno));
   const pid_t pid = ::fork();
   if (pid < 0) throw Error(std::string("fork: ") + std::strerror(errno));
   if (pid == 0) {
     ::close(fds[0]);
-    std::string message;
+    std::string failure;
     try {
       read();
       ::_exit(0);
     } catch (const std::exception& e) {
-      message = e.what();
+      failure = e.what();
     } catch (...) {
-      message = "unknown error";
+      failure = "unknown error";
     }
-    (void)!::write(fds[1], message.data(), message.size());
+    (void)!::write(fds[1], failure.data(), failure.size());
     ::_exit(3);
   }
   ::close(fds[1]);
-  std::string message;
   const auto deadline = std::chrono::steady_clock::now() + limit;
-  bool timedOut = false;
+  ChildEnd end = ChildEnd::Exited;
+  long long lastTicks = -1;
+  int stillSeconds = 0;
   for (;;) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
-      timedOut = true;
+      end = ChildEnd::TimedOut;
       break;
     }
     pollfd p{fds[0], POLLIN, 0};
@@ -116,13 +140,43 @@ void guardVdbRead(const std::string& path, const std::function<void()>& read) {
       }
       break;  // EOF: the child has exited (or closed the pipe)
     }
+    if (r == 0) {  // a second without news: is the child working?
+      const long long ticks = cpuTicksOf(pid);
+      stillSeconds = ticks >= 0 && ticks == lastTicks ? stillSeconds + 1 : 0;
+      lastTicks = ticks;
+      if (stillSeconds >= kStalledSeconds) {
+        end = ChildEnd::Stalled;
+        break;
+      }
+    }
   }
   ::close(fds[0]);
-  if (timedOut) ::kill(pid, SIGKILL);
-  int status = 0;
+  if (end != ChildEnd::Exited) ::kill(pid, SIGKILL);
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  if (timedOut)
+  return end;
+}
+
+}  // namespace
+
+void guardVdbRead(const std::string& path, const std::function<void()>& read) {
+  checkReadableVdb(path);
+  struct stat st {};
+  ::stat(path.c_str(), &st);
+  // Generous: reading runs at hundreds of MB/s; a hang is what this limit catches.
+  const auto limit = std::chrono::seconds(20 + st.st_size / (20 << 20));
+  constexpr int kAttempts = 3;
+  int status = 0;
+  std::string message;
+  ChildEnd end = ChildEnd::Stalled;
+  for (int attempt = 0; attempt < kAttempts && end == ChildEnd::Stalled; ++attempt) {
+    message.clear();
+    end = runChild(read, limit, status, message);
+  }
+  if (end == ChildEnd::Stalled)
+    throw Error(path + ": the child process reading it stalled " + std::to_string(kAttempts) +
+                " times without using any CPU (a lock copied by fork, not the file)");
+  if (end == ChildEnd::TimedOut)
     throw InputError(path + ": OpenVDB did not finish reading it within " + std::to_string(limit.count()) +
                      " s; the file is corrupt or truncated");
   if (WIFSIGNALED(status))

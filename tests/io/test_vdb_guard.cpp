@@ -9,6 +9,9 @@
 #include <openvdb/tools/LevelSetSphere.h>
 #include <tbb/parallel_for.h>
 
+#include <unistd.h>
+#include <filesystem>
+#include <fstream>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -86,6 +89,31 @@ TEST(VdbGuard, GoodFileReadsRightAfterTheParentsParallelLoops) {
                     << " s: " << e.what();
       break;
     }
+  }
+}
+
+// A child that waits without using CPU (what a lock copied by fork looks like) is not the file's
+// fault: it is stopped after 5 s and tried again; one that stalls every time is an Error naming the
+// file, never an InputError calling it corrupt.
+TEST(VdbGuard, AStalledChildIsTriedAgainAndNeverCallsTheFileCorrupt) {
+  test::TempDir dir;
+  const std::string path = writeGoodFile(dir);
+  const std::string marker = dir / "stalled-once";
+  guardVdbRead(path, [&] {
+    if (!std::filesystem::exists(marker)) {
+      std::ofstream(marker) << "1";
+      ::pause();  // blocks, no CPU: stalled
+    }
+  });
+  EXPECT_TRUE(std::filesystem::exists(marker)) << "the first child ran";
+  try {
+    guardVdbRead(path, [] { ::pause(); });
+    ADD_FAILURE() << "a child that always stalls passed";
+  } catch (const InputError& e) {
+    ADD_FAILURE() << "called the file corrupt: " << e.what();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("stalled"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
   }
 }
 
