@@ -18,6 +18,7 @@
 #include "sparse/Error.h"
 #include "sparse/FccBuilder.h"
 #include "sparse/StreamedBuild.h"
+#include "sparse/StreamedFccTree.h"
 
 namespace fcc::io {
 namespace {
@@ -292,16 +293,19 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     summary.boundsBricks = bounds->activeVoxelCount();
     grids.push_back(bounds);
   }
-  // The grid's tree builds its leaves' values while it is written, from `field`, alive until then.
+  // The grid's tree writes its leaves while it is written: those pass 1 kept, copied; any other rebuilt
+  // from `field`, alive until then.
   const auto writeStart = std::chrono::steady_clock::now();
   writeVdbAtomically(output, grids, options.overwrite, input);
   const double pass2 = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
   const StreamedBuild::Times& t = built.times;
-  char text[400];
+  const auto& tree = static_cast<const StreamedFccTree&>(built.grid->tree());
+  char text[480];
   std::snprintf(text, sizeof text,
                 "pass 1 %.2f s (blocks %.2f, prepare %.2f, build %.2f, window %.2f, bounds %.2f of which kernels %.2f, "
-                "prune %.2f); pass 2 (rebuild and write) %.2f s",
-                pass1, t.blocks, t.prepare, t.build, t.window, t.bounds, t.boundsKernels, t.prune, pass2);
+                "prune %.2f); pass 2 (write: %zu leaves copied as pass 1 kept them, %zu rebuilt) %.2f s",
+                pass1, t.blocks, t.prepare, t.build, t.window, t.bounds, t.boundsKernels, t.prune, tree.leavesCopied(),
+                tree.leavesRebuilt(), pass2);
   summary.timings = text;
   if (source) {  // the dense input read once, into the slab scratch, before pass 1
     std::snprintf(text, sizeof text, "read into slabs %.2f s; ", slabbing);

@@ -1,15 +1,8 @@
 #include "SlabScratch.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
 
 #include "SampleDecoding.h"
 #include "sparse/Error.h"
@@ -22,21 +15,10 @@ constexpr uint64_t kSliceGroupBytes = uint64_t(16) << 20;
 // Values one task of transformAlongZ holds (whole z-lines of a few rows of one slab).
 constexpr uint64_t kZLinesBytes = uint64_t(8) << 20;
 
-std::string scratchDir() {
-  std::error_code ec;
-  const std::filesystem::path dir = std::filesystem::temp_directory_path(ec);
-  if (ec) {
-    const char* named = std::getenv("TMPDIR");
-    throw Error(std::string("TMPDIR=") + (named ? named : "") + ": no folder for the slab scratch file (" + ec.message() +
-                "); set TMPDIR to a writable folder with room for about the input's size");
-  }
-  return dir.string();
-}
-
 }  // namespace
 
 SlabScratch::SlabScratch(DenseSource& source, const SliceTransform& inSlices, openvdb::util::NullInterrupter* progress)
-    : dims_(source.geometry().dims), dir_(scratchDir()) {
+    : dims_(source.geometry().dims) {
   // Values a transform changes are floats; others stay as stored, a quarter of float's size for u8.
   const std::optional<DenseSource::Stored> stored = inSlices ? std::nullopt : source.stored();
   if (stored) {
@@ -52,19 +34,10 @@ SlabScratch::SlabScratch(DenseSource& source, const SliceTransform& inSlices, op
     bytes_ += uint64_t(slab.width) * uint64_t(dims_.y) * uint64_t(dims_.z) * elementBytes_;
     slabs_.push_back(slab);
   }
-  std::string name = dir_ + "/fccvdb-slabs-XXXXXX";
-  fd_ = ::mkstemp(name.data());
-  if (fd_ < 0) throw Error(dir_ + ": cannot create the slab scratch file: " + std::strerror(errno) + "; set TMPDIR to a writable folder");
-  ::unlink(name.c_str());  // anonymous from now on: closing it (or dying) frees the space
-  // Claims the space now, so a full disk says so before the source is read (where supported).
-  const int claimed = ::posix_fallocate(fd_, 0, off_t(bytes_));
-  if (claimed == ENOSPC || claimed == EFBIG) {
-    ::close(fd_);
-    throw Error(dir_ + ": no room for the slab scratch file of " + std::to_string(bytes_) +
-                " bytes (18/16 of the input's voxels); set TMPDIR to a folder with room");
-  }
+  file_ = std::make_unique<ScratchFile>("the slab scratch file", "18/16 of the input's voxels");
+  file_->reserve(bytes_);  // a full disk says so before the source is read
 
-  try {
+  {
     const uint64_t sliceVoxels = uint64_t(dims_.x) * uint64_t(dims_.y);
     const int group = int(std::clamp<uint64_t>(kSliceGroupBytes / (sliceVoxels * elementBytes_), 1, uint64_t(dims_.z)));
     // Bytes from operator new: aligned for floats.
@@ -88,45 +61,17 @@ SlabScratch::SlabScratch(DenseSource& source, const SliceTransform& inSlices, op
         for (int z = 0; z < count; ++z)
           for (int y = 0; y < dims_.y; ++y)
             dst = std::copy_n(slices.data() + ((size_t(z) * dims_.y + y) * dims_.x + slab.x0) * elementBytes_, rowBytes, dst);
-        writeBytes(run.data(), run.size(), runOffset(slab, 0, z0));
+        file_->write(run.data(), run.size(), runOffset(slab, 0, z0));
       });
       if (progress && progress->wasInterrupted(int(100.0 * double(z0 + count) / double(dims_.z))))
         throw Error("interrupted");
     }
     source.finish();
     if (progress) progress->end();
-  } catch (...) {
-    ::close(fd_);
-    throw;
   }
 }
 
-SlabScratch::~SlabScratch() {
-  if (fd_ >= 0) ::close(fd_);
-}
-
-void SlabScratch::readBytes(void* dst, size_t n, uint64_t offset) const {
-  auto* out = static_cast<char*>(dst);
-  for (size_t got = 0; got < n;) {
-    const ssize_t r = ::pread(fd_, out + got, n - got, off_t(offset + got));
-    if (r < 0 && errno == EINTR) continue;
-    if (r <= 0)
-      throw Error(dir_ + ": cannot read back the slab scratch file: " + (r < 0 ? std::strerror(errno) : "it is shorter than written"));
-    got += size_t(r);
-  }
-}
-
-void SlabScratch::writeBytes(const void* src, size_t n, uint64_t offset) const {
-  const auto* in = static_cast<const char*>(src);
-  for (size_t put = 0; put < n;) {
-    const ssize_t w = ::pwrite(fd_, in + put, n - put, off_t(offset + put));
-    if (w < 0 && errno == EINTR) continue;
-    if (w < 0)
-      throw Error(dir_ + ": cannot write the slab scratch file of " + std::to_string(bytes_) + " bytes: " +
-                  std::strerror(errno) + "; set TMPDIR to a folder with room");
-    put += size_t(w);
-  }
-}
+SlabScratch::~SlabScratch() = default;
 
 void SlabScratch::transformAlongZ(const std::function<void(float*, int, ptrdiff_t, int, ptrdiff_t)>& alongZ) {
   if (type_ != ScalarType::F32 || scale_) throw Error("internal: a slab scratch of stored samples transformed");
@@ -139,9 +84,9 @@ void SlabScratch::transformAlongZ(const std::function<void(float*, int, ptrdiff_
       // The rows [y0, y0 + n) of every z: one run each, the lines side by side.
       const int n = std::min(rows, dims_.y - y0);
       const size_t run = size_t(n) * size_t(slab.width);
-      for (int z = 0; z < dims_.z; ++z) readBytes(block.data() + z * run, run * sizeof(float), runOffset(slab, y0, z));
+      for (int z = 0; z < dims_.z; ++z) file_->read(block.data() + z * run, run * sizeof(float), runOffset(slab, y0, z));
       alongZ(block.data(), dims_.z, ptrdiff_t(run), int(run), 1);
-      for (int z = 0; z < dims_.z; ++z) writeBytes(block.data() + z * run, run * sizeof(float), runOffset(slab, y0, z));
+      for (int z = 0; z < dims_.z; ++z) file_->write(block.data() + z * run, run * sizeof(float), runOffset(slab, y0, z));
     }
   });
 }
@@ -156,7 +101,7 @@ void SlabScratch::read(const SiteBox& voxels, float* out) const {
     const size_t columns = size_t(xEnd - x + 1);
     run.resize(size_t(size.y) * size_t(slab.width) * elementBytes_);
     for (int z = voxels.min.z; z <= voxels.max.z; ++z) {
-      readBytes(run.data(), run.size(), runOffset(slab, voxels.min.y, z));
+      file_->read(run.data(), run.size(), runOffset(slab, voxels.min.y, z));
       for (int y = 0; y < size.y; ++y) {
         const uint8_t* src = run.data() + (size_t(y) * slab.width + size_t(x - slab.x0)) * elementBytes_;
         float* dst = out + (size_t(z - voxels.min.z) * size.y + y) * size.x + (x - voxels.min.x);

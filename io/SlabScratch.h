@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@
 
 #include "DenseSource.h"
 #include "sparse/SampleField.h"
+#include "sparse/ScratchFile.h"
 
 namespace fcc::io {
 
@@ -62,8 +64,6 @@ class SlabScratch {
   uint64_t runOffset(const Slab& slab, int y, int z) const {
     return slab.offset + ((uint64_t(z) * uint64_t(dims_.y) + uint64_t(y)) * uint64_t(slab.width)) * elementBytes_;
   }
-  void readBytes(void* dst, size_t n, uint64_t offset) const;
-  void writeBytes(const void* src, size_t n, uint64_t offset) const;
 
   glm::ivec3 dims_{0};
   ScalarType type_ = ScalarType::F32;                  // of the values in the file, in this machine's byte order
@@ -71,8 +71,7 @@ class SlabScratch {
   size_t elementBytes_ = sizeof(float);
   std::vector<Slab> slabs_;
   uint64_t bytes_ = 0;
-  std::string dir_;  // for messages
-  int fd_ = -1;
+  std::unique_ptr<ScratchFile> file_;
 };
 
 }  // namespace fcc::io

@@ -101,20 +101,41 @@ std::unique_ptr<FccBlockBuilder::Leaf> FccBlockBuilder::build(const openvdb::Coo
   samples.origin = siteBox.min;
   field_.fill(siteBox, samples.values.data());
 
+  // The prefilter's taps as offsets into the scratch (side^3, x fastest), in fcc_neighbour_offset's
+  // order: the same sums in the same order as spline::prefilterAt, so the same bits, without the
+  // per-tap index arithmetic (this loop is most of a conversion's leaf building).
+  const int side = samples.side;
+  int taps[12];
+  for (int k = 0; k < 12; ++k) {
+    const glm::ivec3 d = spline::fcc_neighbour_offset(k);
+    taps[k] = (d.z * side + d.y) * side + d.x;
+  }
+  // Whether every site of the block (halo apart) lies in the field's bounds: then no site needs the test.
+  const SiteBox own = options_.prefilter ? siteBox.expandedBy(-1) : siteBox;
+  const bool ownInside = glm::all(glm::greaterThanEqual(own.min, bounds_.min)) && glm::all(glm::lessThanEqual(own.max, bounds_.max));
+  const float* values = samples.values.data();
   auto leaf = std::make_unique<Leaf>(openvdb::Coord(leafOrigin.x, leafOrigin.y, leafOrigin.z),
                                      openvdb::Vec4f(background), false);
   bool anyActive = false;
   for (openvdb::Index n = 0; n < Leaf::SIZE; ++n) {
-    const openvdb::Coord xyz = leaf->offsetToGlobalCoord(n);
-    const glm::ivec3 packed(xyz.x(), xyz.y(), xyz.z());
+    const glm::ivec3 packed = leafOrigin + glm::ivec3(int(n >> 6), int((n >> 3) & 7), int(n & 7));  // VDB leaf order
     openvdb::Vec4f value;
     bool active = false;
     for (int c = 0; c < 4; ++c) {
       const glm::ivec3 site = siteOfChannel(packed, c);
-      const float v = samples.at(site);
-      if (stats && glm::all(glm::greaterThanEqual(site, bounds_.min)) && glm::all(glm::lessThanEqual(site, bounds_.max)))
+      const glm::ivec3 local = site - samples.origin;
+      const int at = (local.z * side + local.y) * side + local.x;
+      const float v = values[at];
+      if (stats && (ownInside || (glm::all(glm::greaterThanEqual(site, bounds_.min)) &&
+                                  glm::all(glm::lessThanEqual(site, bounds_.max)))))
         stats->add(v);
-      value[c] = options_.prefilter ? spline::prefilterAt(site, [&](const glm::ivec3& s) { return samples.at(s); }) : v;
+      if (options_.prefilter) {
+        float neighbourSum = 0.0f;
+        for (int k = 0; k < 12; ++k) neighbourSum += values[at + taps[k]];
+        value[c] = spline::fcc_prefilter(v, neighbourSum);
+      } else {
+        value[c] = v;
+      }
       active = active || !(std::abs(value[c] - background) <= options_.tolerance);
     }
     if (active) {

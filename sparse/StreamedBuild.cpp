@@ -1,5 +1,6 @@
 #include "StreamedBuild.h"
 
+#include <openvdb/io/Archive.h>
 #include <openvdb/tools/Prune.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "BrickKernels.h"
+#include "EncodedLeafFile.h"
 #include "Error.h"
 #include "FccSlabWindow.h"
 #include "StreamedFccTree.h"
@@ -59,8 +61,8 @@ bool prunesToTile(const Leaf& leaf, const Vec4f& background, float tolerance, Le
 // the topology tree; the leaves themselves, rounded as stored, into the slab for the window.
 class SlabBuilder {
  public:
-  SlabBuilder(const FccBlockBuilder& builder, bool half, FccTree& topology)
-      : builder_(builder), half_(half), topology_(topology), background_(builder.background()) {}
+  SlabBuilder(const FccBlockBuilder& builder, bool half, FccTree& topology, EncodedLeafFile* keep)
+      : builder_(builder), half_(half), topology_(topology), background_(builder.background()), keep_(keep) {}
 
   FccSlabWindow::Slab build(int x, StreamedBuild::Times& times) {
     auto start = Clock::now();
@@ -87,7 +89,9 @@ class SlabBuilder {
         b.leaf = builder_.build(block, scratch_.local(), &stats_.local());
         if (!b.leaf) continue;
         b.isTile = prunesToTile(*b.leaf, background_, builder_.options().tolerance, b.tile);
-        if (half_ && !b.isTile) roundAsStoredHalf(b.leaf->beginValueAll(), background_);
+        if (b.isTile) continue;
+        if (keep_) keep_->add(*b.leaf);  // before rounding: pass 2 would encode the leaf as built
+        if (half_) roundAsStoredHalf(b.leaf->beginValueAll(), background_);
       }
     });
     times.build += lap(start);
@@ -141,12 +145,25 @@ class SlabBuilder {
   bool half_;
   FccTree& topology_;
   Vec4f background_;
+  EncodedLeafFile* keep_;
   tbb::enumerable_thread_specific<FccBlockBuilder::Scratch> scratch_;
   tbb::enumerable_thread_specific<SampleStats> stats_;
   static constexpr size_t kAheadBlocks = size_t(1) << 20;
   std::map<int, std::vector<Coord>> ahead_;
   size_t lastListSize_ = 1 << 16;  // before any list is known: 16 slabs at first
 };
+
+// Where pass 1 keeps its encoded leaves, with the compression io::File writes with; null without one
+// (a temp folder where no file can be made costs pass 2's rebuild, never the conversion).
+std::shared_ptr<EncodedLeafFile> keepLeavesFor(const Vec4f& background, const StreamedBuildOptions& options) {
+  if (!options.keepLeaves) return nullptr;
+  try {
+    return std::make_shared<EncodedLeafFile>(openvdb::io::Archive::DEFAULT_COMPRESSION_FLAGS, background, options.half,
+                                             options.keepLeavesMaxBytes);
+  } catch (const Error&) {
+    return nullptr;
+  }
+}
 
 }  // namespace
 
@@ -169,7 +186,8 @@ StreamedBuild buildFccGridStreamed(const FccBlockBuilder& builder, const Streame
   // computed (the coefficient leaves' and their neighbours) reach as far beyond the blocks.
   const bool rawSamples = !builder.options().prefilter;
   const int reach = rawSamples ? 2 : 1;
-  SlabBuilder slabs(builder, options.half, *topology);
+  std::shared_ptr<EncodedLeafFile> kept = keepLeavesFor(background, options);
+  SlabBuilder slabs(builder, options.half, *topology, kept.get());
   FccSlabWindow window(background);
   const int first = blocks.min().x() - reach, last = blocks.max().x() + reach;
   int nextSlab = blocks.min().x();
@@ -222,8 +240,12 @@ StreamedBuild buildFccGridStreamed(const FccBlockBuilder& builder, const Streame
   auto start = Clock::now();
   openvdb::tools::pruneTiles(static_cast<FccTree&>(*topology), Vec4f(builder.options().tolerance));
   openvdb::tools::prune(*result.bounds);
-  times.prune += lap(start);
   result.samples = summarizeSamples(slabs.stats(), builder.siteBounds(), builder.background());
+  if (kept) {
+    kept->finish();
+    topology->useEncodedLeaves(kept);
+  }
+  times.prune += lap(start);
   return result;
 }
 

@@ -5,8 +5,8 @@
 // Pass 1 (here) builds the blocks slab by slab along x and keeps, of each leaf, only its active mask
 // (a StreamedFccTree), plus the sample range; the bounds of a slab's bricks are computed from a
 // window of the slabs they read (FccSlabWindow.h): one either side, two for raw samples, whose
-// coefficients read one more. Pass 2 happens while the grid is written: its tree rebuilds each leaf
-// then (StreamedFccTree.h). Memory: the topology (~100 bytes a leaf), the bounds, and a few slabs.
+// coefficients read one more. Pass 2 happens while the grid is written: its tree copies each leaf pass 1
+// kept encoded in a scratch file, and rebuilds any other (StreamedFccTree.h). Memory: the topology (~100 bytes a leaf), the bounds, and a few slabs.
 #pragma once
 
 #include <openvdb/util/NullInterrupter.h>
@@ -23,6 +23,10 @@ class BrickKernels;
 struct StreamedBuildOptions {
   bool half = false;              // the grid is saved as half floats: bounds of the rounded values
   BrickKernels* kernels = nullptr;  // bounds (and prefilter for raw samples); null: the C++ reference
+  // Pass 1 keeps its leaves encoded in a scratch file (EncodedLeafFile.h) for pass 2 to copy, at most
+  // this many bytes (0: half the temp folder's free space); off: pass 2 rebuilds every leaf.
+  bool keepLeaves = true;
+  uint64_t keepLeavesMaxBytes = 0;
 };
 
 struct StreamedBuild {

@@ -6,6 +6,8 @@
 
 #include <openvdb/io/io.h>
 
+#include <atomic>
+#include <cstring>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -24,6 +26,16 @@ constexpr size_t kBatchLeaves = 256;
 openvdb::Coord blockOf(const Leaf& leaf) {
   const openvdb::Coord o = leaf.origin();
   return openvdb::Coord(o.x() / int(Leaf::DIM), o.y() / int(Leaf::DIM), o.z() / int(Leaf::DIM));
+}
+
+// Whether `bytes` (LeafNode::writeBuffers's output) begin with `leaf`'s value mask, as that call writes
+// it first: a kept leaf that is not the one the topology holds there is never written.
+bool startsWithMaskOf(const std::string& bytes, const Leaf& leaf) {
+  using Mask = Leaf::NodeMaskType;
+  const Mask& mask = leaf.valueMask();
+  Mask::Word words[Mask::WORD_COUNT];  // what NodeMask::save writes: its words, in order
+  for (openvdb::Index w = 0; w < Mask::WORD_COUNT; ++w) words[w] = mask.getWord<Mask::Word>(w);
+  return bytes.size() >= sizeof words && std::memcmp(bytes.data(), words, sizeof words) == 0;
 }
 
 }  // namespace
@@ -45,15 +57,32 @@ void StreamedFccTree::writeBuffers(std::ostream& os, bool saveFloatAsHalf) const
   const uint32_t compression = openvdb::io::getDataCompression(os);
   const void* background = openvdb::io::getGridBackgroundValuePtr(os);
   tbb::enumerable_thread_specific<FccBlockBuilder::Scratch> scratch;
+  const bool useKept = kept_ && kept_->suits(compression, background, saveFloatAsHalf);
+  std::atomic<size_t> copied{0}, rebuilt{0};
   auto build = [&](size_t first, std::vector<std::string>& out) {
     out.clear();
     out.resize(std::min(kBatchLeaves, topology.size() - first));
-    std::vector<openvdb::Coord> blocks(out.size());
-    for (size_t i = 0; i < out.size(); ++i) blocks[i] = blockOf(*topology[first + i]);
+    // The kept leaves first (a mask that is not the topology's is a leaf to rebuild), then the rest.
+    std::vector<char> copiedHere(out.size(), 0);
+    if (useKept) {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i)
+          copiedHere[i] = kept_->read(topology[first + i]->origin(), out[i]) && startsWithMaskOf(out[i], *topology[first + i]);
+      });
+    }
+    std::vector<size_t> missing;
+    for (size_t i = 0; i < out.size(); ++i)
+      if (!copiedHere[i]) missing.push_back(i);
+    copied += out.size() - missing.size();
+    rebuilt += missing.size();
+    if (missing.empty()) return;
+    std::vector<openvdb::Coord> blocks(missing.size());
+    for (size_t m = 0; m < missing.size(); ++m) blocks[m] = blockOf(*topology[first + missing[m]]);
     builder_.prepare(blocks);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t i = r.begin(); i != r.end(); ++i) {
-        const std::unique_ptr<Leaf> leaf = builder_.build(blocks[i], scratch.local(), nullptr);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, missing.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t m = r.begin(); m != r.end(); ++m) {
+        const size_t i = missing[m];
+        const std::unique_ptr<Leaf> leaf = builder_.build(blocks[m], scratch.local(), nullptr);
         const Leaf& expected = *topology[first + i];
         if (!leaf || leaf->valueMask() != expected.valueMask()) {
           std::ostringstream where;
@@ -61,11 +90,7 @@ void StreamedFccTree::writeBuffers(std::ostream& os, bool saveFloatAsHalf) const
           throw Error("streamed FCC grid: the leaf at packed voxel " + where.str() +
                       " was rebuilt with another active mask than its topology's");
         }
-        std::ostringstream bytes(std::ios_base::binary);
-        openvdb::io::setDataCompression(bytes, compression);
-        openvdb::io::setGridBackgroundValuePtr(bytes, background);
-        leaf->writeBuffers(bytes, saveFloatAsHalf);
-        out[i] = bytes.str();
+        out[i] = encodeLeaf(*leaf, compression, background, saveFloatAsHalf);
       }
     });
   };
@@ -93,6 +118,8 @@ void StreamedFccTree::writeBuffers(std::ostream& os, bool saveFloatAsHalf) const
     std::swap(current, next);
   }
   if (progress_) progress_->end();
+  copied_ = copied;
+  rebuilt_ = rebuilt;
 }
 
 }  // namespace fcc

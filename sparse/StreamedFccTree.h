@@ -1,5 +1,6 @@
 // An FCC tree that holds only its topology and builds its leaves' values while it is written: the
-// second pass of the streamed build (StreamedBuild.h). Its leaves have no value buffers (OpenVDB's
+// second pass of the streamed build (StreamedBuild.h), which copies the leaves pass 1 kept encoded
+// (EncodedLeafFile.h) and rebuilds only the others. Its leaves have no value buffers (OpenVDB's
 // PartialCreate leaves, ~100 bytes each instead of 8 KiB); tiles and masks are as the in-memory
 // builder makes them.
 //
@@ -16,6 +17,9 @@
 
 #include <openvdb/util/NullInterrupter.h>
 
+#include <memory>
+
+#include "EncodedLeafFile.h"
 #include "FccBlockBuilder.h"
 #include "FccGrid.h"
 
@@ -29,7 +33,13 @@ class StreamedFccTree final : public FccTree {
   // writing and can interrupt it.
   StreamedFccTree(const FccBlockBuilder& builder, openvdb::util::NullInterrupter* progress);
 
-  // Rebuilds and writes every leaf; throws fcc::Error if a rebuilt leaf's mask is not its
+  // Leaves pass 1 kept, encoded (finished): writeBuffers copies those it can instead of rebuilding them.
+  void useEncodedLeaves(std::shared_ptr<const EncodedLeafFile> kept) { kept_ = std::move(kept); }
+  // Of the last writeBuffers: leaves copied from the kept ones, and leaves rebuilt.
+  size_t leavesCopied() const { return copied_; }
+  size_t leavesRebuilt() const { return rebuilt_; }
+
+  // Rebuilds (or copies, see above) and writes every leaf; throws fcc::Error if a rebuilt leaf's mask is not its
   // topology's (a builder that is not deterministic) or if interrupted.
   void writeBuffers(std::ostream& os, bool saveFloatAsHalf = false) const override;
 
@@ -39,6 +49,8 @@ class StreamedFccTree final : public FccTree {
  private:
   FccBlockBuilder builder_;
   openvdb::util::NullInterrupter* progress_;
+  std::shared_ptr<const EncodedLeafFile> kept_;
+  mutable size_t copied_ = 0, rebuilt_ = 0;
 };
 
 }  // namespace fcc

@@ -13,6 +13,7 @@
 #include "sparse/BrickKernels.h"
 #include "sparse/FccBuilder.h"
 #include "sparse/StreamedBuild.h"
+#include "sparse/StreamedFccTree.h"
 #include "tests/tools/RunCommand.h"
 
 namespace fcc::io {
@@ -43,18 +44,21 @@ void writeInMemory(const std::string& path, const SampleField& field, const Vari
   writeVdbAtomically(path, openvdb::GridCPtrVec{built.grid, bounds}, false);
 }
 
-// The same through the streamed build (what writeSynthFile does for synth fields).
-void writeStreamed(const std::string& path, const SampleField& field, const Variant& v, BrickKernels* kernels,
-                   const Describe& describeGrid) {
+// The same through the streamed build (what writeSynthFile does for synth fields); `options` sets
+// more than v's half and the kernels. Returns how pass 2 wrote the leaves: (copied, rebuilt).
+std::pair<size_t, size_t> writeStreamed(const std::string& path, const SampleField& field, const Variant& v,
+                                        BrickKernels* kernels, const Describe& describeGrid,
+                                        StreamedBuildOptions options = {}) {
   BuildOptions build;
   build.prefilter = v.prefilter;
   const FccBlockBuilder builder(field, build);
-  StreamedBuildOptions options;
   options.half = v.half;
   options.kernels = kernels;
   const StreamedBuild built = buildFccGridStreamed(builder, options);
   describeGrid(*built.grid, built.samples);
   writeVdbAtomically(path, openvdb::GridCPtrVec{built.grid, boundsGridOf(built.bounds, *built.grid)}, false);
+  const auto& tree = static_cast<const StreamedFccTree&>(built.grid->tree());
+  return {tree.leavesCopied(), tree.leavesRebuilt()};
 }
 
 TEST(SynthStreamed, EqualsTheInMemoryBuild) {
@@ -100,6 +104,45 @@ TEST(SynthStreamed, EqualsTheInMemoryBuildWithOpenCl) {
     test::expectSameFccFiles(dir / "memory.vdb", dir / "streamed.vdb");
     std::filesystem::remove(dir / "streamed.vdb");
     std::filesystem::remove(dir / "memory.vdb");
+  }
+}
+
+// Pass 2 copies the leaves pass 1 kept encoded instead of rebuilding them; a cap on the scratch file
+// leaves the rest to be rebuilt, and without it every leaf is rebuilt: the same file every way.
+TEST(SynthStreamed, PassTwoCopiesTheLeavesPassOneKeptAndRebuildsTheRest) {
+  TempDir dir;
+  const std::unique_ptr<BrickKernels> reference = makeReferenceBrickKernels();
+  const SynthField synth = makeSynthField(SynthSpec{"blobs", glm::ivec3(64, 48, 56), 5});
+  for (const Variant v : {Variant{true, false}, Variant{true, true}}) {
+    SCOPED_TRACE(describe(v));
+    auto describeGrid = [&](FccGrid& grid, const SampleSummary& samples) {
+      describeSynthGrid(grid, "blobs", synth, v.prefilter, samples);
+    };
+    writeInMemory(dir / "memory.vdb", *synth.field, v, reference.get(), describeGrid);
+    const size_t leaves = readFccGrid(dir / "memory.vdb")->tree().leafCount();
+    ASSERT_GT(leaves, 8u);
+
+    const auto [copied, rebuilt] = writeStreamed(dir / "kept.vdb", *synth.field, v, reference.get(), describeGrid);
+    EXPECT_EQ(copied, leaves) << "every leaf copied";
+    EXPECT_EQ(rebuilt, 0u);
+    test::expectSameFccFiles(dir / "memory.vdb", dir / "kept.vdb");
+
+    StreamedBuildOptions capped;
+    capped.keepLeavesMaxBytes = 12 << 10;  // a few leaves' bytes
+    const auto [someCopied, someRebuilt] =
+        writeStreamed(dir / "capped.vdb", *synth.field, v, reference.get(), describeGrid, capped);
+    EXPECT_GT(someCopied, 0u);
+    EXPECT_GT(someRebuilt, 0u);
+    EXPECT_EQ(someCopied + someRebuilt, leaves);
+    test::expectSameFccFiles(dir / "memory.vdb", dir / "capped.vdb");
+
+    StreamedBuildOptions none;
+    none.keepLeaves = false;
+    const auto [noneCopied, allRebuilt] = writeStreamed(dir / "rebuilt.vdb", *synth.field, v, reference.get(), describeGrid, none);
+    EXPECT_EQ(noneCopied, 0u);
+    EXPECT_EQ(allRebuilt, leaves);
+    test::expectSameFccFiles(dir / "memory.vdb", dir / "rebuilt.vdb");
+    for (const char* f : {"memory.vdb", "kept.vdb", "capped.vdb", "rebuilt.vdb"}) std::filesystem::remove(dir / f);
   }
 }
 
