@@ -307,7 +307,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     std::snprintf(text, sizeof text, "read into slabs %.2f s; ", slabbing);
     summary.timings = text + summary.timings;
   }
-  // Opening: the source's header and topology (for a .vdb, first in the guarded child), its leaf index.
+  // Opening: the source's header and topology (for a .vdb, first in the guard's process), its leaf index.
   std::snprintf(text, sizeof text, "open %.2f s; ", opening);
   summary.timings = text + summary.timings;
   return summary;

@@ -1,6 +1,6 @@
 // Reading and writing .vdb files. Debian's OpenVDB 10.0.1 can crash or hang on corrupt files, so every
-// file is first read once in a child process with a time limit (guardVdbFile) before this process
-// trusts it.
+// file is first read once in a process of its own with a time limit (guardVdbFile, guardLeafRead)
+// before this process trusts it.
 #pragma once
 
 #include <openvdb/openvdb.h>
