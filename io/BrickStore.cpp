@@ -84,12 +84,9 @@ BrickStore::BrickStore(const std::string& path, const std::string& gridName, boo
   std::string boundsName;
   const VdbGridEntry entry = chooseFccGrid(path, gridName, boundsName);
   const std::vector<std::string> fccTypes{kFccTreeTypeName};
-  // OpenVDB parses the FCC grid's topology and the bounds grid: first in a child, which a damaged file
-  // may crash. Leaf buffers are ours (VdbLeafReader validates them before decoding).
-  guardVdbRead(path, [&] {
-    VdbLeafReader probe(path, entry.name, fccTypes, /*indexLeaves=*/false);
-    (void)readBounds(path, boundsName, entry.name);
-  });
+  // OpenVDB parses the FCC grid's topology and the bounds grid: first in the guard's process, which a
+  // damaged file may crash. Leaf buffers are ours (VdbLeafReader validates them before decoding).
+  guardLeafRead(path, entry.name, fccTypes, boundsName);
   try {
     reader_ = std::make_shared<VdbLeafReader>(path, entry.name, fccTypes);
     bounds_ = readBounds(path, boundsName, entry.name);

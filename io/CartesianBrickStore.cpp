@@ -33,7 +33,7 @@ void forEachBlockLeaf(const glm::ivec3& brick, Visit&& visit) {
 
 CartesianBrickStore::CartesianBrickStore(const std::string& path, const std::string& gridName) : path_(path) {
   const std::vector<std::string> types{"Tree_float_5_4_3"};
-  guardVdbRead(path, [&] { VdbLeafReader probe(path, gridName, types, /*indexLeaves=*/false); });
+  guardLeafRead(path, gridName, types);
   try {
     reader_ = std::make_shared<VdbLeafReader>(path, gridName, types);
   } catch (const InputError&) {

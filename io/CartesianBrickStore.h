@@ -27,7 +27,7 @@ class CartesianBrickStore {
   static constexpr int kBlockPoints = kBlockDim * kBlockDim * kBlockDim;
 
   // Opens `gridName` (empty: the first float grid) of `path`: OpenVDB parses its topology first in the
-  // guarded child (io/VdbFile.h). InputError (one line) for a file without a float grid or with a
+  // guard's process (io/VdbFile.h). InputError (one line) for a file without a float grid or with a
   // transform that is not affine.
   explicit CartesianBrickStore(const std::string& path, const std::string& gridName = {});
   ~CartesianBrickStore();

@@ -189,8 +189,8 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
   glm::ivec3 extent(0);  // the source's voxels per axis (its active box for a .vdb): resampling's extent
   if (format == Format::Vdb && (resample || !options.inMemory)) {
     const std::vector<std::string> floatTrees{openvdb::FloatTree::treeType()};
-    // OpenVDB parses the header and topology: first in a child, which may crash on a damaged file.
-    guardVdbRead(input, [&] { VdbLeafReader probe(input, options.gridName, floatTrees, /*indexLeaves=*/false); });
+    // OpenVDB parses the header and topology: first in the guard's process, which a damaged file may crash.
+    guardLeafRead(input, options.gridName, floatTrees);
     reader = std::make_shared<VdbLeafReader>(input, options.gridName, floatTrees);
     const auto& topology = static_cast<const openvdb::FloatGrid&>(*reader->grid());
     provenance.sourceGrid = summary.gridName = topology.getName();
@@ -311,7 +311,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     std::snprintf(text, sizeof text, "read into slabs %.2f s; ", slabbing);
     summary.timings = text + summary.timings;
   }
-  // Opening: the source's header and topology (for a .vdb, first in the guarded child), its leaf index.
+  // Opening: the source's header and topology (for a .vdb, first in the guard's process), its leaf index.
   std::snprintf(text, sizeof text, "open %.2f s; ", opening);
   summary.timings = text + summary.timings;
   return summary;

@@ -1,18 +1,19 @@
 #include "VdbFile.h"
 
+#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <cstdlib>
-#include <iterator>
-#include <sstream>
 
 #include "AtomicOutput.h"
 #include "sparse/Error.h"
@@ -31,162 +32,149 @@ void checkReadableVdb(const std::string& path) {
     throw InputError(path + ": not an OpenVDB file (no VDB magic number); valid inputs are .vdb files written by OpenVDB");
 }
 
-// Every tile and every leaf of a tree, visited one after the other: a tree that reads but is
-// inconsistent fails here, in the child. Serially, never through TBB (OpenVDB's activeVoxelCount()
-// is a parallel reduce): the child is forked from a process whose TBB workers may be mid-flight, and
-// a child's parallel loop then waited forever for a worker that fork had not copied (seen in CI, and
-// caught by gdb: wait_on_address under activeVoxelCount's reduce), so a good file was called corrupt.
-struct WalkTreeSerially {
-  template <class GridT>
-  void operator()(const GridT& grid) const {
-    using TreeT = typename GridT::TreeType;
-    openvdb::Index64 count = 0;
-    auto tile = grid.tree().cbeginValueAll();
-    tile.setMaxDepth(TreeT::ValueAllCIter::LEAF_DEPTH - 1);  // tiles only: leaves are walked below
-    for (; tile; ++tile) count += tile.isValueOn();
-    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) count += leaf->onVoxelCount();
-    (void)count;
+// Where fccvdb-guard is: $FCCVDB_GUARD if set (and only there), else beside this process's executable
+// (fccvdb and the test programs all live in the build's bin/, with it), else where this build put it.
+// An Error naming `path` and the places looked at if none holds it.
+std::string guardExecutable(const std::string& path) {
+  const auto executable = [](const std::string& p) { return !p.empty() && ::access(p.c_str(), X_OK) == 0; };
+  if (const char* set = std::getenv("FCCVDB_GUARD"); set && *set) {
+    if (executable(set)) return set;
+    throw Error(path + ": cannot check it: FCCVDB_GUARD is " + set + ", which is not an executable");
   }
+  std::string looked;
+  char self[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n > 0) {
+    std::string beside(self, size_t(n));
+    beside = beside.substr(0, beside.rfind('/') + 1) + "fccvdb-guard";
+    if (executable(beside)) return beside;
+    looked = beside + ", ";
+  }
+  if (executable(FCC_GUARD_EXE)) return FCC_GUARD_EXE;
+  throw Error(path + ": cannot check it: no fccvdb-guard executable at " + looked + FCC_GUARD_EXE +
+              "; build the fccvdb-guard target, or set FCCVDB_GUARD to its path");
+}
+
+struct GuardEnd {
+  bool timedOut = false;
+  int status = 0;       // waitpid's, when it did not time out
+  std::string output;   // the guard's stdout
 };
 
-// The grid types whose trees the child walks: OpenVDB's own and ours (the FCC grid, the bounds grid).
-using WalkedGridTypes = openvdb::GridTypes::Append<FccGrid, BoundsGrid>;
-
-// What the child does: read the grids (to `depth`), then walk every tree once. No TBB (see above).
-void readInChild(const std::string& path, GuardDepth depth) {
-  initializeVdb();
-  openvdb::io::File file(path);
-  file.setCopyMaxBytes(0);
-  file.open(depth == GuardDepth::Topology);  // Everything: no delayed loading, every byte is read now
-  openvdb::GridPtrVecPtr grids = file.getGrids();
-  for (const auto& g : *grids) {
-    if (depth == GuardDepth::Topology && !isFccGrid(*g)) g->baseTree().readNonresidentBuffers();
-    g->apply<WalkedGridTypes>(WalkTreeSerially{});
-  }
-  file.close();
-}
-
-}  // namespace
-
-void guardVdbFile(const std::string& path, GuardDepth depth) {
-  guardVdbRead(path, [&] { readInChild(path, depth); });
-}
-
-namespace {
-
-// The CPU time (user + system, in clock ticks) a process has used, or -1 if /proc cannot say.
-long long cpuTicksOf(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::size_t paren = stat.rfind(')');
-  if (paren == std::string::npos) return -1;
-  std::istringstream fields(stat.substr(paren + 1));
-  std::string field;
-  long long utime = -1, stime = -1;
-  for (int i = 3; i <= 15 && (fields >> field); ++i) {  // field 3 is the state; 14 utime, 15 stime
-    if (i == 14) utime = std::atoll(field.c_str());
-    if (i == 15) stime = std::atoll(field.c_str());
-  }
-  return utime < 0 || stime < 0 ? -1 : utime + stime;
-}
-
-enum class ChildEnd { Exited, TimedOut, Stalled };
-
-// One forked child running `read`, watched until it exits, passes `limit`, or stalls: uses no CPU
-// time for kStalledSeconds while it has not finished. OpenVDB stuck on a damaged file spins; a child
-// that uses no CPU at all is waiting on a lock fork copied from a parent thread that is not in the
-// child (TBB's, or an allocator's: forking a threaded process is only safe for async-signal-safe
-// work, and OpenVDB's reading is not), which says nothing of the file.
-ChildEnd runChild(const std::function<void()>& read, std::chrono::seconds limit, int& status, std::string& message) {
-  constexpr int kStalledSeconds = 5;
+// Runs fccvdb-guard with `args` (argv[1...]) until it exits or `limit` passes (then it is killed).
+// posix_spawn starts it without copying this process (glibc: clone with CLONE_VM | CLONE_VFORK, then
+// exec), which is safe however many threads hold locks here. Its stdout is a pipe read here; stdin is
+// /dev/null; stderr is this process's (what OpenVDB or the C library print on the way to a crash).
+GuardEnd runGuard(const std::string& path, const std::string& exe, const std::vector<std::string>& args,
+                  std::chrono::seconds limit) {
   int fds[2];
-  if (::pipe(fds) != 0) throw Error(std::string("pipe: ") + std::strerror(errno));
-  const pid_t pid = ::fork();
-  if (pid < 0) throw Error(std::string("fork: ") + std::strerror(errno));
-  if (pid == 0) {
-    ::close(fds[0]);
-    std::string failure;
-    try {
-      read();
-      ::_exit(0);
-    } catch (const std::exception& e) {
-      failure = e.what();
-    } catch (...) {
-      failure = "unknown error";
-    }
-    (void)!::write(fds[1], failure.data(), failure.size());
-    ::_exit(3);
-  }
+  // Close-on-exec: a guard spawned by another thread at the same time must not hold this pipe's
+  // write end open, or the EOF that says this guard ended would wait for that one too.
+  if (::pipe2(fds, O_CLOEXEC) != 0) throw Error(path + ": cannot check it: pipe: " + std::strerror(errno));
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);  // dup2 clears close-on-exec
+  // Default signal handling and no blocked signals, whatever this process set up (an ignored
+  // SIGPIPE or a thread's blocked mask is inherited through exec otherwise).
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t none, all;
+  sigemptyset(&none);
+  sigfillset(&all);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setsigdefault(&attr, &all);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(exe.c_str()));
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  const int spawned = ::posix_spawn(&pid, exe.c_str(), &actions, &attr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
   ::close(fds[1]);
+  if (spawned != 0) {
+    ::close(fds[0]);
+    throw Error(path + ": cannot check it: cannot start " + exe + ": " + std::strerror(spawned));
+  }
+  GuardEnd end;
   const auto deadline = std::chrono::steady_clock::now() + limit;
-  ChildEnd end = ChildEnd::Exited;
-  long long lastTicks = -1;
-  int stillSeconds = 0;
   for (;;) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
-      end = ChildEnd::TimedOut;
+      end.timedOut = true;
       break;
     }
     pollfd p{fds[0], POLLIN, 0};
     const int r = ::poll(&p, 1, int(std::min<long long>(left.count(), 1000)));
     if (r < 0 && errno == EINTR) continue;
-    if (r > 0) {
-      char buf[512];
-      const ssize_t n = ::read(fds[0], buf, sizeof buf);
-      if (n > 0) {
-        message.append(buf, size_t(n));
-        continue;
+    if (r < 0) {  // not seen: one valid fd; the guard is stopped, not left running
+      const int error = errno;
+      ::close(fds[0]);
+      ::kill(pid, SIGKILL);
+      while (::waitpid(pid, &end.status, 0) < 0 && errno == EINTR) {
       }
-      break;  // EOF: the child has exited (or closed the pipe)
+      throw Error(path + ": cannot check it: poll: " + std::strerror(error));
     }
-    if (r == 0) {  // a second without news: is the child working?
-      const long long ticks = cpuTicksOf(pid);
-      stillSeconds = ticks >= 0 && ticks == lastTicks ? stillSeconds + 1 : 0;
-      lastTicks = ticks;
-      if (stillSeconds >= kStalledSeconds) {
-        end = ChildEnd::Stalled;
-        break;
-      }
-    }
+    if (r == 0) continue;
+    char buf[512];
+    const ssize_t n = ::read(fds[0], buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // EOF: the guard has exited
+    end.output.append(buf, size_t(n));
   }
   ::close(fds[0]);
-  if (end != ChildEnd::Exited) ::kill(pid, SIGKILL);
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  if (end.timedOut) ::kill(pid, SIGKILL);
+  while (::waitpid(pid, &end.status, 0) < 0 && errno == EINTR) {
   }
   return end;
 }
 
-}  // namespace
-
-void guardVdbRead(const std::string& path, const std::function<void()>& read) {
+// The guard's check of `path` described by `args`, its outcome as the one-line errors callers expect.
+void guard(const std::string& path, const std::vector<std::string>& args) {
   checkReadableVdb(path);
+  const std::string exe = guardExecutable(path);
   struct stat st {};
   ::stat(path.c_str(), &st);
   // Generous: reading runs at hundreds of MB/s; a hang is what this limit catches.
   const auto limit = std::chrono::seconds(20 + st.st_size / (20 << 20));
-  constexpr int kAttempts = 3;
-  int status = 0;
-  std::string message;
-  ChildEnd end = ChildEnd::Stalled;
-  for (int attempt = 0; attempt < kAttempts && end == ChildEnd::Stalled; ++attempt) {
-    message.clear();
-    end = runChild(read, limit, status, message);
-  }
-  if (end == ChildEnd::Stalled)
-    throw Error(path + ": the child process reading it stalled " + std::to_string(kAttempts) +
-                " times without using any CPU (a lock copied by fork, not the file)");
-  if (end == ChildEnd::TimedOut)
+  GuardEnd end = runGuard(path, exe, args, limit);
+  std::string& message = end.output;
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+  for (char& c : message)
+    if (c == '\n') c = ' ';
+  if (end.timedOut)
     throw InputError(path + ": OpenVDB did not finish reading it within " + std::to_string(limit.count()) +
                      " s; the file is corrupt or truncated");
-  if (WIFSIGNALED(status))
-    throw InputError(path + ": OpenVDB crashed reading it (signal " + std::to_string(WTERMSIG(status)) +
+  if (WIFSIGNALED(end.status))
+    throw InputError(path + ": OpenVDB crashed reading it (signal " + std::to_string(WTERMSIG(end.status)) +
                      "); the file is corrupt or truncated");
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    for (char& c : message)
-      if (c == '\n') c = ' ';
+  if (WIFEXITED(end.status) && WEXITSTATUS(end.status) == 3)
     throw InputError(path + ": OpenVDB cannot read it: " + (message.empty() ? "unknown error" : message));
+  // Any other status is the guard's own failure (a command line it refused, a library the loader
+  // did not find: 127), which says nothing of the file.
+  if (!WIFEXITED(end.status) || WEXITSTATUS(end.status) != 0)
+    throw Error(path + ": cannot check it: " + exe + " exited with status " + std::to_string(WEXITSTATUS(end.status)) +
+                (message.empty() ? "" : ": " + message));
+}
+
+}  // namespace
+
+void guardVdbFile(const std::string& path, GuardDepth depth) {
+  guard(path, {"file", depth == GuardDepth::Topology ? "topology" : "everything", path});
+}
+
+void guardLeafRead(const std::string& path, const std::string& gridName, const std::vector<std::string>& treeTypes,
+                   const std::string& boundsName) {
+  std::string types;
+  for (const std::string& t : treeTypes) types += (types.empty() ? "" : ",") + t;
+  std::vector<std::string> args{"leaves", path, gridName, types};
+  if (!boundsName.empty()) {
+    args.push_back("--bounds");
+    args.push_back(boundsName);
   }
+  guard(path, args);
 }
 
 namespace {

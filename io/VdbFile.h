@@ -1,11 +1,10 @@
 // Reading and writing .vdb files. Debian's OpenVDB 10.0.1 can crash or hang on corrupt files, so every
-// file is first read once in a child process with a time limit (guardVdbFile) before this process
-// trusts it.
+// file is first read once in a process of its own with a time limit (guardVdbFile, guardLeafRead)
+// before this process trusts it.
 #pragma once
 
 #include <openvdb/openvdb.h>
 
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,16 +17,24 @@ namespace fcc::io {
 // later on demand) the metadata, the trees' topology and the buffers of every grid but the FCC grids.
 enum class GuardDepth { Everything, Topology };
 
+// The guard: OpenVDB's parsing of `path` runs first in a fresh process, the fccvdb-guard executable
+// (io/guard_main.cpp), spawned with a time limit; its crash, hang or failure becomes an InputError
+// naming the file, and only then does this process parse the file itself. Spawned, not forked: a fork
+// of this threaded process copies every lock another thread holds (TBB's, the allocator's), and a
+// child that needs one waits forever (docs/RELIABILITY.md, bug 5).
+//
+// fccvdb-guard is looked for in $FCCVDB_GUARD if set, else beside this process's executable, else at
+// the path the build put it; not found is an Error naming where it looked (the file is not at fault).
+
 // Throws InputError naming the file if it is missing, not a .vdb, or if OpenVDB fails, crashes or
-// takes longer than the time limit while reading it (to `depth`) in a child process.
+// takes longer than the time limit while reading it (to `depth`) in the guard.
 void guardVdbFile(const std::string& path, GuardDepth depth = GuardDepth::Everything);
 
-// The same guard around any reading: `read` runs in a child process with the time limit; its crash,
-// hang or exception becomes an InputError naming the file. For parsing done by OpenVDB (topology),
-// which this process then repeats once the child came through. `read` must not use TBB (no parallel
-// algorithm, none of OpenVDB's threaded tools such as activeVoxelCount()): the child is forked while
-// this process's TBB workers may be running, and a parallel loop in the child can wait forever.
-void guardVdbRead(const std::string& path, const std::function<void()>& read);
+// The same guard around what an out-of-core open parses through OpenVDB: VdbLeafReader's topology read
+// of grid `gridName` (empty: the first grid of one of `treeTypes`) and, if `boundsName` is not empty,
+// that grid read whole (BrickStore's bounds grid).
+void guardLeafRead(const std::string& path, const std::string& gridName, const std::vector<std::string>& treeTypes,
+                   const std::string& boundsName = {});
 
 struct GridInfo {
   std::string name;

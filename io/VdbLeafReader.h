@@ -43,7 +43,7 @@ class VdbLeafReader {
   // InputError (one line, naming the file) for anything wrong: not a VDB, an unsupported version, no such
   // grid (listing the grids), a grid of another type, an instanced grid, sizes that point outside the
   // file, a buffer section that does not parse. ValueError if `types` names a type it cannot read.
-  // `indexLeaves` false stops after the topology (no leaf can be read then): what the guarded child
+  // `indexLeaves` false stops after the topology (no leaf can be read then): what the guard (fccvdb-guard)
   // needs to check, since the walk of the buffer section is ours and reads the whole file.
   VdbLeafReader(const std::string& path, const std::string& gridName, const std::vector<std::string>& types,
                 bool indexLeaves = true);

@@ -1,6 +1,6 @@
 // fccvdb bench convert [INPUT.vdb]: the conversion of a Cartesian .vdb against OpenVDB's own full read
 // of the same file, each in a process of its own, timed (wall clock) and measured (peak resident set,
-// of the process and the guard it forks). Without INPUT, a narrow-band level-set sphere of --radius
+// of the process and the guard process it spawns). Without INPUT, a narrow-band level-set sphere of --radius
 // voxels is made with OpenVDB first (the most common .vdb there is; its interior is tiles).
 //
 // The figures: seconds and peak RSS of both; the ratio convert / read; input (active) voxels per second.
