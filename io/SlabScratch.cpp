@@ -37,38 +37,36 @@ SlabScratch::SlabScratch(DenseSource& source, const SliceTransform& inSlices, op
   file_ = std::make_unique<ScratchFile>("the slab scratch file", "18/16 of the input's voxels");
   file_->reserve(bytes_);  // a full disk says so before the source is read
 
-  {
-    const uint64_t sliceVoxels = uint64_t(dims_.x) * uint64_t(dims_.y);
-    const int group = int(std::clamp<uint64_t>(kSliceGroupBytes / (sliceVoxels * elementBytes_), 1, uint64_t(dims_.z)));
-    // Bytes from operator new: aligned for floats.
-    std::vector<uint8_t> slices(size_t(sliceVoxels) * size_t(group) * elementBytes_);
-    if (progress) progress->start("reading the input into slabs");
-    for (int z0 = 0; z0 < dims_.z; z0 += group) {
-      const int count = std::min(group, dims_.z - z0);
-      const uint64_t first = uint64_t(z0) * sliceVoxels, n = uint64_t(count) * sliceVoxels;
-      if (stored) {
-        source.readStored(first, n, slices.data());
-      } else {
-        source.read(first, n, reinterpret_cast<float*>(slices.data()));
-        if (inSlices) inSlices(reinterpret_cast<float*>(slices.data()), count);
-      }
-      // Slab s's rows of these slices are one run of its file region.
-      tbb::parallel_for(size_t(0), slabs_.size(), [&](size_t s) {
-        const Slab& slab = slabs_[s];
-        const size_t rowBytes = size_t(slab.width) * elementBytes_;
-        std::vector<uint8_t> run(size_t(count) * size_t(dims_.y) * rowBytes);
-        uint8_t* dst = run.data();
-        for (int z = 0; z < count; ++z)
-          for (int y = 0; y < dims_.y; ++y)
-            dst = std::copy_n(slices.data() + ((size_t(z) * dims_.y + y) * dims_.x + slab.x0) * elementBytes_, rowBytes, dst);
-        file_->write(run.data(), run.size(), runOffset(slab, 0, z0));
-      });
-      if (progress && progress->wasInterrupted(int(100.0 * double(z0 + count) / double(dims_.z))))
-        throw Error("interrupted");
+  const uint64_t sliceVoxels = uint64_t(dims_.x) * uint64_t(dims_.y);
+  const int group = int(std::clamp<uint64_t>(kSliceGroupBytes / (sliceVoxels * elementBytes_), 1, uint64_t(dims_.z)));
+  // Bytes from operator new: aligned for floats.
+  std::vector<uint8_t> slices(size_t(sliceVoxels) * size_t(group) * elementBytes_);
+  if (progress) progress->start("reading the input into slabs");
+  for (int z0 = 0; z0 < dims_.z; z0 += group) {
+    const int count = std::min(group, dims_.z - z0);
+    const uint64_t first = uint64_t(z0) * sliceVoxels, n = uint64_t(count) * sliceVoxels;
+    if (stored) {
+      source.readStored(first, n, slices.data());
+    } else {
+      source.read(first, n, reinterpret_cast<float*>(slices.data()));
+      if (inSlices) inSlices(reinterpret_cast<float*>(slices.data()), count);
     }
-    source.finish();
-    if (progress) progress->end();
+    // Slab s's rows of these slices are one run of its file region.
+    tbb::parallel_for(size_t(0), slabs_.size(), [&](size_t s) {
+      const Slab& slab = slabs_[s];
+      const size_t rowBytes = size_t(slab.width) * elementBytes_;
+      std::vector<uint8_t> run(size_t(count) * size_t(dims_.y) * rowBytes);
+      uint8_t* dst = run.data();
+      for (int z = 0; z < count; ++z)
+        for (int y = 0; y < dims_.y; ++y)
+          dst = std::copy_n(slices.data() + ((size_t(z) * dims_.y + y) * dims_.x + slab.x0) * elementBytes_, rowBytes, dst);
+      file_->write(run.data(), run.size(), runOffset(slab, 0, z0));
+    });
+    if (progress && progress->wasInterrupted(int(100.0 * double(z0 + count) / double(dims_.z))))
+      throw Error("interrupted");
   }
+  source.finish();
+  if (progress) progress->end();
 }
 
 SlabScratch::~SlabScratch() = default;

@@ -14,7 +14,6 @@
 
 #include <atomic>
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,7 +39,7 @@ class EncodedLeafFile {
   // Thread-safe; not after finish().
   void add(const Leaf& leaf);
 
-  // Sorts the index; after the last add() and before any find().
+  // Sorts the index; after the last add() and before any read().
   void finish();
 
   // Whether leaves kept here may be written to a stream with these settings.
@@ -48,9 +47,6 @@ class EncodedLeafFile {
 
   // The bytes of the leaf at `origin` into `bytes`; false if it was not kept. Thread-safe.
   bool read(const openvdb::Coord& origin, std::string& bytes) const;
-
-  size_t kept() const { return index_.size(); }
-  uint64_t bytes() const { return next_.load(); }
 
  private:
   struct Entry {
@@ -63,7 +59,7 @@ class EncodedLeafFile {
   bool half_;
   ScratchFile file_;
   uint64_t maxBytes_;
-  std::atomic<uint64_t> next_{0};      // bytes handed out
+  std::atomic<uint64_t> next_{0};      // the next leaf's offset in the scratch
   std::atomic<bool> stopped_{false};   // the cap was reached or a write failed: keep no more
   tbb::enumerable_thread_specific<std::vector<Entry>> added_;
   std::vector<Entry> index_;           // sorted by origin, after finish()

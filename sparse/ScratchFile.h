@@ -33,8 +33,6 @@ class ScratchFile {
   // The same without throwing: false (and the errno in `error`) when writing fails.
   bool tryWrite(const void* src, size_t n, uint64_t offset, int& error) const;
 
-  const std::string& dir() const { return dir_; }
-
  private:
   std::string what_, room_;
   std::string dir_;

@@ -240,12 +240,12 @@ StreamedBuild buildFccGridStreamed(const FccBlockBuilder& builder, const Streame
   auto start = Clock::now();
   openvdb::tools::pruneTiles(static_cast<FccTree&>(*topology), Vec4f(builder.options().tolerance));
   openvdb::tools::prune(*result.bounds);
+  times.prune += lap(start);
   result.samples = summarizeSamples(slabs.stats(), builder.siteBounds(), builder.background());
   if (kept) {
     kept->finish();
     topology->useEncodedLeaves(kept);
   }
-  times.prune += lap(start);
   return result;
 }
 
