@@ -36,6 +36,12 @@ class BrickKernels {
   virtual void prefilter(const FccGrid& samples, const std::vector<openvdb::Coord>& bricks,
                          std::vector<openvdb::Vec4f>& out) = 0;
 
+  // leaves[i] = the coefficient leaf of brick bricks[i] (sparse/PrefilterBricks.h's makeCoefficientLeaf
+  // of its prefilter results; null where all are the background); the caller owns them. By default
+  // prefilter() in batches, then the leaves; the C++ path builds each leaf as it computes it.
+  virtual void prefilterLeaves(const FccGrid& samples, const std::vector<openvdb::Coord>& bricks,
+                               std::vector<FccTree::LeafNodeType*>& leaves);
+
   // Seconds spent in the compute step proper (kernels, without staging and transfers) since the last
   // reset; the reference path counts all of its time.
   double computeSeconds = 0.0;

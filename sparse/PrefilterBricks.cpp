@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <memory>
 
 #if defined(__SSE__)
@@ -138,16 +139,43 @@ __attribute__((target_clones("avx2", "default"))) void filterHalo(const HaloPlan
 
 }  // namespace
 
-void prefilterBricks(const FccGrid& samples, const std::vector<Coord>& bricks, Vec4f* out) {
+void prefilterBricks(const FccGrid& samples, const std::vector<Coord>& bricks,
+                     const std::function<void(std::size_t i, const Vec4f* values)>& take) {
   const TapTable& table = tapTable();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, bricks.size(), 4), [&](const tbb::blocked_range<size_t>& r) {
     FccGrid::ConstAccessor accessor = samples.getConstAccessor();
     auto halo = std::make_unique<HaloPlanes>();
+    std::vector<Vec4f> values(FccLeaf::SIZE);
     for (size_t i = r.begin(); i != r.end(); ++i) {
       gatherHalo(accessor, bricks[i], *halo);
-      filterHalo(*halo, table, out + i * FccLeaf::SIZE);
+      filterHalo(*halo, table, values.data());
+      take(i, values.data());
     }
   });
+}
+
+void prefilterBricks(const FccGrid& samples, const std::vector<Coord>& bricks, Vec4f* out) {
+  prefilterBricks(samples, bricks, [out](std::size_t i, const Vec4f* values) {
+    std::copy(values, values + FccLeaf::SIZE, out + i * FccLeaf::SIZE);
+  });
+}
+
+FccLeaf* makeCoefficientLeaf(const Coord& brick, const Vec4f* computed, const Vec4f& background) {
+  // Uninitialised values (PartialCreate, then allocate): every one is written below.
+  auto leaf = std::make_unique<FccLeaf>(openvdb::PartialCreate(), Coord(brick.x() * D, brick.y() * D, brick.z() * D),
+                                        background, false);
+  leaf->buffer().allocate();
+  Vec4f* values = leaf->buffer().data();
+  auto& active = leaf->getValueMask();
+  for (openvdb::Index n = 0; n < FccLeaf::SIZE; ++n) {
+    if (computed[n] == background) {
+      values[n] = background;
+    } else {
+      values[n] = computed[n];
+      active.setOn(n);
+    }
+  }
+  return active.isOff() ? nullptr : leaf.release();
 }
 
 }  // namespace fcc

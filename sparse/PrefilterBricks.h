@@ -11,6 +11,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <functional>
 #include <vector>
 
 #include "FccGrid.h"
@@ -21,5 +22,16 @@ namespace fcc {
 // bricks[i] (the leaf of packed voxels [8b, 8b + 8)^3), from the values `samples` holds there and one
 // packed voxel around (leaves, tiles and the background alike). In parallel over the bricks.
 void prefilterBricks(const FccGrid& samples, const std::vector<openvdb::Coord>& bricks, openvdb::Vec4f* out);
+
+// The same, handing each brick's 512 results to take(i, values) on the thread that computed them (while
+// they are in its cache), instead of into one array. `values` is valid during the call only.
+void prefilterBricks(const FccGrid& samples, const std::vector<openvdb::Coord>& bricks,
+                     const std::function<void(std::size_t i, const openvdb::Vec4f* values)>& take);
+
+// The coefficient leaf of brick `brick` from its 512 values (leaf order): active where a value differs
+// from `background`; a value equal to it is stored as the background itself (as an inactive voxel
+// holds it). Null when every value equals the background.
+FccTree::LeafNodeType* makeCoefficientLeaf(const openvdb::Coord& brick, const openvdb::Vec4f* values,
+                                          const openvdb::Vec4f& background);
 
 }  // namespace fcc
