@@ -1,5 +1,6 @@
 // Google Benchmark: `convert` throughput (input voxels per second, reading and writing included) on a
-// raw u8 volume, by default the engine CT beside the checkout:
+// raw u8 volume, by default the engine CT beside the checkout, with the bounds on the device `convert`
+// picks by default (`--cl-device auto`: a GPU, else PoCL's CPU device; the C++ reference without OpenCL):
 //   bench_convert [--benchmark_...] [FILE X Y Z]
 #include <benchmark/benchmark.h>
 
@@ -8,6 +9,7 @@
 #include <string>
 
 #include "io/Convert.h"
+#include "kernels/ClBrickKernels.h"
 
 namespace {
 
@@ -19,6 +21,8 @@ void runConvert(benchmark::State& state, const std::string& mode) {
   o.raw = fcc::io::RawLayout{gDims, fcc::io::ScalarType::U8, false, glm::dvec3(1.0), 0};
   o.mode = mode;
   o.overwrite = true;
+  const std::unique_ptr<fcc::BrickKernels> kernels = fcc::makeBrickKernels("auto");  // as convert's default
+  o.preprocess = kernels.get();
   if (mode == "resample") o.samples = uint64_t(gDims.x) * gDims.y * gDims.z / 2;  // the subsample's count
   const std::string out = (std::filesystem::temp_directory_path() / "fcc_bench_convert.vdb").string();
   uint64_t voxels = 0;
