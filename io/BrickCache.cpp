@@ -115,35 +115,57 @@ const BrickContent& BrickValuesMemo::content(const glm::ivec3& brick) {
   return held_.back().second;
 }
 
+namespace {
+
+// One neighbour brick's part of a block row: its leaf's row (x fastest), or its constant value.
+struct RowSource {
+  const openvdb::Vec4f* leaf = nullptr;  // the brick's voxels, or null for `constant`
+  openvdb::Vec4f constant{0.0f};
+};
+
+RowSource rowSourceOf(const BrickContent& content) {
+  return content.leaf ? RowSource{content.leaf->voxels.data(), openvdb::Vec4f(0.0f)} : RowSource{nullptr, content.constant};
+}
+
+// `count` voxels of a block row from `source`, starting at voxel (lx, ly, lz) of its brick. Sizes are
+// constants at every call, so the copies are inlined moves, not library calls.
+template <int kCount>
+inline void copyRow(const RowSource& source, int lx, int ly, int lz, float* dst) {
+  constexpr int D = kBrickPackedDim;
+  if (source.leaf) {
+    std::memcpy(dst, source.leaf[(lz * D + ly) * D + lx].asPointer(), kCount * 4 * sizeof(float));
+  } else {
+    for (int i = 0; i < kCount; ++i) std::memcpy(dst + 4 * i, source.constant.asPointer(), 4 * sizeof(float));
+  }
+}
+
+}  // namespace
+
 void assembleHaloBlock(const BrickStore& /*store*/, BrickValuesMemo& source, const glm::ivec3& brick, float* out) {
   constexpr int D = kBrickPackedDim, H = kHaloBlockDim;
   static_assert(sizeof(openvdb::Vec4f) == 4 * sizeof(float), "Vec4f packs four floats");
-  // The 27 bricks the block touches: the centre and its neighbours (only their border layer is used).
+  // Block voxel (x, y, z) is packed voxel 8b - 1 + (x, y, z). Each block row (y, z) is one voxel of the
+  // -x neighbour's last column, 8 of the middle brick's row, one of the +x neighbour's first column;
+  // the three bricks are the same for every row of a (ny, nz) neighbour pair: 9 pairs of 27 lookups.
   for (int nz = -1; nz <= 1; ++nz)
-    for (int ny = -1; ny <= 1; ++ny)
-      for (int nx = -1; nx <= 1; ++nx) {
-        const glm::ivec3 n(nx, ny, nz);
-        // Block coordinates covered by this neighbour: [lo, hi) per axis.
-        glm::ivec3 lo, hi;
-        for (int a = 0; a < 3; ++a) {
-          lo[a] = n[a] < 0 ? 0 : (n[a] == 0 ? 1 : D + 1);
-          hi[a] = n[a] < 0 ? 1 : (n[a] == 0 ? D + 1 : H);
+    for (int ny = -1; ny <= 1; ++ny) {
+      const int zLo = nz < 0 ? 0 : (nz == 0 ? 1 : D + 1), zHi = nz < 0 ? 1 : (nz == 0 ? D + 1 : H);
+      const int yLo = ny < 0 ? 0 : (ny == 0 ? 1 : D + 1), yHi = ny < 0 ? 1 : (ny == 0 ? D + 1 : H);
+      // The memo clears itself only here, not between the three lookups: their contents stay held.
+      source.makeRoom(3);
+      const RowSource left = rowSourceOf(source.content(brick + glm::ivec3(-1, ny, nz)));
+      const RowSource middle = rowSourceOf(source.content(brick + glm::ivec3(0, ny, nz)));
+      const RowSource right = rowSourceOf(source.content(brick + glm::ivec3(1, ny, nz)));
+      for (int z = zLo; z < zHi; ++z)
+        for (int y = yLo; y < yHi; ++y) {
+          // In the neighbour (ny, nz): packed voxel (y, z) - 1 - 8 n.
+          const int ly = (y - 1) - ny * D, lz = (z - 1) - nz * D;
+          float* row = out + 4 * ((z * H + y) * H);
+          copyRow<1>(left, D - 1, ly, lz, row);
+          copyRow<D>(middle, 0, ly, lz, row + 4);
+          copyRow<1>(right, 0, ly, lz, row + 4 * (D + 1));
         }
-        const BrickContent& content = source.content(brick + n);
-        const int run = hi.x - lo.x;
-        // Block voxel (x, y, z) is packed voxel 8b - 1 + (x, y, z); in the neighbour, (x, y, z) - 1 - 8n.
-        const int lx = lo.x - 1 - n.x * D;
-        for (int z = lo.z; z < hi.z; ++z)
-          for (int y = lo.y; y < hi.y; ++y) {
-            float* dst = out + 4 * ((z * H + y) * H + lo.x);
-            if (content.leaf) {
-              const int ly = (y - 1) - n.y * D, lz = (z - 1) - n.z * D;
-              std::memcpy(dst, content.leaf->voxels[(lz * D + ly) * D + lx].asPointer(), size_t(run) * 4 * sizeof(float));
-            } else {
-              for (int i = 0; i < run; ++i) std::memcpy(dst + 4 * i, content.constant.asPointer(), 4 * sizeof(float));
-            }
-          }
-      }
+    }
 }
 
 }  // namespace fcc::io

@@ -61,7 +61,7 @@ class BrickCache : public BrickValuesSource {
   // The cache is split by brick into shards, each its own LRU list under its own lock, so that the
   // loader's threads (27 lookups per halo block) do not queue on one mutex. Eviction is per shard:
   // each holds an equal share of the budget.
-  std::shared_ptr<const CachedBrick> leafValues(const glm::ivec3& brick);
+  std::shared_ptr<const CachedBrick> leafValues(const glm::ivec3& brick);        // cached, or decoded now
   struct Entry {
     std::shared_ptr<const CachedBrick> values;
     std::list<uint64_t>::iterator lru;
@@ -89,8 +89,13 @@ class BrickCache : public BrickValuesSource {
 class BrickValuesMemo {
  public:
   explicit BrickValuesMemo(BrickValuesSource& source) : source_(source) { clear(); }
-  // Valid until the next call (or clear()).
+  // Valid until clear(), which a lookup may call when the memo is full, or makeRoom.
   const BrickContent& content(const glm::ivec3& brick);
+  // Clears the memo now if `lookups` more could fill it: the contents of the next `lookups` lookups
+  // then stay valid together.
+  void makeRoom(std::size_t lookups) {
+    if (held_.size() + lookups > kMaxHeld) clear();
+  }
   void clear();
 
  private:
