@@ -115,6 +115,11 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
                                       : "Without it: full resolution (level 0 only)"));
   app.add_flag("--full-resolution", flags.fullResolution,
                "Draw level 0 only, as for a file without a pyramid (measurements)");
+  app.add_option("--lookahead", flags.lookahead,
+                 "Bricks a ray that reaches a missing brick requests beyond it (default " +
+                     std::to_string(render::RenderOptions{}.lookahead) +
+                     "): more bricks a pass, fewer passes a frame while streaming; the image is the same")
+      ->check(CLI::Range(0, 64));
 }
 
 std::optional<float> lodBiasFromFlags(const RenderFlags& flags, bool levelsByDefault) {
@@ -245,6 +250,7 @@ render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags) {
     options.clipLo = glm::min(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]));
     options.clipHi = glm::max(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]));
   }
+  if (flags.lookahead >= 0) options.lookahead = flags.lookahead;
   if (flags.layout != "auto") {
     try {
       options.layout = render::parseBrickLayout(flags.layout);

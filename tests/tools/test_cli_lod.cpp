@@ -63,5 +63,31 @@ TEST(CliRender, LodBiasFlagsAndTheirMessages) {
   EXPECT_EQ(dir.fileCount(), before) << "nothing written for a bad --lod-bias";
 }
 
+// `--lookahead N` changes how many bricks a pass requests, never the image: with a pool too small for the
+// frame (many passes), 0 and 16 give the default's EXR bit for bit.
+TEST(CliRender, LookaheadChangesThePassesNotTheImage) {
+  TempDir dir;
+  const std::string vdb = dir / "s.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + vdb + " --dims 96,96,96 --quiet").status, 0);
+  const std::string common = " --res 48x36 --eye 150,90,160 --lookat 47.5,47.5,47.5 --iso 0.5 --gpu-cache 2 --json --quiet";
+  const auto byDefault = runFccvdb("render " + vdb + " " + (dir / "default.exr") + common);
+  if (failedForLackOfGl(byDefault)) GTEST_SKIP() << byDefault.err;
+  ASSERT_EQ(byDefault.status, 0) << byDefault.err;
+  int w = 0, h = 0;
+  for (const char* lookahead : {"0", "16"}) {
+    const std::string exr = dir / (std::string("la") + lookahead + ".exr");
+    const auto r = runFccvdb("render " + vdb + " " + exr + common + " --lookahead " + lookahead);
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const char* channel : {"R", "A", "Z", "N.X", "N.Y", "N.Z"})
+      EXPECT_EQ(readExrChannel(dir / "default.exr", channel, w, h), readExrChannel(exr, channel, w, h)) << lookahead << " " << channel;
+  }
+  for (const char* flags : {"--lookahead -1", "--lookahead 65", "--lookahead x"}) {
+    const auto r = runFccvdb("render " + vdb + " " + (dir / "bad.png") + " " + flags);
+    EXPECT_EQ(r.status, 2) << flags << "\n" << r.err;  // a flag's value out of its range: a usage error
+    EXPECT_EQ(lineCount(r.err), 1) << flags << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr("--lookahead")) << flags;
+  }
+}
+
 }  // namespace
 }  // namespace fcc::test
