@@ -103,8 +103,17 @@ class Residency {
   std::vector<uint8_t> needed_;            // per brick index
   std::vector<int64_t> slotBrick_;         // per slot: brick index, or -1 when free
   std::unordered_map<uint32_t, uint32_t> brickSlot_;
-  std::vector<uint32_t> evictionOrder_;  // startAssigning's order of the slots
-  std::size_t nextInOrder_ = 0;
+  // startAssigning's order of the slots, sorted up to sortedEnd_ (nextSlotInOrder sorts more as
+  // assigning reaches it): ((free 0, used 1) << 32 | the pass that last used it, slot).
+  struct OrderedSlot {
+    uint64_t used;
+    uint32_t slot;
+    bool operator<(const OrderedSlot& o) const { return used != o.used ? used < o.used : slot < o.slot; }
+  };
+  static constexpr std::size_t kFirstSortedSlots = 2048;
+  bool nextSlotInOrder(uint32_t& slot);  // false when the order is used up
+  std::vector<OrderedSlot> evictionOrder_;
+  std::size_t sortedEnd_ = 0, nextInOrder_ = 0;
   std::vector<uint32_t> changed_;         // page entries changed since takeChangedEntries
   std::vector<uint8_t> changedMark_;      // per page entry: in changed_
   bool allChanged_ = true;

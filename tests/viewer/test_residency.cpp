@@ -37,6 +37,42 @@ TEST(Residency, PageEntriesFollowNeedAndResidence) {
   EXPECT_EQ(r.missingCount(), 1u) << "a is resident, c is not";
 }
 
+// A pool far larger than the part of the order sorted at a time (Residency sorts the eviction order
+// in parts as assigning reaches them): every slot is handed out in the order of a stable sort of all
+// slots by (free first, last use), over a pass taking most of the pool in batches.
+TEST(Residency, PartlySortedOrderEqualsAStableSortOfAllSlots) {
+  const uint32_t slots = 9000;
+  Residency r(glm::ivec3(0), glm::ivec3(100, 100, 2), slots);
+  std::vector<glm::ivec3> all;
+  for (int z = 0; z < 2; ++z)
+    for (int y = 0; y < 100; ++y)
+      for (int x = 0; x < 100; ++x) all.push_back(glm::ivec3(x, y, z));
+  r.setNeeded(all);
+  // Fill all but 300 slots, then a pass whose use stamps have many ties.
+  const std::vector<glm::ivec3> firstBricks(all.begin(), all.begin() + (slots - 300));
+  const auto first = r.assign(firstBricks, std::vector<uint32_t>(slots, 0));
+  ASSERT_EQ(first.size(), firstBricks.size());
+  std::vector<int> slotHolds(slots, -1);
+  for (std::size_t i = 0; i < first.size(); ++i) slotHolds[first[i].second] = int(i);
+  std::vector<uint32_t> lastUse(slots);
+  for (uint32_t s = 0; s < slots; ++s) lastUse[s] = (s * 7919u) % 37u;  // ties between slots
+  std::vector<uint32_t> expected(slots);
+  for (uint32_t s = 0; s < slots; ++s) expected[s] = s;
+  std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) {
+    const bool freeA = slotHolds[a] < 0, freeB = slotHolds[b] < 0;
+    if (freeA != freeB) return freeA;
+    return lastUse[a] < lastUse[b];
+  });
+  r.startAssigning(lastUse);
+  std::vector<uint32_t> handedOut;
+  for (std::size_t next = firstBricks.size(); next < all.size(); next += 777) {
+    const std::vector<glm::ivec3> batch(all.begin() + next, all.begin() + std::min(all.size(), next + 777));
+    for (const auto& [brick, slot] : r.assign(batch)) handedOut.push_back(slot);
+  }
+  ASSERT_EQ(handedOut.size(), std::size_t(slots)) << "every slot once, then the order runs out";
+  for (uint32_t i = 0; i < slots; ++i) ASSERT_EQ(handedOut[i], expected[i]) << "position " << i << " of the order";
+}
+
 TEST(Residency, EvictsTheLeastRecentlyUsedAndNeverWhatItJustAssigned) {
   Residency r(glm::ivec3(0), glm::ivec3(8, 1, 1), 3);
   std::vector<glm::ivec3> all;
