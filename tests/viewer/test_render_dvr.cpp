@@ -151,7 +151,7 @@ TEST_F(RenderDvr, MatchesTheCpuReferenceOnEveryLattice) {
   camera.eye = camera.lookat + glm::dvec3(30.0, 22.0, 36.0);
   camera.fovYDegrees = 35.0;
   const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
-  for (const char* name : {"trilinear", "tricubic"}) {
+  for (const char* name : {"trilinear", "tricubic", "type6"}) {
     SCOPED_TRACE(name);
     const ReconstructionInfo& info = findReconstruction(name);
     const render::CartesianBrickSource source(ccStore, info);

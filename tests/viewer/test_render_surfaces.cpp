@@ -236,7 +236,7 @@ TEST_F(RenderSurfaces, MatchesTheCpuReference) {
   EXPECT_LE(disagree, int(kMaxDisagreeingFraction * w * h));
 }
 
-// The Cartesian reconstructions (the cubic of trilinear, tricubic's degree 9) composite their crossings
+// The Cartesian reconstructions (the cubic of trilinear, tricubic's degree 9, type6's cubic per tetrahedron) composite their crossings
 // too: two surfaces of the wavy field against the CPU reference with the same coefficients.
 TEST_F(RenderSurfaces, CartesianReconstructionsMatchTheCpuReference) {
   TempDir dir;
@@ -262,7 +262,7 @@ TEST_F(RenderSurfaces, CartesianReconstructionsMatchTheCpuReference) {
   }
   const glm::dmat3 normalFromIndex = glm::transpose(glm::dmat3(indexFromWorld));
   const glm::vec3 o(indexFromWorld * glm::dvec4(camera.eye, 1.0));
-  for (const char* name : {"trilinear", "tricubic"}) {
+  for (const char* name : {"trilinear", "tricubic", "type6"}) {
     SCOPED_TRACE(name);
     const ReconstructionInfo& info = findReconstruction(name);
     const render::CartesianBrickSource source(store, info);
