@@ -79,8 +79,17 @@ FCC_FUNC FCC_IVEC3 cc_type6_stencil_site(CcType6Frame f, int i) {
   return f.centre + cc_type6_offset(f, FCC_MAKE_IVEC3(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1));
 }
 
-// The piece's 20 BB coefficients (FccCubic's order, unscaled).
+// The piece's 20 BB coefficients (FccCubic's order, unscaled): the generated sums of the non-zero
+// weights (CC_TYPE6_ROWS), not a loop over the 540-entry table, which NVIDIA's GLSL compiler copies
+// into each invocation's memory (2.5 fps at 512^2 on the H200, docs/BENCHMARKS.md session 13).
 FCC_FUNC FccCubic cc_type6_cubic(FccSamples27 s) {
+  FccCubic c;
+  CC_TYPE6_ROWS(c.b, s.v)
+  return c;
+}
+
+// The same from the table, row by row: the definition the generated sums are tested against.
+FCC_FUNC FccCubic cc_type6_cubic_from_table(FccSamples27 s) {
   FccCubic c;
   for (int r = 0; r < 20; ++r) {
     float acc = 0.0f;

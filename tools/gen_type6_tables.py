@@ -239,6 +239,18 @@ def emit(C):
         w(text[0] + ("," if n + 1 < len(rows) else "") + "  /*" + text[1])
     w("FCC_ARRAY_CLOSE;")
     w("")
+    # The same rows unrolled: only the non-zero terms (244 of 540), with the weights as literals. A GPU
+    # compiler may copy a constant array indexed in a loop into every thread's memory; these are sums
+    # of registers. Each starts from 0.0f and adds its terms in index order, as the loop over a row
+    # does, less the zero terms (which add +-0 to it): the same value for finite samples.
+    w("/* The rows as sums of their non-zero terms: b[r] = row r . v / FCC_TYPE6_DENOM (test_type6 holds")
+    w(" * them to the table's loop bit for bit). */")
+    w("#define CC_TYPE6_ROWS(b, v) \\")
+    for r, idx in enumerate(BB_ORDER):
+        ints = [int(C[idx].get(o, Fr(0)) * 192) for o in order]
+        terms = " + ".join("%d.0f * v[%d]" % (x, i) for i, x in enumerate(ints) if x != 0)
+        w("  b[%d] = (0.0f + %s) * (1.0f / FCC_TYPE6_DENOM);%s" % (r, terms, " \\" if r + 1 < len(BB_ORDER) else ""))
+    w("")
     w("#endif /* FCC_CC_TYPE6_TABLES_H */")
     return "\n".join(out) + "\n"
 

@@ -5,6 +5,9 @@
 // and the exact sphere (at the radius the 3/4 shift gives) through the reference raycaster.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+
 #include <array>
 #include <cmath>
 #include <random>
@@ -179,6 +182,21 @@ TEST(Type6, PaperExampleOneCornerCoefficient) {
   for (int i = 0; i < 27; ++i) s.v[i] = f(spline::cc_type6_stencil_site(frame, i));
   const spline::FccCubic c = spline::cc_type6_cubic(s);
   EXPECT_FLOAT_EQ(c.b[16], 17.0f / 8.0f);  // (0,0,3,0): FccCubic's 17th
+}
+
+// The generated sums of the non-zero weights (CC_TYPE6_ROWS, what every dialect evaluates) equal the
+// table's row-by-row loop bit for bit, on random samples of either sign and mixed magnitudes.
+TEST(Type6, UnrolledRowsEqualTheTableBitForBit) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), scale(-6.0f, 6.0f);
+  for (int trial = 0; trial < 2000; ++trial) {
+    spline::FccSamples27 s;
+    for (int i = 0; i < 27; ++i) s.v[i] = u(rng) * std::exp2(scale(rng));
+    const spline::FccCubic unrolled = spline::cc_type6_cubic(s), table = spline::cc_type6_cubic_from_table(s);
+    for (int r = 0; r < 20; ++r)
+      ASSERT_EQ(std::memcmp(&unrolled.b[r], &table.b[r], sizeof(float)), 0)
+          << "trial " << trial << " row " << r << ": " << unrolled.b[r] << " against " << table.b[r];
+  }
 }
 
 // The Bernstein form along a segment inside a piece equals the piece along it; the BB coefficients
