@@ -116,9 +116,10 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
   app.add_flag("--full-resolution", flags.fullResolution,
                "Draw level 0 only, as for a file without a pyramid (measurements)");
   app.add_option("--lookahead", flags.lookahead,
-                 "Bricks a ray that reaches a missing brick requests beyond it (default " +
-                     std::to_string(render::RenderOptions{}.lookahead) +
-                     "): more bricks a pass, fewer passes a frame while streaming; the image is the same")
+                 "Bricks a ray that reaches a missing brick requests beyond it: more bricks a pass, fewer passes a frame "
+                 "while streaming; the image is the same (default: 0 for complete frames of one opaque isosurface at full "
+                 "resolution, as render and bench render draw them; 2 for progressive frames, as view and bench stream draw "
+                 "them, levels of detail, several surfaces and DVR)")
       ->check(CLI::Range(0, 64));
 }
 

@@ -324,6 +324,12 @@ void Raycaster::updateNeeded() {
   uploadPageTable();
 }
 
+int Raycaster::passLookahead() const {
+  if (options_.lookahead != RenderOptions::kLookaheadAuto) return options_.lookahead;
+  const bool oneOpaqueSurfaceAtFullResolution = options_.mode == RenderMode::Iso && !compositesSurfaces(options_) && !lodDrawing();
+  return drawingCompleteFrame_ && oneOpaqueSurfaceAtFullResolution ? 0 : 2;
+}
+
 bool Raycaster::lodDrawing() const {
   return levelSources_.size() > 1 && lodProgram_.id() != 0 && options_.mode == RenderMode::Iso && !compositesSurfaces(options_) &&
          !options_.ownsBrick;
@@ -538,7 +544,7 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   glProgramUniform1i(p, u.firstColumn, firstColumn);
   glProgramUniform1i(p, u.columnOffset, columnOffset);
   glProgramUniform1ui(p, u.requestCapacity, requestCapacity_);
-  glProgramUniform1i(p, u.lookahead, options_.lookahead);
+  glProgramUniform1i(p, u.lookahead, passLookahead());
   glProgramUniform1i(p, u.skipEmpty, options_.skipEmpty ? 1 : 0);
   glProgramUniform1i(p, u.finiteDifferenceNormals, options_.finiteDifferenceNormals ? 1 : 0);
   glProgramUniform3fv(p, u.surfaceColor, 1, &options_.surfaceColor.x);
@@ -718,6 +724,7 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
   restartRays(width, height);
   requestCoarsest();
   stepKey_ = StepKey{};  // a later step() starts over
+  drawingCompleteFrame_ = true;
   FrameStats stats;
   stats.bricksNeeded = residency_->neededCount();
   for (;;) {
@@ -793,6 +800,7 @@ void Raycaster::startStep(const Camera& camera, int width, int height, double up
   if (width <= 0 || height <= 0)
     throw ValueError("image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   if (stepStarted_) throw Error("renderer: startStep() twice without finishStep()");
+  drawingCompleteFrame_ = false;
   const CameraFrame frame = cameraFrame(camera, double(width) / double(height));
   StepStats& stats = startedStep_;
   stats = StepStats{};

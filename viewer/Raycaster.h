@@ -72,7 +72,13 @@ struct RenderOptions {
   // Pixels per raycasting work group: 4x8 (one warp) measured fastest on the H200 (docs/BENCHMARKS.md).
   glm::ivec2 workGroup{4, 8};
   bool skipEmpty = true;   // skip nodes and bricks whose bounds exclude the isovalue
-  int lookahead = 2;       // bricks a stopped ray requests beyond its first missing one
+  // Bricks a stopped ray requests beyond its first missing one; kLookaheadAuto: none for render()'s
+  // complete frames of one opaque isosurface at full resolution (a pass is cheaper than the file reads
+  // of bricks requested ahead: the H200's full turn of blobs 2048^3 at 4x the GPU cache, 30.6-33.9 fps
+  // against 27.2-28.7 with 2), two for step()'s progressive frames and with levels of detail (their
+  // streams and full turn were faster with 2; docs/BENCHMARKS.md, session 13).
+  static constexpr int kLookaheadAuto = -1;
+  int lookahead = kLookaheadAuto;
   bool finiteDifferenceNormals = false;  // central differences instead of the analytic gradient
   bool timeGpu = false;    // time every raycasting pass on the GPU (FrameStats::gpuSeconds; benchmarks)
   // Count the bricks each pass drew (StepStats/FrameStats::bricksPerLevel; `bench stream`): reads the
@@ -274,6 +280,7 @@ class Raycaster {
   Raycaster(std::unique_ptr<BrickSource> owned, const RenderOptions& options);  // keeps `owned`
   void restartRays(int width, int height);
   bool lodDrawing() const;  // the LOD program draws the frames (levels, iso mode, one opaque surface)
+  int passLookahead() const;  // options_.lookahead, or what kLookaheadAuto means for this frame
   void requestCoarsest();   // the coarsest level's missing bricks, before anything else
   bool raiseBiasIfThrashing(uint64_t uploadedThisView);  // true: the bias rose, the rays must restart
   void finishLevelMix(FrameStats& stats);
@@ -322,6 +329,7 @@ class Raycaster {
   bool neededOnce_ = false;   // updateNeeded() has run (setSurfaces skips it when only colours change)
   uint64_t neededUpdates_ = 0;
   bool stepStarted_ = false;  // startStep() ran, finishStep() has not
+  bool drawingCompleteFrame_ = false;  // render() runs the passes (not step())
   StepStats startedStep_;     // what startStep() did
   GlProgram program_, slotBoundsProgram_, pageUpdateProgram_;
   // The compositing variant (FCC_MULTI_ISO) of program_, built the first time it is needed.
