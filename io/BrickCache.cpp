@@ -56,7 +56,7 @@ std::shared_ptr<const CachedBrick> BrickCache::leafValues(const glm::ivec3& bric
     auto it = shard.entries.find(key);
     if (it != shard.entries.end()) {
       shard.lru.splice(shard.lru.begin(), shard.lru, it->second.lru);
-      hits_.fetch_add(1, std::memory_order_relaxed);
+      ++shard.hits;
       return it->second.values;
     }
   }
@@ -82,6 +82,15 @@ std::shared_ptr<const CachedBrick> BrickCache::leafValues(const glm::ivec3& bric
     shard.lru.pop_back();
   }
   return values;
+}
+
+uint64_t BrickCache::hitCount() const {
+  uint64_t hits = 0;
+  for (const Shard& shard : shards_) {
+    std::lock_guard<std::mutex> lock(shard.mutex);
+    hits += shard.hits;
+  }
+  return hits;
 }
 
 std::size_t BrickCache::bytesUsed() const {

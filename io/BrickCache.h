@@ -55,7 +55,7 @@ class BrickCache : public BrickValuesSource {
   void setBudgetBytes(std::size_t budgetBytes);
   std::size_t bytesUsed() const;
   uint64_t decodedCount() const { return decoded_.load(std::memory_order_relaxed); }  // bricks decoded so far
-  uint64_t hitCount() const { return hits_.load(std::memory_order_relaxed); }
+  uint64_t hitCount() const;
 
  private:
   // The cache is split by brick into shards, each its own LRU list under its own lock, so that the
@@ -70,6 +70,7 @@ class BrickCache : public BrickValuesSource {
     mutable std::mutex mutex;
     std::list<uint64_t> lru;  // most recent first
     std::unordered_map<uint64_t, Entry> entries;
+    uint64_t hits = 0;  // under the shard's lock: one counter for all threads was a cache line they all wrote
   };
   Shard& shardOf(uint64_t key) { return shards_[(key * 0x9E3779B97F4A7C15ull) >> 54 & (shards_.size() - 1)]; }
 
@@ -77,7 +78,7 @@ class BrickCache : public BrickValuesSource {
   std::atomic<std::size_t> budgetBytes_;
   std::atomic<std::size_t> bricksPerShard_;
   std::vector<Shard> shards_;  // a power of two of them
-  std::atomic<uint64_t> decoded_{0}, hits_{0};
+  std::atomic<uint64_t> decoded_{0};
 };
 
 // A few bricks' contents held for a batch of halo blocks, in front of a cache: neighbouring blocks
