@@ -61,7 +61,7 @@ class BrickCache : public BrickValuesSource {
   // The cache is split by brick into shards, each its own LRU list under its own lock, so that the
   // loader's threads (27 lookups per halo block) do not queue on one mutex. Eviction is per shard:
   // each holds an equal share of the budget.
-  std::shared_ptr<const CachedBrick> leafValues(const glm::ivec3& brick);        // cached, or decoded now
+  std::shared_ptr<const CachedBrick> leafValues(const glm::ivec3& brick);  // cached, or decoded now
   struct Entry {
     std::shared_ptr<const CachedBrick> values;
     std::list<uint64_t>::iterator lru;

@@ -251,7 +251,7 @@ render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags) {
     options.clipLo = glm::min(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]));
     options.clipHi = glm::max(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]));
   }
-  if (flags.lookahead >= 0) options.lookahead = flags.lookahead;
+  options.lookahead = flags.lookahead;
   if (flags.layout != "auto") {
     try {
       options.layout = render::parseBrickLayout(flags.layout);

@@ -41,7 +41,7 @@ struct RenderFlags {
   // --full-resolution draws level 0 only.
   std::string lodBias;
   bool fullResolution = false;
-  int lookahead = -1;  // -1: RenderOptions' default
+  int lookahead = render::RenderOptions::kLookaheadAuto;
 };
 
 // The bias the levels are drawn with, or none: full resolution (--full-resolution, or neither flag

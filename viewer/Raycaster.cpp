@@ -327,7 +327,9 @@ void Raycaster::updateNeeded() {
 int Raycaster::passLookahead() const {
   if (options_.lookahead != RenderOptions::kLookaheadAuto) return options_.lookahead;
   const bool oneOpaqueSurfaceAtFullResolution = options_.mode == RenderMode::Iso && !compositesSurfaces(options_) && !lodDrawing();
-  return drawingCompleteFrame_ && oneOpaqueSurfaceAtFullResolution ? 0 : 2;
+  // step() marks its pass started before dispatching it; render()'s passes run outside one.
+  const bool completeFrame = !stepStarted_;
+  return completeFrame && oneOpaqueSurfaceAtFullResolution ? 0 : 2;
 }
 
 bool Raycaster::lodDrawing() const {
@@ -724,7 +726,6 @@ FrameStats Raycaster::render(const Camera& camera, int width, int height) {
   restartRays(width, height);
   requestCoarsest();
   stepKey_ = StepKey{};  // a later step() starts over
-  drawingCompleteFrame_ = true;
   FrameStats stats;
   stats.bricksNeeded = residency_->neededCount();
   for (;;) {
@@ -800,7 +801,6 @@ void Raycaster::startStep(const Camera& camera, int width, int height, double up
   if (width <= 0 || height <= 0)
     throw ValueError("image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   if (stepStarted_) throw Error("renderer: startStep() twice without finishStep()");
-  drawingCompleteFrame_ = false;
   const CameraFrame frame = cameraFrame(camera, double(width) / double(height));
   StepStats& stats = startedStep_;
   stats = StepStats{};

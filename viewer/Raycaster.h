@@ -329,7 +329,6 @@ class Raycaster {
   bool neededOnce_ = false;   // updateNeeded() has run (setSurfaces skips it when only colours change)
   uint64_t neededUpdates_ = 0;
   bool stepStarted_ = false;  // startStep() ran, finishStep() has not
-  bool drawingCompleteFrame_ = false;  // render() runs the passes (not step())
   StepStats startedStep_;     // what startStep() did
   GlProgram program_, slotBoundsProgram_, pageUpdateProgram_;
   // The compositing variant (FCC_MULTI_ISO) of program_, built the first time it is needed.

@@ -59,8 +59,8 @@ class Residency {
   int pinnedLevel() const { return pinnedLevel_; }
 
   // Orders the slots for eviction once per pass: free slots first, then the least recently used
-  // (slotLastUse, the pass that last read each slot). Sorting the whole pool for every upload batch
-  // took milliseconds a batch with 40 k slots.
+  // (slotLastUse, the pass that last read each slot). The order is fixed here and sorted in parts as
+  // assigning reaches them (nextSlotInOrder): a pass takes a few thousand of 40 k slots.
   void startAssigning(const std::vector<uint32_t>& slotLastUse);
   // Assigns pool slots to `bricks` (not yet resident), in order, taking slots in the order
   // startAssigning made and never one assigned since then. Returns (brick, slot) pairs (fewer when
