@@ -5,7 +5,10 @@
 // a frame wants, and the frame completes.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
+#include <functional>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -166,64 +169,97 @@ TEST_F(Lod, HostCacheBudgetIsSharedByTheLevels) {
   EXPECT_LE(use.bytesUsed, kHostBytes) << "levels drawn: " << stats.bricksPerLevel.size();
 }
 
-// Progressive steps over a pool of a few dozen slots (the bias kept at 0): coarse first, finer bricks
-// replacing them. What is tested, precisely: once the coarsest level is resident and one pass has run
-// with it, every pixel that the converged image hits and whose 8 neighbours it hits too (the
-// silhouette's pixels may differ between levels: a coarser spline's sphere is not the same sphere)
-// is hit in every later intermediate image; and the converged image equals the full-resolution one
-// bit for bit.
+// Level 0 as a slow disk would give it: each brick's decode waits kDelay first. Progressive steps
+// then see the coarse level (pinned, a few fast bricks) long before the fine bricks; without it, the
+// loader threads' speed against the steps' decides whether any intermediate image shows a coarse
+// brick (CI's loaded 2-core machine once loaded every fine brick before the coarse level was in).
+class SlowSource : public render::BrickSource {
+ public:
+  static constexpr std::chrono::milliseconds kDelay{15};
+  explicit SlowSource(const render::BrickSource& inner) : inner_(inner) {}
+  const std::string& path() const override { return inner_.path(); }
+  const ReconstructionInfo& reconstruction() const override { return inner_.reconstruction(); }
+  render::SlotBlock slotBlock() const override { return inner_.slotBlock(); }
+  const glm::dmat4& worldFromIndex() const override { return inner_.worldFromIndex(); }
+  void brickBox(glm::ivec3& lo, glm::ivec3& hi) const override { inner_.brickBox(lo, hi); }
+  void worldBounds(glm::dvec3& lo, glm::dvec3& hi) const override { inner_.worldBounds(lo, hi); }
+  float background() const override { return inner_.background(); }
+  float valueMin() const override { return inner_.valueMin(); }
+  float valueMax() const override { return inner_.valueMax(); }
+  void forEachVaryingBrick(const std::function<void(const glm::ivec3&, float, float)>& visit) const override {
+    inner_.forEachVaryingBrick(visit);
+  }
+  std::size_t varyingBrickCount() const override { return inner_.varyingBrickCount(); }
+  void decode(std::vector<render::LoadedBrick>& chunk) const override {
+    std::this_thread::sleep_for(kDelay * chunk.size());
+    inner_.decode(chunk);
+  }
+  render::HostCacheUse hostCacheUse() const override { return inner_.hostCacheUse(); }
+
+ private:
+  const render::BrickSource& inner_;
+};
+
+// Progressive steps over a pool of a few dozen slots (the bias kept at 0), level 0 slow to load: coarse
+// first, finer bricks replacing them. What is tested, precisely: once the coarsest level is resident
+// and one pass has run with it, every pixel that the full-resolution image hits and whose 8 neighbours
+// it hits too (the silhouette's pixels may differ between levels: a coarser spline's sphere is not the
+// same sphere) is hit in every later intermediate image; some intermediate image shows coarser bricks
+// (differs from the full-resolution one); and the converged image equals the full-resolution one bit
+// for bit.
 TEST_F(Lod, ProgressiveStepsShowNoHoleAndConvergeToFullResolution) {
   TempDir dir;
   const SphereFiles files = writeSpheres(dir);
   Opened opened(files.pyramid);
+  const SlowSource slowLevel0(opened.level0);
   const render::FrameImages full = test::renderFile(files.plain, nearCamera(), kW, kH, kIso, isoOptions());
   render::RenderOptions lod = isoOptions(test::kSmallPoolBytes);
   lod.coarserLevels = opened.levels.sources();
   lod.lodAdaptBias = false;
-  render::Raycaster raycaster(opened.level0, lod);
-  std::vector<render::FrameImages> intermediate;
+  render::Raycaster raycaster(slowLevel0, lod);
+
+  const auto interior = [&](int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int u = x + dx, v = y + dy;
+        if (u < 0 || v < 0 || u >= kW || v >= kH || !hit(full, std::size_t(v) * kW + u)) return false;
+      }
+    return true;
+  };
+  // Checked as they come (a slow level 0 gives hundreds of steps; their images are not kept).
+  int intermediate = 0, checked = 0, coarserShown = 0;
+  const auto checkIntermediate = [&](const render::FrameImages& image, int step) {
+    ++intermediate;
+    int holes = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (!interior(x, y)) continue;
+        ++checked;
+        holes += !hit(image, std::size_t(y) * kW + x);
+      }
+    EXPECT_EQ(holes, 0) << "the image after step " << step << " shows " << holes << " holes";
+    coarserShown += image.rgba != full.rgba;
+  };
   bool coarseSeen = false, complete = false;
   int steps = 0;
   for (steps = 1; steps <= 20000 && !complete; ++steps) {
     const bool coarseBefore = raycaster.coarsestResident();
     const render::StepStats s = raycaster.step(nearCamera(), kW, kH, 0.0);
     complete = s.complete;
-    if (coarseSeen && !complete) intermediate.push_back(raycaster.readImages(false));
+    if (coarseSeen && !complete) checkIntermediate(raycaster.readImages(false), steps);
     coarseSeen = coarseSeen || (coarseBefore && s.dispatched);
   }
   ASSERT_TRUE(complete) << "no complete frame after " << steps << " steps";
-  std::printf("complete after %d steps, %zu intermediate images checked, %llu bricks uploaded into %u slots\n", steps,
-              intermediate.size(), (unsigned long long)raycaster.bricksUploaded(), raycaster.slotCount());
+  std::printf("complete after %d steps, %d intermediate images checked (%d show coarser bricks), %llu bricks uploaded into %u slots\n",
+              steps, intermediate, coarserShown, (unsigned long long)raycaster.bricksUploaded(), raycaster.slotCount());
   EXPECT_GT(raycaster.bricksUploaded(), raycaster.slotCount()) << "the pool must be too small for the frame";
-  EXPECT_GE(intermediate.size(), 1u);
+  EXPECT_GE(intermediate, 1);
+  EXPECT_GT(checked, 0);
+  EXPECT_GT(coarserShown, 0) << "some intermediate image must show coarser levels";
   const render::FrameImages converged = raycaster.readImages();
   EXPECT_GT(sameImage(full, converged, "converged progressive vs full resolution"), kW * kH / 10);
   const render::LevelMix mix = raycaster.levelMix();
   EXPECT_EQ(mix.fullResolutionFraction, 1.0);
-
-  const auto interior = [&](int x, int y) {
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int u = x + dx, v = y + dy;
-        if (u < 0 || v < 0 || u >= kW || v >= kH || !hit(converged, std::size_t(v) * kW + u)) return false;
-      }
-    return true;
-  };
-  int checked = 0;
-  bool coarserShown = false;
-  for (std::size_t i = 0; i < intermediate.size(); ++i) {
-    int holes = 0;
-    for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x) {
-        if (!interior(x, y)) continue;
-        ++checked;
-        holes += !hit(intermediate[i], std::size_t(y) * kW + x);
-      }
-    EXPECT_EQ(holes, 0) << "intermediate image " << i << " shows " << holes << " holes";
-    if (intermediate[i].rgba != converged.rgba) coarserShown = true;
-  }
-  EXPECT_GT(checked, 0);
-  EXPECT_TRUE(coarserShown) << "some intermediate image must show coarser levels";
 }
 
 // A pool far too small for the bricks bias 0 wants: render() raises the bias and completes with
