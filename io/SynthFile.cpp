@@ -1,6 +1,7 @@
 #include "SynthFile.h"
 
 #include "VdbFile.h"
+#include "sparse/BccGrids.h"
 #include "sparse/BrickBounds.h"
 #include "sparse/CartesianGridBuilder.h"
 #include "sparse/StreamedBuild.h"
@@ -72,6 +73,23 @@ SynthSummary writeSynthCartesianFile(const std::string& output, const SynthOptio
   SynthSummary summary;
   summary.activeSamples = grid->activeVoxelCount();
   summary.bricks = grid->tree().leafCount();
+  return summary;
+}
+
+SynthSummary writeSynthBccFile(const std::string& output, const SynthOptions& options) {
+  const SynthField synth = makeSynthField(options.spec);
+  initializeVdb();
+  const SampleField& field = *synth.field;
+  const BccGrids grids = buildBccGrids(
+      SiteBox{glm::ivec3(0), options.spec.dims - 1}, field.background(), [&](const glm::ivec3& x) { return field.sample(x); },
+      *synthTransform(synth), openvdb::GRID_FOG_VOLUME, [&](const SiteBox& box) { return field.mayHoldData(box); });
+  SynthSummary summary;
+  for (const openvdb::FloatGrid::Ptr& grid : {grids.primary, grids.secondary}) {
+    grid->setSaveFloatAsHalf(options.half);
+    summary.activeSamples += grid->activeVoxelCount();
+    summary.bricks += grid->tree().leafCount();
+  }
+  writeVdbAtomically(output, openvdb::GridCPtrVec{grids.primary, grids.secondary}, options.overwrite);
   return summary;
 }
 

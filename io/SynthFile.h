@@ -43,6 +43,11 @@ SynthSummary writeSynthFile(const std::string& output, const SynthOptions& optio
 // `preprocess` do not apply (the renderer prefilters CC data itself). SynthSummary::bricks counts leaves,
 // boundsBricks is 0 (no bounds grid: the renderer computes a Cartesian grid's ranges when it opens it).
 SynthSummary writeSynthCartesianFile(const std::string& output, const SynthOptions& options);
+// `synth --lattice bcc`: the same field at the BCC sites of the Cartesian embedding of spec.dims (the
+// points whose coordinates are all even or all odd: a quarter of them), as the two coset grids of
+// sparse/BccGrids.h, with the FCC file's transform for BCC index space. As writeSynthCartesianFile
+// otherwise (in memory, 4 bytes a site; `half`; bricks counts both grids' leaves).
+SynthSummary writeSynthBccFile(const std::string& output, const SynthOptions& options);
 
 // What a synth dataset's FCC grid carries: the kind as its name, the field's transform, and the
 // metadata (fcc_mode synth:<kind>, the samples' range and histogram).

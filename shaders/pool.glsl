@@ -10,7 +10,10 @@
 //   2 texture-vec4    RGBA32F 3D texture, a 10^3 block per slot, texelFetch, channel by parity
 //   3 texture-scalar  R32F 3D texture, a 20^3 block of sites per slot, texelFetch
 // A Cartesian grid's slot (viewer/CartesianBrickSource.h) holds its 20^3 grid points [16b - 2, 16b + 18)^3
-// in the same place, every one used: the scalar layouts only.
+// in the same place, every one used: the scalar layouts only. A BCC slot (FCC_SLOT_BCC,
+// viewer/BccBrickSource.h) holds the two cosets' 12^3 voxels [8b - 2, 8b + 10)^3 one after the other in
+// the first 2 * 12^3 of its 20^3 floats (x fastest, as a texture's texels run); site x is coset x & 1's
+// voxel x >> 1.
 // Per slot and packed voxel (2^3 unit cells), slotBounds holds bounds of the reconstruction on those 8
 // cells (for FCC the min and max BB-coefficient of their 40 pieces, or the hull of the coefficients
 // their stencils read), computed on upload by shaders/slot_bounds.comp.
@@ -47,7 +50,9 @@ void selectSlot(uint slot, ivec3 brick) {
   int s = int(slot);
   gSlotTexel = ivec3(s % uPoolGrid.x, (s / uPoolGrid.x) % uPoolGrid.y, s / (uPoolGrid.x * uPoolGrid.y)) * kSlotDim;
 #endif
-#if defined(FCC_POOL_SCALAR)
+#if defined(FCC_SLOT_BCC)
+  gSlotOrigin = brick * 8 - 2;
+#elif defined(FCC_POOL_SCALAR)
   gSlotOrigin = brick * 16 - 2;
 #else
   gSlotOrigin = brick * 8 - 1;
@@ -63,6 +68,18 @@ float channelOf(vec4 t, ivec3 ijk) {
 }
 #endif
 
+#if defined(FCC_SLOT_BCC)
+const int kBccDim = 12;  // coset voxels per side (viewer/BrickSource.h, kBccSlotDim)
+float coefficientAt(ivec3 ijk) {
+  ivec3 local = (ijk >> 1) - gSlotOrigin;  // arithmetic shift: floor(x / 2) for negative x too
+  int i = (ijk.x & 1) * (kBccDim * kBccDim * kBccDim) + (local.z * kBccDim + local.y) * kBccDim + local.x;
+#if FCC_POOL_LAYOUT == 1
+  return poolSites[gSlotBase + uint(i)];
+#else
+  return texelFetch(uPoolTexture, gSlotTexel + ivec3(i % kSlotDim, (i / kSlotDim) % kSlotDim, i / (kSlotDim * kSlotDim)), 0).r;
+#endif
+}
+#else
 float coefficientAt(ivec3 ijk) {
 #if FCC_POOL_LAYOUT == 0
   ivec3 local = (ijk >> 1) - gSlotOrigin;
@@ -76,6 +93,7 @@ float coefficientAt(ivec3 ijk) {
   return texelFetch(uPoolTexture, gSlotTexel + ijk - gSlotOrigin, 0).r;
 #endif
 }
+#endif
 
 // Written out rather than looped: constant indices keep the 19 values in registers whatever the
 // compiler decides about unrolling (a dynamically indexed array may live in local memory).

@@ -175,11 +175,17 @@ struct Hit {
 
 // valueAt, hitInCell(b, cell, o, d, t0, t1, prevSign, hit) (the first hit inside one unit cell of a
 // resident brick; the box spline's is written into marchBrick), and for DVR integrateCell(cell, o, d,
-// t0, t1, state): one per lattice, FCC_RECON says which.
+// t0, t1, state): one per lattice (FCC, CC, BCC), FCC_RECON says which.
+// Read by both the CC and the BCC march: included here, outside their branches, because fcc_embed
+// inlines a header once, where it first appears (inside the first branch, it would be missing from the
+// second).
+#include "CcTrilinear.h"
 #if FCC_RECON == FCC_RECON_BOXSPLINE
 #include "march_fcc.glsl"
-#else
+#elif FCC_RECON == FCC_RECON_TRILINEAR || FCC_RECON == FCC_RECON_TRICUBIC || FCC_RECON == FCC_RECON_TYPE6
 #include "march_cc.glsl"
+#else
+#include "march_bcc.glsl"
 #endif
 
 // Central differences of the reconstruction's value, six evaluations; the points are kept inside the

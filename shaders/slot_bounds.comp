@@ -56,6 +56,29 @@ void main() {
       }
   slotBounds[slot * uint(kSlotVoxels) + voxel] = vec2(mn, mx);
 }
+#elif defined(FCC_SLOT_BCC)
+// A BCC slot (viewer/BccBrickSource.h): every BCC scheme is a convex combination of sites within 3 index
+// units of the point (the sheared cells reach 3 along their sheared axes, the others 2), so the voxel's
+// 8 cells [2v, 2v + 2]^3 lie within the hull of the sites in [2v - 3, 2v + 5]^3: the primary coset's
+// voxels m in [v - 1, v + 2] (sites 2m) and the secondary's in [v - 2, v + 2] (sites 2m + 1).
+void main() {
+  uint voxel = gl_GlobalInvocationID.x;
+  if (voxel >= uint(kSlotVoxels)) return;
+  uint slot = uploadedSlots[gl_WorkGroupID.y];
+  markUsed(slot);
+  selectSlot(slot, ivec3(0));  // the brick taken at the origin: a slot's values do not depend on it
+  ivec3 v = ivec3(int(voxel) & 7, (int(voxel) >> 3) & 7, int(voxel) >> 6);
+  float mn = 1.0 / 0.0, mx = -1.0 / 0.0;
+  for (int coset = 0; coset < 2; ++coset)
+    for (int z = v.z - 2 + (1 - coset); z <= v.z + 2; ++z)
+      for (int y = v.y - 2 + (1 - coset); y <= v.y + 2; ++y)
+        for (int x = v.x - 2 + (1 - coset); x <= v.x + 2; ++x) {
+          float c = coefficientAt(2 * ivec3(x, y, z) + coset);
+          mn = min(mn, c);
+          mx = max(mx, c);
+        }
+  slotBounds[slot * uint(kSlotVoxels) + voxel] = vec2(mn, mx);
+}
 #elif defined(FCC_SLOT_BOUNDS_BB)
 // On a GPU the tighter bound costs nothing worth saving: min/max over the BB-coefficients of the 40
 // pieces of the voxel's 8 cells (what the raycaster would otherwise find piece by piece).

@@ -322,6 +322,36 @@ bool marchBrickSurfaces(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta,
         }
         s0 = s1;
       }
+#elif FCC_RECON == FCC_RECON_BARYCENTRIC || FCC_RECON == FCC_RECON_SHEARED_TRILINEAR || \
+    FCC_RECON == FCC_RECON_BILINEAR_SPATIAL || FCC_RECON == FCC_RECON_BILINEAR
+      // The BCC schemes (march_bcc.glsl): per part of the cell in one piece, its cubic at most.
+      FccSplits splits = bccCellSplits(cell, o, d, tCell, tExit);
+      float s0 = tCell;
+      for (int k = 0; k <= splits.n; ++k) {
+        float s1 = k < splits.n ? splits.t[k] : tExit;
+        if (s1 <= s0) continue;
+        BccPiece piece = bccPieceOn(cell, o, d, s0, s1);
+        vec4 bz = bccSegmentBernstein(piece, o + s0 * d, o + s1 * d, 0.0);
+        FccRange range = bccBernsteinRange(bz);
+        if (holdsAnySurface(range.lo, range.hi)) {
+          float u0 = 0.0;
+          for (int n = 0; n < kMaxCrossingsPerPiece; ++n) {
+            float u, after;
+            int surface = nextCrossing3(bz, range.lo, range.hi, u0, st.side, u, after);
+            if (surface < 0) break;
+            float t = s0 + u * (s1 - s0);
+            vec3 xyz = o + t * d;
+            vec3 g = uFiniteDifferenceNormals != 0 ? finiteDifferenceGradient(xyz, b) : bccValueGradient(piece, xyz).gradient;
+            if (compositeCrossing(surface, t, g, st)) return true;
+            st.side[surface] = sideOf(fcc_bernstein3(bz - vec4(uSurfaceIsos[surface]), after));
+            u0 = after;
+          }
+          st.side = sidesAtEnd(bz.w, range.lo, range.hi);
+        } else {
+          st.side = sidesAtEnd(0.0, range.lo, range.hi);
+        }
+        s0 = s1;
+      }
 #else  // tricubic: the degree-9 polynomial along the ray
       FccCoeffs64 coeffs = gatherCoefficients(cell);
       FccCoeffs64 bezier = cc_tricubic_bezier(coeffs);

@@ -4,25 +4,35 @@
 
 #include "io/TransferFunctionFile.h"
 #include "sparse/Error.h"
+#include "viewer/BccBrickSource.h"
 #include "viewer/CartesianBrickSource.h"
 #include "viewer/FccBrickSource.h"
 
 namespace fcc::cli {
 
 RenderData::RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, bool quiet) {
-  const ReconstructionInfo& info = findReconstruction(flags.reconstruction.empty() ? "boxspline" : flags.reconstruction);
+  // A BCC dataset is drawn with a BCC reconstruction, the view-independent one unless one is named.
+  const bool bccFile = render::holdsBccGrids(flags.file);
+  const std::string name = !flags.reconstruction.empty() ? flags.reconstruction : bccFile ? kDefaultBccReconstruction : "boxspline";
+  const ReconstructionInfo& info = findReconstruction(name);
+  const Lattice bcc = Lattice::Bcc;
+  if (bccFile && info.lattice != Lattice::Bcc)
+    throw ValueError("--reconstruction " + std::string(info.name) + ": " + flags.file +
+                     " holds a BCC dataset; its reconstructions are " + reconstructionNames(&bcc));
+  if (info.lattice == Lattice::Bcc) {
+    auto bccSource = std::make_unique<render::BccBrickSource>(flags.file, info);
+    levelSet_ = bccSource->levelSet();
+    source_ = std::move(bccSource);
+    return;
+  }
   if (info.lattice == Lattice::Fcc) {
     input_ = openFccInput(flags, quiet);
     fccStore_ = std::make_unique<io::BrickStore>(input_->path(), flags.grid);
     source_ = std::make_unique<render::FccBrickSource>(*fccStore_, hostCacheBytes);
     return;
   }
-  if (info.lattice != Lattice::Cc) {
-    const Lattice cc = Lattice::Cc;
-    throw ValueError("--reconstruction " + std::string(info.name) + ": the renderer stores FCC and Cartesian grids only so far (valid: boxspline, " +
-                     reconstructionNames(&cc) + "; `fccvdb compare` evaluates the BCC ones)");
-  }
   ccStore_ = std::make_unique<io::CartesianBrickStore>(flags.file, flags.grid);
+  levelSet_ = ccStore_->levelSet();
   source_ = std::make_unique<render::CartesianBrickSource>(*ccStore_, info);
 }
 
@@ -30,7 +40,7 @@ RenderData::~RenderData() = default;
 
 io::IsoChoice RenderData::iso(const RenderFlags& flags) const {
   if (fccStore_) return isoFromFlags(flags, *fccStore_);
-  if (ccStore_->levelSet()) return isoFromFlags(flags, io::IsoChoice{0.0f, "a level set's zero crossing"});
+  if (levelSet_) return isoFromFlags(flags, io::IsoChoice{0.0f, "a level set's zero crossing"});
   return isoFromFlags(flags, io::IsoChoice{0.5f * (source_->valueMin() + source_->valueMax()),
                                            "the middle of the range the surface can take"});
 }
@@ -43,7 +53,7 @@ render::Camera RenderData::camera(const RenderFlags& flags, double aspect) const
   if (fccStore_) return cameraFromFlags(flags, *fccStore_, aspect);
   glm::dvec3 lo, hi;
   source_->worldBounds(lo, hi);
-  return cameraFromFlags(flags, lo, hi, std::nullopt, aspect);  // Cartesian .vdb files carry no patient axes
+  return cameraFromFlags(flags, lo, hi, std::nullopt, aspect);  // Cartesian and BCC .vdb files carry no patient axes
 }
 
 render::DvrTransfer RenderData::dvrTransfer(const RenderFlags& flags) const {
@@ -79,7 +89,7 @@ int RenderData::applyLevels(const RenderFlags& flags, bool levelsByDefault, bool
     if (!quiet && !flags.lodBias.empty()) std::fprintf(stderr, "fccvdb: note: --lod-bias: %s: drawn at full resolution\n", why.c_str());
   };
   if (!fccStore_) {
-    note("a Cartesian grid has no pyramid");
+    note(std::string("a ") + (ccStore_ ? "Cartesian grid" : "BCC dataset") + " has no pyramid");
     return 1;
   }
   if (options.mode != render::RenderMode::Iso) {

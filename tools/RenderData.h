@@ -1,7 +1,8 @@
 // The data `render` and `bench render` draw, opened by the flags: an FCC .vdb (a Cartesian input is
 // converted first, io/ConversionCache.h), or with --reconstruction naming a Cartesian reconstruction, a
-// Cartesian .vdb float grid as it is (io/CartesianBrickStore.h). Either way one render::BrickSource for
-// the raycaster, the default isovalue and the file's damage report.
+// Cartesian .vdb float grid as it is (io/CartesianBrickStore.h), or a BCC dataset's two cosets
+// (viewer/BccBrickSource.h; kDefaultBccReconstruction unless --reconstruction names another BCC one).
+// Either way one render::BrickSource for the raycaster, the default isovalue and the file's damage report.
 #pragma once
 
 #include <memory>
@@ -15,10 +16,14 @@
 
 namespace fcc::cli {
 
+// Linear on the BCC Delaunay tetrahedra: of the BCC schemes the one whose function does not change with
+// the view (the plane-stack schemes pick their stack per frame from the camera).
+inline constexpr const char* kDefaultBccReconstruction = "barycentric";
+
 class RenderData {
  public:
-  // ValueError for an unknown --reconstruction (naming the valid ones) or one whose lattice the
-  // renderer cannot store yet; InputError (one line) for a file that does not open.
+  // ValueError for an unknown --reconstruction (naming the valid ones) or one of another lattice than
+  // a BCC dataset's; InputError (one line) for a file that does not open or is not of the lattice named.
   RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, bool quiet);
   ~RenderData();
 
@@ -56,6 +61,7 @@ class RenderData {
   std::unique_ptr<io::CartesianBrickStore> ccStore_;
   std::unique_ptr<render::BrickSource> source_;
   std::unique_ptr<render::PyramidLevels> levels_;
+  bool levelSet_ = false;  // a Cartesian or BCC level set (FCC files: the store's rules)
 };
 
 }  // namespace fcc::cli

@@ -41,14 +41,17 @@ std::unique_ptr<io::FccInput> openFccInput(const RenderFlags& flags, bool quiet)
 void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
   app.add_option("FILE", flags.file,
                  "FCC .vdb file (from fccvdb convert or synth), or anything convert takes (a Cartesian .vdb, NRRD, "
-                 "NIfTI, raw with --dims/--type): converted once and cached (--no-cache: a temporary file)")
+                 "NIfTI, raw with --dims/--type): converted once and cached (--no-cache: a temporary file); or a BCC "
+                 "dataset (synth --lattice bcc), rendered as it is")
       ->required();
   app.add_option("--grid", flags.grid, "The FCC grid to render (default: the first); for a Cartesian .vdb, the float grid to convert or render");
   app.add_option("--reconstruction", flags.reconstruction,
                  "How the data between samples is reconstructed: boxspline (FCC data; the default, converting a "
                  "Cartesian FILE), or trilinear, tricubic (interpolating B-spline), tricubic-bspline (approximating), "
                  "type6 (Sorokina-Zeilfelder cubic C1 spline on 24 tetrahedra a cube, paper 003) to render a "
-                 "Cartesian .vdb float grid as it is, without converting");
+                 "Cartesian .vdb float grid as it is, without converting; for a BCC dataset (grids bcc_primary and "
+                 "bcc_secondary, docs/FORMAT.md) barycentric (its default), sheared-trilinear, bilinear-spatial or "
+                 "bilinear (paper 002)");
   app.add_option("--mode", flags.mode, "iso: the isosurface; dvr: direct volume rendering (emission and absorption through the reconstructed field, with --tf)")
       ->capture_default_str()->check(CLI::IsMember({"iso", "dvr"}));
   std::string presets;

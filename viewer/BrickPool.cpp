@@ -96,7 +96,7 @@ std::size_t BrickPool::maxSlots(BrickLayout layout) {
 
 BrickPool::BrickPool(BrickLayout layout, std::size_t slots, SlotBlock block)
     : layout_(layout), slots_(std::max<std::size_t>(slots, 1)), block_(block) {
-  if (block == SlotBlock::Sites && !isScalar(layout)) {
+  if (block != SlotBlock::FccPacked && !isScalar(layout)) {
     std::string scalar;
     for (BrickLayout l : allBrickLayouts())
       if (isScalar(l)) scalar += (scalar.empty() ? "" : ", ") + brickLayoutName(l);
@@ -127,7 +127,11 @@ BrickPool::~BrickPool() {
   if (texture_) glDeleteTextures(1, &texture_);
 }
 
-std::string BrickPool::glslDefines() const { return "#define FCC_POOL_LAYOUT " + std::to_string(int(layout_)) + "\n"; }
+std::string BrickPool::glslDefines() const {
+  std::string defines = "#define FCC_POOL_LAYOUT " + std::to_string(int(layout_)) + "\n";
+  if (block_ == SlotBlock::BccPacked) defines += "#define FCC_SLOT_BCC 1\n";  // pool.glsl's BCC site reader
+  return defines;
+}
 
 void BrickPool::setUniforms(const GlProgram& program) const {
   if (!isTexture(layout_)) return;
@@ -145,7 +149,7 @@ void BrickPool::upload(const std::vector<uint32_t>& slots, const std::vector<con
     char* segment = static_cast<char*>(staging_->begin(segmentOffset));
     tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) {
       float* out = reinterpret_cast<float*>(segment + i * bytes);
-      if (block_ == SlotBlock::Sites) std::memcpy(out, blocks[first + i], bytes);
+      if (block_ != SlotBlock::FccPacked) std::memcpy(out, blocks[first + i], bytes);
       else if (isScalar(layout_)) spreadOverSites(blocks[first + i], out);
       else std::memcpy(out, blocks[first + i], bytes);
     });

@@ -31,7 +31,7 @@ class BrickPool {
   // The most slots this GL implementation can hold in `layout` (SSBO size or 3D texture limits).
   static std::size_t maxSlots(BrickLayout layout);
 
-  // Slots filled from `block`s (BrickSource.h); SlotBlock::Sites needs a scalar layout (ValueError
+  // Slots filled from `block`s (BrickSource.h); SlotBlock::Sites and BccPacked need a scalar layout (ValueError
   // naming them otherwise). Needs a current OpenGL 4.5 context.
   BrickPool(BrickLayout layout, std::size_t slots, SlotBlock block = SlotBlock::FccPacked);
   ~BrickPool();
@@ -45,7 +45,7 @@ class BrickPool {
   std::string glslDefines() const;
   void setUniforms(const GlProgram& program) const;
   // Fills slots[i] from blocks[i] for every i: halo blocks of io::kHaloBlockVoxels packed voxels (4
-  // floats each, x fastest), or blocks of 20^3 sites (SlotBlock::Sites). The blocks are staged side by side in a mapped buffer by all cores (the
+  // floats each, x fastest), or blocks of 20^3 floats (SlotBlock::Sites, BccPacked), copied as they are. The blocks are staged side by side in a mapped buffer by all cores (the
   // scalar layouts spread over their sites on the way), then copied into their slots on the GPU by one
   // compute dispatch a batch: no GL call a slot, no copy through the driver.
   void upload(const std::vector<uint32_t>& slots, const std::vector<const float*>& blocks);

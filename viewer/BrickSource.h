@@ -21,7 +21,13 @@ namespace fcc::render {
 enum class SlotBlock {
   FccPacked,  // io::kHaloBlockVoxels packed FCC voxels [8b - 1, 8b + 9)^3, four floats each, x fastest
   Sites,      // the 20^3 lattice points [16b - 2, 16b + 18)^3, one float each, x fastest (scalar layouts only)
+  // BCC (viewer/BccBrickSource.h): the two cosets' voxels m in [8b - 2, 8b + 10)^3 (sites 2m and 2m + 1,
+  // every stencil of the brick's cells and of their bounds, which reach 3 index units), the primary's
+  // 12^3 then the secondary's, x fastest; held in a scalar slot of 20^3 floats (the rest unused).
+  BccPacked,
 };
+inline constexpr int kBccSlotDim = 12;  // coset voxels per side of a BCC slot block
+inline constexpr int kBccSlotLo = 2;    // the block starts this many coset voxels before the brick's 8b
 inline std::size_t slotBlockFloats(SlotBlock block) {
   return block == SlotBlock::FccPacked ? std::size_t(10 * 10 * 10 * 4) : std::size_t(20 * 20 * 20);
 }

@@ -67,14 +67,15 @@ DatasetSummary summarizeSource(const BrickSource& source, std::size_t maxBricks,
   DatasetSummary s;
   s.file = source.path();
   s.bricks = source.varyingBrickCount();
-  s.bytes = s.bricks * std::size_t(16 * 16 * 16) * sizeof(float);
+  // A brick's samples: 16^3 Cartesian points, or 2 x 8^3 BCC sites (a quarter of the index points).
+  s.bytes = s.bricks * std::size_t(source.slotBlock() == SlotBlock::BccPacked ? 2 * 8 * 8 * 8 : 16 * 16 * 16) * sizeof(float);
   s.valueMin = source.valueMin();
   s.valueMax = source.valueMax();
   s.histogram.assign(std::size_t(std::max(bins, 1)), 0.0f);
   s.histogramMin = s.valueMin;
   s.histogramMax = s.valueMax;
   s.histogramOfSamples = source.reconstruction().prefilter == Prefilter::None;
-  if (source.slotBlock() != SlotBlock::Sites) return s;  // FCC sources: summarizeDataset
+  if (source.slotBlock() == SlotBlock::FccPacked) return s;  // FCC sources: summarizeDataset
   const std::size_t stride = std::max<std::size_t>(1, (s.bricks + maxBricks - 1) / std::max<std::size_t>(maxBricks, 1));
   std::vector<LoadedBrick> chunk;
   std::size_t number = 0;
@@ -83,18 +84,23 @@ DatasetSummary summarizeSource(const BrickSource& source, std::size_t maxBricks,
   });
   source.decode(chunk);
   const float span = s.valueMax - s.valueMin;
-  constexpr int kDim = 20, kLo = 2, kSites = 16;  // the block's points [16b - 2, 16b + 18)^3; the brick's from 2
+  const auto count = [&](float v) {
+    const float t = span > 0.0f ? (v - s.valueMin) / span : 0.5f;
+    const int bin = std::clamp(int(t * float(s.histogram.size())), 0, int(s.histogram.size()) - 1);
+    s.histogram[std::size_t(bin)] += 1.0f;
+    ++s.histogramValues;
+  };
+  // The brick's own values in its block: Cartesian points [16b, 16b + 16) of the block's
+  // [16b - 2, 16b + 18)^3; BCC coset voxels [8b, 8b + 8) of each coset's [8b - 2, 8b + 10)^3.
+  const bool bcc = source.slotBlock() == SlotBlock::BccPacked;
+  const int dim = bcc ? kBccSlotDim : 20, lo = bcc ? kBccSlotLo : 2, own = bcc ? 8 : 16, blocks = bcc ? 2 : 1;
   for (const LoadedBrick& b : chunk) {
     ++s.histogramBricks;
-    for (int z = kLo; z < kLo + kSites; ++z)
-      for (int y = kLo; y < kLo + kSites; ++y)
-        for (int x = kLo; x < kLo + kSites; ++x) {
-          const float v = b.halo[(std::size_t(z) * kDim + y) * kDim + x];
-          const float t = span > 0.0f ? (v - s.valueMin) / span : 0.5f;
-          const int bin = std::clamp(int(t * float(s.histogram.size())), 0, int(s.histogram.size()) - 1);
-          s.histogram[std::size_t(bin)] += 1.0f;
-          ++s.histogramValues;
-        }
+    for (int k = 0; k < blocks; ++k)
+      for (int z = lo; z < lo + own; ++z)
+        for (int y = lo; y < lo + own; ++y)
+          for (int x = lo; x < lo + own; ++x)
+            count(b.halo[std::size_t(k) * dim * dim * dim + (std::size_t(z) * dim + y) * dim + x]);
   }
   return s;
 }

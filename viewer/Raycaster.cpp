@@ -9,6 +9,7 @@
 
 #include "FccBrickSource.h"
 #include "embedded_shaders.h"
+#include "sparse/BccShearedTrilinear.h"
 #include "sparse/Error.h"
 
 namespace fcc::render {
@@ -31,7 +32,7 @@ RenderMode parseRenderMode(const std::string& name) {
 }
 
 BrickLayout chooseBrickLayout(const BrickSource& source, std::size_t gpuCacheBytes) {
-  if (source.slotBlock() == SlotBlock::Sites) return BrickLayout::TextureScalar;
+  if (source.slotBlock() != SlotBlock::FccPacked) return BrickLayout::TextureScalar;
   const std::size_t varying = source.varyingBrickCount();
   const std::size_t scalarBytes = varying * (BrickPool::slotBytes(BrickLayout::TextureScalar) + kSlotBoundsBytes);
   return scalarBytes <= gpuCacheBytes ? BrickLayout::TextureScalar : BrickLayout::TextureVec4;
@@ -555,6 +556,12 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   const glm::vec3 clipHi(glm::clamp(options_.clipHi, glm::dvec3(-1e30), glm::dvec3(1e30)));
   glProgramUniform3fv(p, u.clipLo, 1, &clipLo.x);
   glProgramUniform3fv(p, u.clipHi, 1, &clipHi.x);
+  if (source_.slotBlock() == SlotBlock::BccPacked) {
+    // The BCC stack schemes' axis and shears, once per frame from the view (march_bcc.glsl): the same
+    // choice as Reconstruction::setView with the forward direction in index space.
+    const glm::ivec3 params = spline::bcc_sheared_params_for_view(glm::vec3(glm::dmat3(indexFromWorld) * frame.forward));
+    glProgramUniform3iv(p, glGetUniformLocation(p, "uBccParams"), 1, &params.x);
+  }
   if (lod) {
     const int levels = residency_->levelCount();
     glm::ivec3 brickMin[kMaxLodLevels], brickDims[kMaxLodLevels], nodeDims[kMaxLodLevels];

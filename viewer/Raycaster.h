@@ -122,7 +122,7 @@ bool compositesSurfaces(const RenderOptions& options);
 // and when the data outgrows the pool that halves what stays resident (10x slower while
 // streaming). So: texture-scalar when every brick whose bounds vary fits the budget, else
 // texture-vec4 (3D textures measured 2-3% ahead of SSBOs in long runs). A source of site blocks
-// (SlotBlock::Sites) has one channel: texture-scalar.
+// (SlotBlock::Sites) or of BCC cosets (BccPacked) has one channel: texture-scalar.
 BrickLayout chooseBrickLayout(const BrickSource& source, std::size_t gpuCacheBytes);
 
 // The output of a frame, row 0 at the top.

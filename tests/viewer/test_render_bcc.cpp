@@ -1,0 +1,224 @@
+// The brick-paged raycaster on BCC datasets (viewer/BccBrickSource.h, shaders/march_bcc.glsl): the
+// storage (two coset grids, sparse/BccGrids.h) puts every site where its index says; every BCC
+// reconstruction of paper 002 on the device against the exact CPU reference raycaster
+// (sparse/ReferenceRaycast.h) pixel by pixel, from two views that choose different stacks and shears;
+// the image independent of the pool's size; and `render` on a BCC file.
+#include <gtest/gtest.h>
+
+#include <openvdb/openvdb.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "CartesianTestSupport.h"
+#include "RenderTestSupport.h"
+#include "io/VdbFile.h"
+#include "sparse/BccGrids.h"
+#include "sparse/BccShearedTrilinear.h"
+#include "sparse/LatticeSamples.h"
+#include "sparse/ReferenceRaycast.h"
+#include "tests/tools/RunCommand.h"
+#include "viewer/BccBrickSource.h"
+
+namespace fcc {
+namespace {
+
+using test::GlSuite;
+using test::TempDir;
+using test::kBackground;
+using test::kDim;
+using test::wavy;
+
+// As test_render_cartesian's: both raycasters find the roots of the same polynomials in float.
+constexpr double kDepthTolVoxels = 2e-3;
+constexpr double kNormalTolDegrees = 0.1;
+constexpr double kMaxDisagreeingFraction = 0.005;
+
+constexpr double kScale = 0.5;  // world units per BCC index unit
+const openvdb::Vec3d kOrigin(-3.0, 1.0, 2.0);
+
+bool inData(const glm::ivec3& x) {
+  return glm::all(glm::greaterThanEqual(x, glm::ivec3(0))) && glm::all(glm::lessThan(x, glm::ivec3(kDim)));
+}
+
+// wavy() at the BCC sites of [0, kDim)^3, the background beyond.
+void writeBccFile(const std::string& path) {
+  initializeVdb();
+  auto xform = openvdb::math::Transform::createLinearTransform(kScale);
+  xform->postTranslate(kOrigin);
+  const BccGrids grids = buildBccGrids(SiteBox{glm::ivec3(0), glm::ivec3(kDim - 1)}, kBackground, wavy, *xform);
+  io::writeVdbAtomically(path, openvdb::GridCPtrVec{grids.primary, grids.secondary}, /*overwrite=*/true);
+}
+
+render::FrameImages renderBcc(const std::string& path, const std::string& reconstruction, const render::Camera& camera,
+                              int width, int height, float iso, render::RenderOptions options = {},
+                              render::FrameStats* stats = nullptr) {
+  const render::BccBrickSource source(path, findReconstruction(reconstruction));
+  options.iso = iso;
+  render::Raycaster raycaster(source, options);
+  const render::FrameStats s = raycaster.render(camera, width, height);
+  if (stats) *stats = s;
+  return raycaster.readImages();
+}
+
+class RenderBcc : public GlSuite {};
+
+// Coset voxel m holds site 2m (primary) or 2m + 1 (secondary) at that site's world position, and a
+// decoded block puts each site where pool.glsl reads it.
+TEST(BccStorage, CosetsHoldTheirSitesWhereTheIndexSays) {
+  TempDir dir;
+  const std::string path = dir / "wavy_bcc.vdb";
+  writeBccFile(path);
+  const render::BccBrickSource source(path, findReconstruction("barycentric"));
+  const glm::dmat4& worldFromIndex = source.worldFromIndex();
+  for (const glm::dvec3 x : {glm::dvec3(0.0), glm::dvec3(1.0), glm::dvec3(4.0, 6.0, 2.0), glm::dvec3(5.0, 7.0, 3.0)}) {
+    const glm::dvec3 world(worldFromIndex * glm::dvec4(x, 1.0));
+    const glm::dvec3 expected = kScale * x + glm::dvec3(kOrigin.x(), kOrigin.y(), kOrigin.z());
+    EXPECT_LT(glm::length(world - expected), 1e-12) << x.x << ", " << x.y << ", " << x.z;
+  }
+  // The grids' own transforms, as any OpenVDB tool sees them.
+  openvdb::io::File file(path);
+  file.open();
+  const openvdb::GridPtrVecPtr grids = file.getGrids();
+  file.close();
+  ASSERT_EQ(grids->size(), 2u);
+  for (const auto& g : *grids) {
+    const int coset = g->getName() == kBccSecondaryGridName ? 1 : 0;
+    const openvdb::Vec3d world = g->transform().indexToWorld(openvdb::Coord(3, 5, 7));
+    const glm::dvec3 expected = kScale * (2.0 * glm::dvec3(3, 5, 7) + double(coset)) + glm::dvec3(kOrigin.x(), kOrigin.y(), kOrigin.z());
+    EXPECT_LT(glm::length(glm::dvec3(world.x(), world.y(), world.z()) - expected), 1e-12) << g->getName();
+    EXPECT_EQ(g->metaValue<std::string>("lattice"), "bcc");
+  }
+  // Every site of a few bricks' blocks, at the place pool.glsl's coefficientAt reads it.
+  std::vector<render::LoadedBrick> chunk;
+  for (const glm::ivec3 b : {glm::ivec3(0), glm::ivec3(1, 2, 0), glm::ivec3(2, 2, 2), glm::ivec3(-1, 0, 1)})
+    chunk.push_back(render::LoadedBrick{b, {}});
+  source.decode(chunk);
+  int checked = 0;
+  for (const render::LoadedBrick& b : chunk) {
+    ASSERT_EQ(b.halo.size(), render::slotBlockFloats(render::SlotBlock::BccPacked));
+    for (int coset = 0; coset < 2; ++coset)
+      for (int z = 0; z < render::kBccSlotDim; ++z)
+        for (int y = 0; y < render::kBccSlotDim; ++y)
+          for (int x = 0; x < render::kBccSlotDim; ++x) {
+            const glm::ivec3 m = 8 * b.brick - render::kBccSlotLo + glm::ivec3(x, y, z);
+            const glm::ivec3 site = 2 * m + coset;
+            const float expected = inData(site) ? wavy(site) : kBackground;
+            const std::size_t i = std::size_t(coset) * 1728 + (std::size_t(z) * 12 + y) * 12 + x;
+            ASSERT_EQ(b.halo[i], expected) << "brick " << b.brick.x << "," << b.brick.y << "," << b.brick.z << " site "
+                                           << site.x << "," << site.y << "," << site.z;
+            ++checked;
+          }
+  }
+  EXPECT_EQ(checked, 4 * 2 * 1728);
+  // The ranges bound every site of each brick's block.
+  int bricks = 0;
+  source.forEachVaryingBrick([&](const glm::ivec3& brick, float lo, float hi) {
+    ++bricks;
+    std::vector<render::LoadedBrick> one{render::LoadedBrick{brick, {}}};
+    source.decode(one);
+    for (std::size_t i = 0; i < 2 * 1728; ++i) ASSERT_TRUE(lo <= one[0].halo[i] && one[0].halo[i] <= hi);
+  });
+  EXPECT_GT(bricks, 0);
+}
+
+// The device and the CPU reference on every BCC scheme, from a view down -z with positive shears and
+// one mostly along +y with a negative shear (the stack schemes take both from the view).
+TEST_F(RenderBcc, EveryReconstructionMatchesTheCpuReference) {
+  TempDir dir;
+  const std::string path = dir / "wavy_bcc.vdb";
+  writeBccFile(path);
+  const glm::dmat4 worldFromIndex = render::BccBrickSource(path, findReconstruction("barycentric")).worldFromIndex();
+  const glm::dmat4 indexFromWorld = glm::inverse(worldFromIndex);
+  // The CPU's sites: the data in a box padded with the background beyond every stencil's reach.
+  const int pad = 8;
+  LatticeSamples samples(Lattice::Bcc, glm::ivec3(-pad), glm::ivec3(kDim + 2 * pad), kBackground);
+  samples.fill([](const glm::ivec3& x) { return inData(x) ? wavy(x) : kBackground; });
+  const CellBounds bounds(samples);
+  const float iso = 0.35f;
+  const int w = 64, h = 56;
+
+  const glm::dvec3 center(worldFromIndex * glm::dvec4(24.0, 24.0, 24.0, 1.0));
+  for (const glm::dvec3 offset : {glm::dvec3(30.0, 22.0, 36.0), glm::dvec3(-14.0, -44.0, 20.0)}) {
+    render::Camera camera;
+    camera.lookat = center;
+    camera.eye = center + offset;
+    camera.fovYDegrees = 35.0;
+    const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+    const glm::vec3 forwardIndex(glm::dmat3(indexFromWorld) * frame.forward);
+    const glm::ivec3 params = spline::bcc_sheared_params_for_view(forwardIndex);
+    const glm::vec3 o(indexFromWorld * glm::dvec4(camera.eye, 1.0));
+    for (const char* name : {"barycentric", "sheared-trilinear", "bilinear-spatial", "bilinear"}) {
+      SCOPED_TRACE(std::string(name) + ", stack axis " + std::to_string(params.x) + ", shears " + std::to_string(params.y) +
+                   " " + std::to_string(params.z));
+      const render::FrameImages gpu = renderBcc(path, name, camera, w, h, iso);
+      const std::unique_ptr<Reconstruction> recon = makeReconstruction(name);
+      recon->setView(forwardIndex);
+      int hits = 0, disagree = 0;
+      double worstDepth = 0.0, worstAngle = 0.0;
+      for (int py = 0; py < h; ++py)
+        for (int px = 0; px < w; ++px) {
+          const glm::vec3 d(glm::dmat3(indexFromWorld) * render::pixelRay(frame, px, py, w, h));
+          const RayHit ref = firstHit(*recon, samples.accessor(), bounds, o, d, 0.0f, 400.0f, iso);
+          const std::size_t i = std::size_t(py) * w + px;
+          const bool hit = gpu.rgba[4 * i + 3] > 0.5f;
+          const double depthVoxels = ref.hit && hit ? std::abs(double(gpu.normalDepth[4 * i + 3]) - ref.t) / kScale : 0.0;
+          if (hit != ref.hit || depthVoxels > kDepthTolVoxels) {
+            ++disagree;
+            std::printf("%s: pixel (%d, %d) device %s t %.6g, reference %s t %.6g\n", name, px, py, hit ? "hit" : "miss",
+                        double(gpu.normalDepth[4 * i + 3]), ref.hit ? "hit" : "miss", double(ref.t));
+            continue;
+          }
+          if (!hit) continue;
+          ++hits;
+          const glm::dvec3 nRef = glm::normalize(glm::transpose(glm::dmat3(indexFromWorld)) * glm::dvec3(ref.gradient));
+          const glm::dvec3 n(gpu.normalDepth[4 * i], gpu.normalDepth[4 * i + 1], gpu.normalDepth[4 * i + 2]);
+          const double angle = glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(n), nRef), -1.0, 1.0)));
+          worstDepth = std::max(worstDepth, depthVoxels);
+          worstAngle = std::max(worstAngle, angle);
+          EXPECT_LT(angle, kNormalTolDegrees) << "pixel (" << px << ", " << py << ")";
+        }
+      std::printf("%s (axis %d, shears %d %d): %d hits agree (worst depth %.3g voxels, normal %.3g degrees), %d pixels disagree\n",
+                  name, params.x, params.y, params.z, hits, worstDepth, worstAngle, disagree);
+      EXPECT_GT(hits, w * h / 4) << "the surface should cover a good part of the image";
+      EXPECT_LE(disagree, int(kMaxDisagreeingFraction * w * h));
+    }
+  }
+}
+
+// Out of core: a pool of a few slots gives the image of an unbounded one, bit for bit.
+TEST_F(RenderBcc, SmallPoolGivesTheSameImage) {
+  TempDir dir;
+  const std::string path = dir / "wavy_bcc.vdb";
+  writeBccFile(path);
+  const glm::dmat4 worldFromIndex = render::BccBrickSource(path, findReconstruction("barycentric")).worldFromIndex();
+  render::Camera camera;
+  camera.lookat = glm::dvec3(worldFromIndex * glm::dvec4(24.0, 24.0, 24.0, 1.0));
+  camera.eye = camera.lookat + glm::dvec3(45.0, 35.0, 40.0);
+  const int w = 48, h = 48;
+  render::RenderOptions small;
+  small.gpuCacheBytes = 6 * (8000 * 4 + 4096);  // six slots of 20^3 floats and their cell bounds
+  for (const char* name : {"barycentric", "sheared-trilinear"}) {
+    SCOPED_TRACE(name);
+    render::FrameStats bigStats, smallStats;
+    const render::FrameImages reference = renderBcc(path, name, camera, w, h, 0.35f, {}, &bigStats);
+    const render::FrameImages limited = renderBcc(path, name, camera, w, h, 0.35f, small, &smallStats);
+    std::printf("%s: unbounded %d passes, %llu uploads; six slots %d passes, %llu uploads\n", name, bigStats.passes,
+                (unsigned long long)bigStats.bricksUploaded, smallStats.passes, (unsigned long long)smallStats.bricksUploaded);
+    EXPECT_GT(smallStats.bricksUploaded, bigStats.bricksUploaded) << "the small pool must have evicted bricks";
+    ASSERT_EQ(reference.rgba.size(), limited.rgba.size());
+    int hits = 0;
+    for (std::size_t i = 0; i < reference.rgba.size(); ++i) {
+      ASSERT_EQ(reference.rgba[i], limited.rgba[i]) << "component " << i;
+      ASSERT_EQ(reference.normalDepth[i], limited.normalDepth[i]) << "component " << i;
+      hits += i % 4 == 3 && reference.rgba[i] > 0.5f;
+    }
+    EXPECT_GT(hits, w * h / 10);
+  }
+}
+
+}  // namespace
+}  // namespace fcc
