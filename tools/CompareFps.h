@@ -1,8 +1,9 @@
-// `compare`'s fps column: the real renderer (viewer/Raycaster.h) timed on each row's data, for the rows
-// whose lattice it stores (cc: trilinear, tricubic, tricubic-bspline, type6; fcc: boxspline; BCC rows keep
-// null). Per budget and lattice the row's samples — the sites inside the domain, the `samples` the
-// row counts — are written into a temporary .vdb (CC: a FloatGrid; FCC: the prefiltered grid with its
-// bounds, as `synth` writes one), whose worldFromIndex puts them where compare sampled them, opened
+// `compare`'s fps column: the real renderer (viewer/Raycaster.h) timed on each row's data, for every
+// row (cc: trilinear, tricubic, tricubic-bspline, type6; bcc: barycentric, sheared-trilinear,
+// bilinear-spatial, bilinear; fcc: boxspline). Per budget and lattice the row's samples — the sites
+// inside the domain, the `samples` the row counts — are written into a temporary .vdb (CC: a FloatGrid;
+// BCC: the two coset grids; FCC: the prefiltered grid with its bounds, as `synth` writes one), whose
+// worldFromIndex puts them where compare sampled them, opened
 // through the brick sources and rendered at compare's size from compare's camera: one cold frame, a
 // few warm-up frames, then timed frames; fps = 1 / the median frame time (the GPU time of the frame's
 // raycasting passes where the context has timer queries, else wall time). A software rasterizer

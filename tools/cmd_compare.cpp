@@ -131,8 +131,8 @@ Command addCompareCommand(CLI::App& parent) {
   app->add_option("--res", args->res, "Size WxH of the renders measured against the field's own render (0x0: none)")
       ->capture_default_str();
   app->add_flag("--no-fps", args->noFps,
-                "Do not time the renderer (by default the cc and fcc rows' data are rendered at --res from the "
-                "renders' camera: fps = 1 / the median frame time; BCC rows stay null)");
+                "Do not time the renderer (by default every row's data is rendered at --res from the renders' "
+                "camera: fps = 1 / the median frame time)");
   app->add_flag("--json", args->json, "Print the rows as a JSON list instead of the table");
   app->add_option("-o,--output-dir", args->outDir,
                   "Also write compare.json, compare.md, convergence.svg and (with renders) compare_BUDGET.png into DIR");

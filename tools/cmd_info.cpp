@@ -18,6 +18,9 @@
 #include "sparse/Error.h"
 #include "sparse/FccGrid.h"
 #include "sparse/SampleHistogram.h"
+#include "RenderData.h"
+#include "sparse/BccGrids.h"
+#include "viewer/BccBrickSource.h"
 
 namespace fcc::cli {
 namespace {
@@ -178,6 +181,42 @@ io::BrickStore::Damage checkBricks(const io::BrickStore& store) {
 
 }  // namespace
 
+// A BCC dataset (viewer/BccBrickSource.h): what its two coset grids hold, from their topology and one
+// pass over their leaves for the bricks' ranges (the ranges the renderer uses).
+int describeBccDataset(const std::string& file, bool json) {
+  const Lattice bcc = Lattice::Bcc;
+  const render::BccBrickSource source(file, findReconstruction(kDefaultBccReconstruction));
+  glm::dvec3 lo, hi;
+  source.worldBounds(lo, hi);
+  const glm::dvec3 spacing(glm::length(glm::dvec3(source.worldFromIndex()[0])), glm::length(glm::dvec3(source.worldFromIndex()[1])),
+                           glm::length(glm::dvec3(source.worldFromIndex()[2])));
+  if (json) {
+    const auto triple = [](const glm::dvec3& v) { return "[" + jsonNumber(v.x) + ", " + jsonNumber(v.y) + ", " + jsonNumber(v.z) + "]"; };
+    std::string names;
+    for (const ReconstructionInfo& r : reconstructionInfos())
+      if (r.lattice == bcc) names += (names.empty() ? "" : ", ") + jsonString(std::string(r.name));
+    std::printf("{\"file\": %s, \"lattice\": \"bcc\", \"grids\": [%s, %s], \"bricks\": %llu, \"min\": %s, \"max\": %s, "
+                "\"background\": %s, \"index_spacing\": %s, \"world_bounds\": {\"min\": %s, \"max\": %s}, "
+                "\"reconstructions\": [%s]}\n",
+                jsonString(file).c_str(), jsonString(kBccPrimaryGridName).c_str(), jsonString(kBccSecondaryGridName).c_str(),
+                (unsigned long long)source.varyingBrickCount(), jsonNumber(source.valueMin()).c_str(),
+                jsonNumber(source.valueMax()).c_str(), jsonNumber(source.background()).c_str(), triple(spacing).c_str(),
+                triple(lo).c_str(), triple(hi).c_str(), names.c_str());
+    return 0;
+  }
+  std::printf("file:          %s\n", file.c_str());
+  std::printf("lattice:       bcc (grids %s and %s: the two cosets, docs/FORMAT.md)\n", kBccPrimaryGridName, kBccSecondaryGridName);
+  std::printf("index spacing: %g x %g x %g world units (sites: index points with all coordinates even or all odd)\n",
+              spacing.x, spacing.y, spacing.z);
+  std::printf("bricks:        %llu of 16^3 index units where the data may vary\n", (unsigned long long)source.varyingBrickCount());
+  std::printf("value range:   %.9g .. %.9g (the samples; every BCC scheme stays within them)\n", double(source.valueMin()),
+              double(source.valueMax()));
+  std::printf("background:    %g\n", double(source.background()));
+  std::printf("world bounds:  (%g, %g, %g) .. (%g, %g, %g)\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+  std::printf("render with:   --reconstruction %s (default %s)\n", reconstructionNames(&bcc).c_str(), kDefaultBccReconstruction);
+  return 0;
+}
+
 Command addInfoCommand(CLI::App& parent) {
   struct Args {
     std::string file, grid;
@@ -185,7 +224,7 @@ Command addInfoCommand(CLI::App& parent) {
     float iso = 0.0f;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* app = parent.add_subcommand("info", "Describe the FCC grids of a .vdb file");
+  CLI::App* app = parent.add_subcommand("info", "Describe the FCC grids of a .vdb file (or a BCC dataset's cosets)");
   app->add_option("FILE", args->file, "FCC .vdb file")->required();
   app->add_option("--grid", args->grid, "The FCC grid to describe (default: level 0, the first FCC grid that is not a pyramid level `NAME.lodK`)");
   auto* isoOption = app->add_option("--iso", args->iso, "Isovalue: how many bricks and internal nodes of the bounds hierarchy it leaves active");
@@ -199,6 +238,11 @@ Command addInfoCommand(CLI::App& parent) {
                 "nodes1_kept, nodes2_kept]} or null, levels: [{level, grid, spacing, bricks, bounds_bricks, voxel_size}] "
                 "(the level-of-detail pyramid, level 0 first; one entry without a pyramid))");
   return {app, [args, isoOption]() {
+            if (render::holdsBccGrids(args->file)) {
+              if (args->check || isoOption->count() > 0 || !args->grid.empty())
+                throw ValueError("--check, --iso and --grid describe FCC grids; " + args->file + " holds a BCC dataset");
+              return describeBccDataset(args->file, args->json);
+            }
             std::optional<float> iso;
             if (isoOption->count() > 0) {
               if (!std::isfinite(args->iso)) throw ValueError("--iso must be a finite number, got " + isoOption->as<std::string>());

@@ -122,6 +122,70 @@ TEST(Cli, SynthCartesianHoldsTheFieldAtEveryPointAndRenders) {
   EXPECT_EQ(lineCount(noPrefilter.err), 1) << noPrefilter.err;
 }
 
+// synth --lattice bcc: the field at the BCC sites (all coordinates even, or all odd) as the two coset
+// grids, each where its sites lie; render draws it with a BCC reconstruction (barycentric without
+// --reconstruction), info describes it, and the wrong lattice's reconstruction is one line either way.
+TEST(Cli, SynthBccHoldsTheFieldAtTheBccSitesAndRenders) {
+  TempDir dir;
+  const glm::ivec3 dims(20, 18, 16);
+  const std::string vdb = dir / "ml_bcc.vdb";
+  const auto r = runFccvdb("synth marschner-lobb " + vdb + " --dims 20,18,16 --lattice bcc");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("BCC dataset"));
+  SynthSpec spec;
+  spec.kind = "marschner-lobb";
+  spec.dims = dims;
+  const SynthField synth = makeSynthField(spec);
+  initializeVdb();
+  openvdb::io::File file(vdb);
+  file.open();
+  int sites = 0, wrong = 0;
+  for (int coset = 0; coset < 2; ++coset) {
+    const auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(coset == 0 ? "bcc_primary" : "bcc_secondary"));
+    ASSERT_TRUE(grid);
+    const auto accessor = grid->getConstAccessor();
+    for (int z = -1; z <= dims.z / 2; ++z)
+      for (int y = -1; y <= dims.y / 2; ++y)
+        for (int x = -1; x <= dims.x / 2; ++x) {
+          const glm::ivec3 site = 2 * glm::ivec3(x, y, z) + coset;
+          const bool inside = glm::all(glm::greaterThanEqual(site, glm::ivec3(0))) && glm::all(glm::lessThan(site, dims));
+          const float expected = inside ? synth.field->sample(site) : synth.field->background();
+          sites += inside;
+          if (accessor.getValue(openvdb::Coord(x, y, z)) != expected && ++wrong <= 5)
+            ADD_FAILURE() << "coset " << coset << " site (" << site.x << ", " << site.y << ", " << site.z << ")";
+          // The voxel lies where its site does in the FCC and CC files of the same --dims.
+          if (x == 3 && y == 2 && z == 1) {
+            const openvdb::Vec3d world = grid->indexToWorld(openvdb::Coord(x, y, z));
+            const glm::dvec3 expectedWorld = -1.0 + 2.0 * glm::dvec3(site) / glm::dvec3(dims - 1);
+            for (int a = 0; a < 3; ++a) EXPECT_NEAR(world[a], expectedWorld[a], 1e-12) << "coset " << coset;
+          }
+        }
+  }
+  file.close();
+  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(sites, 10 * 9 * 8 * 2);  // a quarter of the 20 x 18 x 16 points
+  const auto info = runFccvdb("info " + vdb + " --json");
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_THAT(info.out, HasSubstr("\"lattice\": \"bcc\""));
+  for (const char* recon : {"", " --reconstruction sheared-trilinear", " --reconstruction bilinear"}) {
+    const std::string png = dir / "ml_bcc.png";
+    const auto render = runFccvdb("render " + vdb + " -o " + png + " --res 32x24 --force" + recon);
+    if (failedForLackOfGl(render)) GTEST_SKIP() << render.err;
+    ASSERT_EQ(render.status, 0) << recon << ": " << render.err;
+    EXPECT_GT(std::filesystem::file_size(png), 100u);
+  }
+  // The wrong lattice's reconstruction, each way: one line naming the valid ones.
+  const auto cc = runFccvdb("render " + vdb + " -o " + (dir / "x.png") + " --reconstruction trilinear");
+  EXPECT_EQ(cc.status, 1);
+  EXPECT_EQ(lineCount(cc.err), 1) << cc.err;
+  EXPECT_THAT(cc.err, HasSubstr("barycentric, sheared-trilinear"));
+  ASSERT_EQ(runFccvdb("synth sphere " + dir / "s_cc.vdb" + " --dims 12,12,12 --lattice cc --quiet").status, 0);
+  const auto bcc = runFccvdb("render " + dir / "s_cc.vdb" + " -o " + (dir / "y.png") + " --reconstruction barycentric");
+  EXPECT_EQ(bcc.status, 1);
+  EXPECT_EQ(lineCount(bcc.err), 1) << bcc.err;
+  EXPECT_THAT(bcc.err, HasSubstr("not a BCC dataset"));
+}
+
 TEST(Cli, ProbeFarFromDataIsTheBackground) {
   TempDir dir;
   const std::string vdb = dir / "blobs.vdb";
