@@ -333,6 +333,13 @@ bool marchBrickSurfaces(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta,
         BccPiece piece = bccPieceOn(cell, o, d, s0, s1);
         vec4 bz = bccSegmentBernstein(piece, o + s0 * d, o + s1 * d, 0.0);
         FccRange range = bccBernsteinRange(bz);
+        // The nearest-plane scheme steps between planes: a surface whose side changes where the piece
+        // starts is crossed there (the join rule), even where the piece lies wholly on its other side.
+        for (int s = 0; s < uSurfaceCount; ++s)
+          if (st.side[s] != 0 && sideOf(bz.x - uSurfaceIsos[s]) != st.side[s]) {
+            range.lo = min(range.lo, uSurfaceIsos[s]);
+            range.hi = max(range.hi, uSurfaceIsos[s]);
+          }
         if (holdsAnySurface(range.lo, range.hi)) {
           float u0 = 0.0;
           for (int n = 0; n < kMaxCrossingsPerPiece; ++n) {

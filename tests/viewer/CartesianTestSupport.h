@@ -1,5 +1,6 @@
-// Shared by the renderer tests on Cartesian grids: a smooth test field, writing it as a float grid,
-// and rendering a Cartesian .vdb through the library as `render --reconstruction` does.
+// Shared by the renderer tests on Cartesian grids (and BCC datasets): a smooth test field, writing it as
+// a float grid (or as BCC cosets), and rendering a Cartesian .vdb through the library as `render
+// --reconstruction` does.
 #pragma once
 
 #include <openvdb/openvdb.h>
@@ -12,6 +13,7 @@
 
 #include "io/CartesianBrickStore.h"
 #include "io/VdbFile.h"
+#include "sparse/BccGrids.h"
 #include "viewer/CartesianBrickSource.h"
 #include "viewer/Raycaster.h"
 
@@ -42,6 +44,17 @@ inline void writeCartesianFile(const std::string& path, const std::function<floa
   grid->setGridClass(openvdb::GRID_FOG_VOLUME);
   grid->setName("density");
   io::writeVdbAtomically(path, openvdb::GridCPtrVec{grid}, /*overwrite=*/true);
+}
+
+// Writes values(x) at the BCC sites of [0, kDim)^3 (sparse/BccGrids.h) with worldFromIndex =
+// translate(origin) * scale(scale) for BCC index space.
+inline void writeBccFile(const std::string& path, const std::function<float(const glm::ivec3&)>& values, double scale,
+                         const openvdb::Vec3d& origin, float background = kBackground) {
+  initializeVdb();
+  auto xform = openvdb::math::Transform::createLinearTransform(scale);
+  xform->postTranslate(origin);
+  const BccGrids grids = buildBccGrids(SiteBox{glm::ivec3(0), glm::ivec3(kDim - 1)}, background, values, *xform);
+  io::writeVdbAtomically(path, openvdb::GridCPtrVec{grids.primary, grids.secondary}, /*overwrite=*/true);
 }
 
 inline render::FrameImages renderCartesian(const std::string& path, const std::string& reconstruction, const render::Camera& camera,

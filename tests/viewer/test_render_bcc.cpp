@@ -45,13 +45,7 @@ bool inData(const glm::ivec3& x) {
 }
 
 // wavy() at the BCC sites of [0, kDim)^3, the background beyond.
-void writeBccFile(const std::string& path) {
-  initializeVdb();
-  auto xform = openvdb::math::Transform::createLinearTransform(kScale);
-  xform->postTranslate(kOrigin);
-  const BccGrids grids = buildBccGrids(SiteBox{glm::ivec3(0), glm::ivec3(kDim - 1)}, kBackground, wavy, *xform);
-  io::writeVdbAtomically(path, openvdb::GridCPtrVec{grids.primary, grids.secondary}, /*overwrite=*/true);
-}
+void writeBccFile(const std::string& path) { test::writeBccFile(path, wavy, kScale, kOrigin); }
 
 render::FrameImages renderBcc(const std::string& path, const std::string& reconstruction, const render::Camera& camera,
                               int width, int height, float iso, render::RenderOptions options = {},

@@ -22,6 +22,7 @@
 #include "sparse/ReferenceRaycast.h"
 #include "sparse/SynthFields.h"
 #include "viewer/Camera.h"
+#include "viewer/BccBrickSource.h"
 #include "viewer/FccBrickSource.h"
 
 namespace fcc {
@@ -238,11 +239,13 @@ TEST_F(RenderSurfaces, MatchesTheCpuReference) {
 
 // The Cartesian reconstructions (the cubic of trilinear, tricubic's degree 9, type6's cubic per tetrahedron) composite their crossings
 // too: two surfaces of the wavy field against the CPU reference with the same coefficients.
-TEST_F(RenderSurfaces, CartesianReconstructionsMatchTheCpuReference) {
+TEST_F(RenderSurfaces, CartesianAndBccReconstructionsMatchTheCpuReference) {
   TempDir dir;
-  const std::string path = dir / "wavy.vdb";
+  const std::string path = dir / "wavy.vdb", bccPath = dir / "wavy_bcc.vdb";
   const double scale = 0.5;
   test::writeCartesianFile(path, test::wavy, scale, openvdb::Vec3d(-3.0, 1.0, 2.0));
+  // The same field at the BCC sites, in the same index and world space.
+  test::writeBccFile(bccPath, test::wavy, scale, openvdb::Vec3d(-3.0, 1.0, 2.0));
   const io::CartesianBrickStore store(path);
   const glm::dmat4 indexFromWorld = glm::inverse(store.worldFromIndex());
   render::Camera camera;
@@ -262,13 +265,16 @@ TEST_F(RenderSurfaces, CartesianReconstructionsMatchTheCpuReference) {
   }
   const glm::dmat3 normalFromIndex = glm::transpose(glm::dmat3(indexFromWorld));
   const glm::vec3 o(indexFromWorld * glm::dvec4(camera.eye, 1.0));
-  for (const char* name : {"trilinear", "tricubic", "type6"}) {
+  for (const char* name : {"trilinear", "tricubic", "type6", "barycentric", "sheared-trilinear", "bilinear"}) {
     SCOPED_TRACE(name);
     const ReconstructionInfo& info = findReconstruction(name);
-    const render::CartesianBrickSource source(store, info);
-    const render::FrameImages gpu = renderWith(source, camera, w, h, options);
+    const bool bcc = info.lattice == Lattice::Bcc;
+    const std::unique_ptr<render::BrickSource> source =
+        bcc ? std::unique_ptr<render::BrickSource>(std::make_unique<render::BccBrickSource>(bccPath, info))
+            : std::make_unique<render::CartesianBrickSource>(store, info);
+    const render::FrameImages gpu = renderWith(*source, camera, w, h, options);
     const int pad = kBSplinePrefilterReach + 4;
-    LatticeSamples samples(Lattice::Cc, glm::ivec3(-pad), glm::ivec3(test::kDim + 2 * pad), test::kBackground);
+    LatticeSamples samples(info.lattice, glm::ivec3(-pad), glm::ivec3(test::kDim + 2 * pad), test::kBackground);
     samples.fill([](const glm::ivec3& ijk) {
       const bool in = glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) && glm::all(glm::lessThan(ijk, glm::ivec3(test::kDim)));
       return in ? test::wavy(ijk) : test::kBackground;
@@ -276,6 +282,7 @@ TEST_F(RenderSurfaces, CartesianReconstructionsMatchTheCpuReference) {
     samples.prefilter(info.prefilter);
     const CellBounds bounds(samples);
     const std::unique_ptr<Reconstruction> recon = makeReconstruction(name);
+    recon->setView(glm::vec3(glm::dmat3(indexFromWorld) * frame.forward));  // the stack schemes' (the renderer's per frame)
     std::vector<SurfacePixel> ref(std::size_t(w) * h);
     std::vector<char> layered(ref.size(), 0);  // two crossings or more composited (both surfaces are translucent)
     tbb::parallel_for(0, h, [&](int py) {
