@@ -123,6 +123,19 @@ TEST(CliView, CartesianReconstructionRendersTheGridAsItIs) {
   expectViewMatchesRender(shot, ref, panelWidthOf(view), 640, 360);
 }
 
+// A BCC dataset opens in the viewer as in `render`: its default reconstruction, the same image.
+TEST(CliView, BccDatasetRendersAsRenderDrawsIt) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (setup.sh installs it)";
+  TempDir dir;
+  const std::string vdb = dir / "blobs_bcc.vdb", shot = dir / "view.png", ref = dir / "render.png";
+  ASSERT_EQ(runFccvdb("synth blobs " + vdb + " --dims 48,48,48 --lattice bcc --quiet").status, 0);
+  const std::string common = vdb + " --res 640x360 --iso 0.4";
+  const CommandResult view = runView(common + " --screenshot " + shot + " --frames 5");
+  ASSERT_EQ(view.status, 0) << view.err;
+  ASSERT_EQ(runFccvdb("render " + common + " -o " + ref + " --quiet").status, 0);
+  expectViewMatchesRender(shot, ref, panelWidthOf(view), 640, 360);
+}
+
 // The EXR screenshot holds the whole view, the columns under the panel (where the viewer casts no
 // rays) included: the same coverage and depth as `fccvdb render`.
 TEST(CliView, ExrScreenshotHoldsTheWholeView) {
