@@ -150,8 +150,7 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   // the pool has slots: a pass cannot use more, and the blocks count against the process's memory.
   loader_ = std::make_unique<BrickLoader>(levelSources_, std::min<std::size_t>(4 * kUploadBatch, std::max<std::size_t>(slots, kStepUploadBatch)));
   if (dvr) {
-    tfEntries_ = std::make_unique<GlBuffer>(std::size_t(options.transfer->size()) * sizeof(glm::vec4));
-    tfPrefix_ = std::make_unique<GlBuffer>(std::size_t(options.transfer->size() + 1) * sizeof(int32_t));
+    dvrTable_ = std::make_unique<DvrTableGpu>(*options.transfer);
     uploadTransfer();
   }
   std::vector<Isosurface> surfaces = surfacesOf(options_);
@@ -190,30 +189,9 @@ void Raycaster::buildSurfacesProgram() {
 }
 
 void Raycaster::uploadTransfer() {
-  const TransferTable& table = *options_.transfer;
-  if (std::size_t(table.size()) * sizeof(glm::vec4) > tfEntries_->size()) {
-    tfEntries_ = std::make_unique<GlBuffer>(std::size_t(table.size()) * sizeof(glm::vec4));
-    tfPrefix_ = std::make_unique<GlBuffer>(std::size_t(table.size() + 1) * sizeof(int32_t));
-  }
-  tfEntries_->write(table.entries().data(), std::size_t(table.size()) * sizeof(glm::vec4));
-  const std::vector<int>& prefix = table.nonZeroPrefix();
-  const std::vector<int32_t> prefix32(prefix.begin(), prefix.end());
-  tfPrefix_->write(prefix32.data(), prefix32.size() * sizeof(int32_t));
-  // shaders/dvr.glsl's bins: the largest extinction of each run of entries, ends shared.
-  constexpr int kBins = 16;
-  const int size = table.size();
-  const int binEntries = std::max(1, (size - 1 + kBins - 1) / kBins);
-  float binMax[kBins] = {};
-  for (int k = 0; k < kBins; ++k)
-    for (int i = k * binEntries; i <= std::min((k + 1) * binEntries, size - 1); ++i)
-      binMax[k] = std::max(binMax[k], table.entries()[std::size_t(i)].a);
-  const GLuint p = program_.id();
-  glProgramUniform1f(p, program_.uniformLocation("uTfMin"), float(table.vmin()));
-  glProgramUniform1f(p, program_.uniformLocation("uTfScale"), float((size - 1) / (table.vmax() - table.vmin())));
-  glProgramUniform1i(p, program_.uniformLocation("uTfSize"), size);
-  glProgramUniform1fv(p, program_.uniformLocation("uTfBinMax"), kBins, binMax);
-  glProgramUniform1i(p, program_.uniformLocation("uTfBinEntries"), binEntries);
-  glProgramUniform1f(p, program_.uniformLocation("uStopTransmittance"), 1.0f - options_.terminationOpacity);
+  dvrTable_->upload(*options_.transfer);
+  dvrTable_->setUniforms(program_, 1.0f - options_.terminationOpacity);
+  surfaceRect_ = PixelRect{};
 }
 
 void Raycaster::setTransfer(std::shared_ptr<const TransferTable> transfer) {
@@ -617,10 +595,7 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   requestBits_->bindBase(GL_SHADER_STORAGE_BUFFER, 4);
   slotUse_->bindBase(GL_SHADER_STORAGE_BUFFER, 5);
   slotBounds_->bindBase(GL_SHADER_STORAGE_BUFFER, 6);
-  if (tfEntries_) {
-    tfEntries_->bindBase(GL_SHADER_STORAGE_BUFFER, 12);
-    tfPrefix_->bindBase(GL_SHADER_STORAGE_BUFFER, 13);
-  }
+  if (dvrTable_) dvrTable_->bind();
   // DVR rays, and compositing ones, read what they accumulated before they stopped for a brick.
   const GLenum imageAccess = options_.mode == RenderMode::Dvr || composite ? GL_READ_WRITE : GL_WRITE_ONLY;
   color_.bindImage(0, imageAccess);

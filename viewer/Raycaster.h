@@ -21,6 +21,7 @@
 
 #include "BrickLoader.h"
 #include "BrickPool.h"
+#include "DvrTableGpu.h"
 #include "BrickSource.h"
 #include "Camera.h"
 #include "GlProgram.h"
@@ -372,7 +373,7 @@ class Raycaster {
   std::unique_ptr<BrickPool> pool_;
   std::unique_ptr<GlBuffer> slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;
   std::unique_ptr<GlBuffer> pageChanges_;  // (index, value) pairs for updatePageTable
-  std::unique_ptr<GlBuffer> tfEntries_, tfPrefix_;  // DVR: shaders/dvr.glsl's TfEntries and TfPrefix
+  std::unique_ptr<DvrTableGpu> dvrTable_;  // DVR: the transfer table as shaders/dvr.glsl reads it
   GlTexture2D color_, normalDepth_, resume_;
   GlTexture2D transmittance_;  // FCC_MULTI_ISO: a waiting ray's transmittance, kept exactly
 };
