@@ -65,6 +65,8 @@ render::DvrTransfer RenderData::dvrTransfer(const RenderFlags& flags) const {
 
 void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& options) const {
   options.mode = render::parseRenderMode(flags.mode);
+  if (flags.dvrMethod != "ray" && options.mode != render::RenderMode::Dvr)
+    throw ValueError("--dvr-method " + flags.dvrMethod + " draws direct volume rendering: add --mode dvr");
   if (options.mode != render::RenderMode::Dvr) {
     if (flags.shading == "on")
       throw ValueError("--shading on applies to --mode dvr (the isosurface is always shaded)");
@@ -107,6 +109,16 @@ int RenderData::applyLevels(const RenderFlags& flags, bool levelsByDefault, bool
   options.coarserLevels = levels_->sources();
   options.lodBias = *bias;
   return int(levels_->size()) + 1;
+}
+
+std::unique_ptr<render::ProjectedTetrahedra> RenderData::projectedTetrahedra(const RenderFlags& flags,
+                                                                            const render::RenderOptions& options) const {
+  if (flags.dvrMethod != "tetrahedra") return nullptr;
+  render::ProjectedTetrahedra::Options o;
+  o.transfer = options.transfer;
+  o.shading = options.dvrShading;
+  o.timeGpu = options.timeGpu;
+  return std::make_unique<render::ProjectedTetrahedra>(*source_, o);
 }
 
 io::BrickStore::Damage RenderData::damage() const { return fccStore_ ? fccStore_->damage() : io::BrickStore::Damage{}; }

@@ -12,6 +12,7 @@
 #include "io/CartesianBrickStore.h"
 #include "viewer/BrickSource.h"
 #include "viewer/DvrTransfer.h"
+#include "viewer/ProjectedTetrahedra.h"
 #include "viewer/PyramidLevels.h"
 
 namespace fcc::cli {
@@ -52,6 +53,11 @@ class RenderData {
   // Closes the pyramid's levels (and their host caches): the next applyLevels opens them afresh.
   // Raycasters given their sources must be gone.
   void closeLevels() { levels_.reset(); }
+  // --dvr-method tetrahedra: paper 002's projected tetrahedra of this BCC dataset (built now, in core;
+  // needs a current GL context and applyMode's options), else null. ValueError (one line) for data
+  // they do not draw.
+  std::unique_ptr<render::ProjectedTetrahedra> projectedTetrahedra(const RenderFlags& flags,
+                                                                   const render::RenderOptions& options) const;
   // Damaged bricks met so far (FCC files: rendered as holes; a damaged Cartesian leaf fails the frame).
   io::BrickStore::Damage damage() const;
 

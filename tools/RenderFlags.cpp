@@ -72,6 +72,11 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
                  "DVR: on shades the emission by the reconstruction's gradient (a headlight's Lambert term over an "
                  "ambient of 0.3; opacity unchanged); off: unshaded emission")
       ->capture_default_str()->check(CLI::IsMember({"on", "off"}));
+  app.add_option("--dvr-method", flags.dvrMethod,
+                 "DVR: ray (the raycaster's integration through the reconstruction), or tetrahedra: paper 002's "
+                 "projected tetrahedra, in core, for a BCC dataset with the barycentric reconstruction (render and "
+                 "bench render)")
+      ->capture_default_str()->check(CLI::IsMember({"ray", "tetrahedra"}));
   app.add_option("--clip", flags.clip,
                  "Clipping box X0,Y0,Z0,X1,Y1,Z1 in world space (info --json gives the data's world_bounds): rays are "
                  "cut to it, bricks outside it are never read");

@@ -40,8 +40,10 @@ struct Measurement {
   double lodBias = 0.0;                  // at the last frame
 };
 
-// Calls `tick` after every frame it renders (the progress bar).
-Measurement measureOrbit(render::Raycaster& raycaster, const render::Camera& camera, int width, int height,
+// Calls `tick` after every frame it renders (the progress bar). Renderer: the raycaster, or projected
+// tetrahedra (anything whose render() gives FrameStats).
+template <class Renderer>
+Measurement measureOrbit(Renderer& raycaster, const render::Camera& camera, int width, int height,
                          int warmup, int frames, double arc, const std::function<void()>& tick) {
   Measurement m;
   for (int i = 0; i < warmup; ++i) {
@@ -179,7 +181,9 @@ Command addBenchRenderCommand(CLI::App& bench) {
             resolutionFromFlags(args->workGroup, options.workGroup.x, options.workGroup.y, "--work-group");
 
             // Frames to render: per layout one cold frame, then warm-up and timed frames per variant.
-            const long totalFrames = long(layouts.size()) * (1 + long(args->variants.size()) * (args->warmup + args->frames));
+            const long totalFrames = args->flags.dvrMethod == "tetrahedra"
+                                         ? 1 + long(args->warmup + args->frames)
+                                         : long(layouts.size()) * (1 + long(args->variants.size()) * (args->warmup + args->frames));
             long framesDone = 0;
             ProgressBar progress(false);
             progress.start("timing frames");
@@ -190,6 +194,23 @@ Command addBenchRenderCommand(CLI::App& bench) {
             std::string coldLayout;
             double poolMiB = 0.0;
             uint32_t slotCount = 0;
+            // --dvr-method tetrahedra: paper 002's projected tetrahedra, one measurement (no pool, no
+            // variants); "first complete frame" includes building them.
+            if (args->flags.dvrMethod == "tetrahedra") {
+              layouts.clear();
+              const auto built = std::chrono::steady_clock::now();
+              const std::unique_ptr<render::ProjectedTetrahedra> tetrahedra = data.projectedTetrahedra(args->flags, options);
+              cold = tetrahedra->render(camera, width, height);
+              cold.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
+              tick();
+              coldLayout = "in core: " + std::to_string(tetrahedra->tetrahedronCount()) + " tetrahedra";
+              Measurement m = measureOrbit(*tetrahedra, camera, width, height, args->warmup, args->frames, args->arc, tick);
+              m.layout = "tetrahedra";
+              m.variant = "projected";
+              m.skip = true;
+              m.normals = "analytic";
+              results.push_back(m);
+            }
             for (const std::optional<render::BrickLayout>& layout : layouts) {
               options.layout = layout;
               // Cold: a fresh pool and host cache, one complete frame (reported for the first layout).

@@ -104,19 +104,23 @@ Command addRenderCommand(CLI::App& parent) {
             options.iso = iso;
             if (!dvr) setSurfaces(options, surfaces);
             options.countBricksDrawn = true;  // the level mix for the summary and --json (one frame)
-            render::Raycaster raycaster(data.source(), options);
+            // --dvr-method tetrahedra: paper 002's projected tetrahedra instead of the raycaster.
+            const std::unique_ptr<render::ProjectedTetrahedra> tetrahedra = data.projectedTetrahedra(args->flags, options);
+            std::unique_ptr<render::Raycaster> raycaster =
+                tetrahedra ? nullptr : std::make_unique<render::Raycaster>(data.source(), options);
             mark("renderer");
             const auto frameStart = std::chrono::steady_clock::now();
-            const render::FrameStats stats = raycaster.render(camera, width, height);
+            const render::FrameStats stats = raycaster ? raycaster->render(camera, width, height) : tetrahedra->render(camera, width, height);
             mark("frame");
-            const render::FrameImages images = raycaster.readImages(/*withNormalDepth=*/io::imageHoldsNormalDepth(args->output));
+            const render::FrameImages images = raycaster ? raycaster->readImages(/*withNormalDepth=*/io::imageHoldsNormalDepth(args->output))
+                                                         : tetrahedra->readImages();
             io::RenderedImage image{images.width, images.height, &images.rgba, &images.normalDepth, /*normals=*/!dvr};
             io::writeRenderedImage(args->output, image, glm::vec3(0.08f, 0.09f, 0.11f));
             mark("image");
             if (args->json) {  // one process: the same fields as a distributed frame's, nothing exchanged
               RankReport report;
               report.renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart).count();
-              report.bricksRead = raycaster.bricksDecoded();
+              report.bricksRead = raycaster ? raycaster->bricksDecoded() : data.source().varyingBrickCount();
               report.bricksOwned = stats.bricksNeeded;
               report.bricksUploaded = stats.bricksUploaded;
               report.passes = stats.passes;
@@ -147,7 +151,14 @@ Command addRenderCommand(CLI::App& parent) {
               for (std::size_t k = 0; k < surfaces.size(); ++k)
                 isoText += (k ? ", " : " ") + formatNumber(surfaces[k].iso) + " (opacity " + formatNumber(surfaces[k].opacity) + ")";
             }
-            if (!args->quiet && dvr)
+            if (!args->quiet && tetrahedra)
+              std::fprintf(stderr,
+                           "wrote %s: %dx%d, dvr by projected tetrahedra (--tf %s over %g .. %g), %zu tetrahedra with "
+                           "data, %.3f s (sort %.3f s) on %s\n",
+                           args->output.c_str(), width, height, args->flags.tf.c_str(), options.transfer->vmin(),
+                           options.transfer->vmax(), tetrahedra->tetrahedronCount(), stats.seconds, tetrahedra->sortSeconds(),
+                           gl.renderer().c_str());
+            else if (!args->quiet && dvr)
               std::fprintf(stderr,
                            "wrote %s: %dx%d, dvr (--tf %s over %g .. %g), %d passes, %llu bricks loaded (the rays reached "
                            "them; %llu bricks hold non-zero opacity), %.3f s on %s\n",
@@ -162,7 +173,7 @@ Command addRenderCommand(CLI::App& parent) {
                            stats.passes, (unsigned long long)stats.bricksUploaded,
                            (unsigned long long)stats.bricksNeeded, surfaces.size() > 1 ? "an isovalue" : "the isovalue",
                            stats.seconds, gl.renderer().c_str());
-            if (!args->quiet && raycaster.levelCount() > 1) std::fprintf(stderr, "%s\n", levelMixLine(stats).c_str());
+            if (!args->quiet && raycaster && raycaster->levelCount() > 1) std::fprintf(stderr, "%s\n", levelMixLine(stats).c_str());
             else if (!args->quiet && levels > 1)
               std::fprintf(stderr, "fccvdb: note: --lod-bias: several or translucent surfaces are drawn at full resolution\n");
             if (!args->quiet) std::fprintf(stderr, "camera: %s\n", cameraFlags(camera).c_str());

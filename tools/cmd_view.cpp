@@ -34,6 +34,8 @@ struct Dataset {
 };
 
 Dataset openDataset(const RenderFlags& flags, std::size_t hostCacheBytes) {
+  if (flags.dvrMethod != "ray")
+    throw ValueError("--dvr-method " + flags.dvrMethod + ": the viewer draws with the raycaster (render and bench render take it)");
   Dataset d;
   d.flags = flags;
   d.data = std::make_unique<RenderData>(flags, hostCacheBytes, false);

@@ -174,6 +174,16 @@ TEST(Cli, SynthBccHoldsTheFieldAtTheBccSitesAndRenders) {
     ASSERT_EQ(render.status, 0) << recon << ": " << render.err;
     EXPECT_GT(std::filesystem::file_size(png), 100u);
   }
+  // Paper 002's projected tetrahedra: DVR of the barycentric field; other modes and schemes in one line.
+  const auto tetra = runFccvdb("render " + vdb + " -o " + (dir / "pt.png") + " --res 32x24 --mode dvr --tf viridis --dvr-method tetrahedra");
+  ASSERT_EQ(tetra.status, 0) << tetra.err;
+  EXPECT_THAT(tetra.err, HasSubstr("projected tetrahedra"));
+  EXPECT_GT(std::filesystem::file_size(dir / "pt.png"), 100u);
+  for (const std::string& bad : {std::string(" --dvr-method tetrahedra"), std::string(" --mode dvr --dvr-method tetrahedra --reconstruction bilinear")}) {
+    const auto refused = runFccvdb("render " + vdb + " -o " + (dir / "z.png") + bad);
+    EXPECT_EQ(refused.status, 1) << bad;
+    EXPECT_EQ(lineCount(refused.err), 1) << refused.err;
+  }
   // The wrong lattice's reconstruction, each way: one line naming the valid ones.
   const auto cc = runFccvdb("render " + vdb + " -o " + (dir / "x.png") + " --reconstruction trilinear");
   EXPECT_EQ(cc.status, 1);
