@@ -369,6 +369,9 @@ void main() {
   // with the same t). Drawing a coarser level than wanted makes the ray provisional: it shows what it
   // found and resumes from the first such brick once the wanted one is resident. A ray stops and
   // waits, as without levels, only where no level is resident (the coarsest is kept resident).
+  // DVR draws each brick from the level it wants and waits for it, as without levels: what a ray
+  // integrated cannot be taken back, so no coarser level stands in (the image is the same whatever
+  // the pool held, as the full-resolution frame's is).
   int guard = 0;
   int prevLevel = -1;          // the level the last marched stretch was drawn from
   if (uFirstPass == 0) {
@@ -409,7 +412,12 @@ void main() {
     // The finest level at or above `want` whose entry is known; missing finer ones are requested.
     uint entry = kMissing;
     int level = want;
-    for (int k = want; k < uLevelCount; ++k) {
+#if FCC_MODE_DVR
+    int lastLevel = want;  // no stand-ins
+#else
+    int lastLevel = uLevelCount - 1;
+#endif
+    for (int k = want; k <= lastLevel; ++k) {
       level = k;
       ivec3 rk = (b >> k) - uLevelBrickMin[k];
       ivec3 dims = uLevelBrickDims[k];
@@ -454,11 +462,18 @@ void main() {
           dLevel = d * uLevelScale[level];
           invDLevel = invD * uLevelSize[level];
         }
+#if FCC_MODE_DVR
+        if (marchBrick(b >> level, entry, oLevel, dLevel, invDLevel, t, tExitBrick, st)) {
+          found = true;  // opaque enough: nothing behind is integrated or requested
+          break;
+        }
+#else
         if (marchBrick(b >> level, entry, oLevel, dLevel, invDLevel, t, tExitBrick, prevSign, hit)) {
           found = true;
           hitLevel = level;
           break;
         }
+#endif
       }
     }
     t = tExitBrick > t ? tExitBrick : t + 1e-5 * abs(t) + 1e-6;

@@ -94,10 +94,6 @@ int RenderData::applyLevels(const RenderFlags& flags, bool levelsByDefault, bool
     note(std::string("a ") + (ccStore_ ? "Cartesian grid" : "BCC dataset") + " has no pyramid");
     return 1;
   }
-  if (options.mode != render::RenderMode::Iso) {
-    note("--mode " + render::renderModeName(options.mode) + " draws level 0 only so far");
-    return 1;
-  }
   if (!levels_ || levels_->builtForHostBytes() != options.hostCacheBytes)
     levels_ = std::make_unique<render::PyramidLevels>(*fccStore_, options.hostCacheBytes);
   // --host-cache is the total: level 0's cache gives the coarser levels their share.

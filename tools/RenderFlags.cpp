@@ -117,7 +117,8 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
       ->capture_default_str();
   app.add_option("--lod-bias", flags.lodBias,
                  std::string("Level of detail: draw a file's pyramid (fccvdb pyramid) brick by brick from the level whose voxels match a "
-                             "pixel, plus this many levels (-8 to 16; 0: no voxel larger than a pixel; < 0 finer). Coarse levels stand in while finer ones load; the bias rises "
+                             "pixel, plus this many levels (-8 to 16; 0: no voxel larger than a pixel; < 0 finer). Isosurface: coarse levels stand in while finer ones load; "
+                             "DVR: each brick waits for its level. The bias rises "
                              "when the GPU cache cannot hold the bricks a frame wants. ") +
                      (levelsByDefault ? "Default 0 (a file without a pyramid is drawn at full resolution)"
                                       : "Without it: full resolution (level 0 only)"));

@@ -24,12 +24,13 @@ namespace fcc::cli {
 namespace {
 
 // "levels: L0 120 bricks, L1 30, L2 4; 87.5% of the surface pixels at full resolution; bias 1": the frame's mix.
-std::string levelMixLine(const render::FrameStats& stats) {
+std::string levelMixLine(const render::FrameStats& stats, bool dvr) {
   std::string line = "levels:";
   for (std::size_t k = 0; k < stats.bricksPerLevel.size(); ++k)
     line += (k ? ", L" : " L") + std::to_string(k) + " " + std::to_string(stats.bricksPerLevel[k]) + (k ? "" : " bricks");
   char tail[160];
-  std::snprintf(tail, sizeof tail, "; %.1f%% of the surface pixels at full resolution; bias %g%s", 100.0 * stats.fullResolutionFraction,
+  std::snprintf(tail, sizeof tail, "; %.1f%% of the %s at full resolution; bias %g%s", 100.0 * stats.fullResolutionFraction,
+                dvr ? "bricks drawn" : "surface pixels",
                 stats.lodBias, stats.lodRestarts ? " (raised: the GPU cache could not hold the bricks wanted)" : "");
   return line + tail;
 }
@@ -173,7 +174,7 @@ Command addRenderCommand(CLI::App& parent) {
                            stats.passes, (unsigned long long)stats.bricksUploaded,
                            (unsigned long long)stats.bricksNeeded, surfaces.size() > 1 ? "an isovalue" : "the isovalue",
                            stats.seconds, gl.renderer().c_str());
-            if (!args->quiet && raycaster && raycaster->levelCount() > 1) std::fprintf(stderr, "%s\n", levelMixLine(stats).c_str());
+            if (!args->quiet && raycaster && raycaster->levelCount() > 1) std::fprintf(stderr, "%s\n", levelMixLine(stats, dvr).c_str());
             else if (!args->quiet && levels > 1)
               std::fprintf(stderr, "fccvdb: note: --lod-bias: several or translucent surfaces are drawn at full resolution\n");
             if (!args->quiet) std::fprintf(stderr, "camera: %s\n", cameraFlags(camera).c_str());

@@ -113,11 +113,11 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   pageUpdateCountUniform_ = pageUpdateProgram_.uniformLocation("uCount");
   pool_->setUniforms(program_);
   pool_->setUniforms(slotBoundsProgram_);
-  if (levelSources_.size() > 1 && !dvr) {
+  if (levelSources_.size() > 1) {
     // The levels' variant, beside the full-resolution program (which stays the same text and speed).
     lodProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_ + "#define FCC_LOD 1\n"),
                                      "shaders/raycast.comp (level of detail)");
-    lodUniforms_ = uniformsOf(lodProgram_, false, true);
+    lodUniforms_ = uniformsOf(lodProgram_, dvr, true);
     const auto at = [this](const char* name) { return lodProgram_.uniformLocation(name); };
     lodExtra_ = LodUniforms{at("uLevelCount"), at("uLevelBrickMin"), at("uLevelBrickDims"), at("uLevelNodeDims"),
                             at("uLevelPageOffset"), at("uLevelNodeOffset"), at("uLevelScale"), at("uLevelSize"),
@@ -191,6 +191,7 @@ void Raycaster::buildSurfacesProgram() {
 void Raycaster::uploadTransfer() {
   dvrTable_->upload(*options_.transfer);
   dvrTable_->setUniforms(program_, 1.0f - options_.terminationOpacity);
+  if (lodProgram_.id() != 0) dvrTable_->setUniforms(lodProgram_, 1.0f - options_.terminationOpacity);
   surfaceRect_ = PixelRect{};
 }
 
@@ -289,16 +290,18 @@ void Raycaster::updateNeeded() {
       std::vector<glm::ivec3> level;
       const double size = double(uint64_t(1) << k);
       levelSources_[k]->forEachVaryingBrick([&](const glm::ivec3& brick, float lo, float hi) {
-        if ((!options_.skipEmpty || (lo <= iso && iso <= hi)) && insideClip(brick, size)) level.push_back(brick);
+        const bool holds = transfer ? !transfer->zeroOn(lo, hi) : lo <= iso && iso <= hi;
+        if ((!options_.skipEmpty || holds) && insideClip(brick, size)) level.push_back(brick);
       });
       neededPerLevel.push_back(std::move(level));
     }
-    coarsestNeeded_ = neededPerLevel.back();
+    // The isosurface's stand-ins: the coarsest level, loaded first and kept (DVR has none).
+    if (!transfer) coarsestNeeded_ = neededPerLevel.back();
   }
   residency_->setNeeded(neededPerLevel);
   // The coarsest level stays resident when it takes under half the pool: every ray then has a level
   // to draw (at most 8 bricks: docs/FORMAT.md).
-  const bool pin = lodDrawing() && coarsestNeeded_.size() * 2 < residency_->slotCount();
+  const bool pin = lodDrawing() && !coarsestNeeded_.empty() && coarsestNeeded_.size() * 2 < residency_->slotCount();
   residency_->setPinnedLevel(pin ? residency_->levelCount() - 1 : -1);
   uploadPageTable();
 }
@@ -312,8 +315,9 @@ int Raycaster::passLookahead() const {
 }
 
 bool Raycaster::lodDrawing() const {
-  return levelSources_.size() > 1 && lodProgram_.id() != 0 && options_.mode == RenderMode::Iso && !compositesSurfaces(options_) &&
-         !options_.ownsBrick;
+  // One opaque isosurface (with stand-ins), or DVR (each brick at the level it wants: march's FCC_LOD).
+  const bool oneSurfaceOrDvr = options_.mode == RenderMode::Dvr || !compositesSurfaces(options_);
+  return levelSources_.size() > 1 && lodProgram_.id() != 0 && oneSurfaceOrDvr && !options_.ownsBrick;
 }
 
 void Raycaster::requestCoarsest() {
@@ -326,7 +330,7 @@ void Raycaster::requestCoarsest() {
 }
 
 bool Raycaster::coarsestResident() const {
-  if (!lodDrawing()) return true;
+  if (!lodDrawing() || coarsestNeeded_.empty()) return true;
   return residency_->missingCount(residency_->levelCount() - 1) == 0;
 }
 
@@ -375,6 +379,11 @@ LevelMix Raycaster::levelMix(uint32_t firstPass) const {
     uint64_t all = 0;
     for (uint32_t h : hits) all += h;
     mix.fullResolutionFraction = all ? double(hits[0]) / double(all) : 1.0;
+    if (options_.mode == RenderMode::Dvr) {  // no hits: the share of the bricks drawn that are level 0's
+      uint64_t drawn = 0;
+      for (uint64_t n : mix.bricksPerLevel) drawn += n;
+      mix.fullResolutionFraction = drawn ? double(mix.bricksPerLevel[0]) / double(drawn) : 1.0;
+    }
   }
   return mix;
 }
