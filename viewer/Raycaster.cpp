@@ -192,7 +192,6 @@ void Raycaster::uploadTransfer() {
   dvrTable_->upload(*options_.transfer);
   dvrTable_->setUniforms(program_, 1.0f - options_.terminationOpacity);
   if (lodProgram_.id() != 0) dvrTable_->setUniforms(lodProgram_, 1.0f - options_.terminationOpacity);
-  surfaceRect_ = PixelRect{};
 }
 
 void Raycaster::setTransfer(std::shared_ptr<const TransferTable> transfer) {
