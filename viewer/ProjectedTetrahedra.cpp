@@ -29,12 +29,21 @@ static_assert(sizeof(GpuTetrahedron) == 9 * 16);
 // elsewhere (a brick without data holds it at all its sites).
 class BccSites {
  public:
-  BccSites(const BrickSource& source) : background_(source.background()) {
+  // In core: at most this many coset voxels in the box of the bricks with data (2 GiB of floats for
+  // both cosets), checked before anything is allocated.
+  static constexpr std::size_t kMaxVoxels = std::size_t(1) << 28;
+
+  explicit BccSites(const BrickSource& source) : background_(source.background()) {
     glm::ivec3 lo, hi;
     source.brickBox(lo, hi);
     if (glm::any(glm::lessThan(hi, lo))) return;
+    const glm::dvec3 extent = 8.0 * glm::dvec3(hi - lo + 1) + 2.0 * kBccSlotLo;
+    if (extent.x * extent.y * extent.z > double(kMaxVoxels))
+      throw ValueError(source.path() + ": its bricks with data span " + std::to_string(int64_t(extent.x)) + " x " +
+                       std::to_string(int64_t(extent.y)) + " x " + std::to_string(int64_t(extent.z)) +
+                       " coset voxels; projected tetrahedra hold at most " + std::to_string(kMaxVoxels) + " in core");
     min_ = 8 * lo - kBccSlotLo;
-    dims_ = 8 * (hi - lo + 1) + 2 * kBccSlotLo;
+    dims_ = glm::ivec3(extent);
     const std::size_t count = std::size_t(dims_.x) * dims_.y * dims_.z;
     for (auto& coset : values_) coset.assign(count, background_);
     std::vector<glm::ivec3> bricks;
