@@ -84,6 +84,17 @@ float CartesianBrickStore::constantAt(const openvdb::Coord& origin) const {
   return grid_->tree().getValue(origin);
 }
 
+bool CartesianBrickStore::readLeaf(size_t i, float* values) const {
+  leavesRead_.fetch_add(1, std::memory_order_relaxed);
+  try {
+    reader_->readLeaf(i, values);
+    return true;
+  } catch (const InputError& e) {  // the leaf's bytes failed our checks: never trusted (io/Damage.h)
+    damageLog_.record(i, e.what());
+    return false;
+  }
+}
+
 void CartesianBrickStore::readBlock(const glm::ivec3& brick, float* out) const {
   readBox(brick * kBrickSites - kBlockLo, glm::ivec3(kBlockDim), out);
 }
@@ -103,13 +114,14 @@ void CartesianBrickStore::readBox(const glm::ivec3& boxMin, const glm::ivec3& di
         const glm::ivec3 lo = glm::max(leafMin, glm::ivec3(0)), hi = glm::min(leafMin + kLeafDim, dims);
         if (glm::any(glm::greaterThanEqual(lo, hi))) continue;
         const std::optional<size_t> index = reader_->leafIndexAt(origin);
-        if (!index) {
-          const float v = constantAt(origin);
+        // No leaf: a tile's value or the background; a damaged leaf: the background (a hole).
+        if (!index || !readLeaf(*index, leafValues.data())) {
+          const float v = index ? background_ : constantAt(origin);
           for (int z = lo.z; z < hi.z; ++z)
             for (int y = lo.y; y < hi.y; ++y) std::fill(at(lo.x, y, z), at(hi.x, y, z), v);
           continue;
         }
-        reader_->readLeaf(*index, leafValues.data());  // OpenVDB's order: x << 6 | y << 3 | z
+        // OpenVDB's order: x << 6 | y << 3 | z
         for (int z = lo.z; z < hi.z; ++z)
           for (int y = lo.y; y < hi.y; ++y)
             for (int x = lo.x; x < hi.x; ++x) {
@@ -134,7 +146,8 @@ std::vector<CartesianBrickStore::BrickRange> CartesianBrickStore::computeBrickRa
   std::vector<LeafRanges> leafRanges(leaves);
   tbb::parallel_for(size_t(0), leaves, [&](size_t i) {
     std::array<float, 512> values;
-    reader_->readLeaf(i, values.data());  // OpenVDB's order: x << 6 | y << 3 | z
+    // A damaged leaf reads as the background here as in readBox, so the ranges hold what blocks hold.
+    if (!readLeaf(i, values.data())) values.fill(background_);  // OpenVDB's order: x << 6 | y << 3 | z
     const float inf = std::numeric_limits<float>::infinity();
     LeafRanges r;
     r.all = glm::vec2(inf, -inf);

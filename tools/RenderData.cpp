@@ -99,6 +99,6 @@ int RenderData::applyLevels(const RenderFlags& flags, bool levelsByDefault, bool
   return int(levels_->size()) + 1;
 }
 
-io::BrickStore::Damage RenderData::damage() const { return fccStore_ ? fccStore_->damage() : io::BrickStore::Damage{}; }
+io::Damage RenderData::damage() const { return source_->damage(); }
 
 }  // namespace fcc::cli

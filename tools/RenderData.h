@@ -47,8 +47,8 @@ class RenderData {
   // Closes the pyramid's levels (and their host caches): the next applyLevels opens them afresh.
   // Raycasters given their sources must be gone.
   void closeLevels() { levels_.reset(); }
-  // Damaged bricks met so far (FCC files: rendered as holes; a damaged Cartesian leaf fails the frame).
-  io::BrickStore::Damage damage() const;
+  // Damage met so far (io/Damage.h): FCC bricks or Cartesian leaves, each rendered as a hole.
+  io::Damage damage() const;
 
  private:
   std::unique_ptr<io::FccInput> input_;

@@ -31,6 +31,8 @@ class CartesianBrickSource : public BrickSource {
   void forEachVaryingBrick(const std::function<void(const glm::ivec3&, float, float)>& visit) const override;
   std::size_t varyingBrickCount() const override { return ranges_.size(); }
   void decode(std::vector<LoadedBrick>& chunk) const override;
+  // Damaged leaves (the store's): each reads as the background, a hole (io/CartesianBrickStore.h).
+  io::Damage damage() const override { return store_.damage(); }
 
   // The factor by which the interpolating prefilter can widen a range about its middle: the sum of
   // the absolute values of its 3D impulse response, (sum |h|)^3 of the 1D one.

@@ -138,12 +138,12 @@ void ViewerSession::drawPanel(int windowHeight) {
     }
     std::snprintf(range, sizeof range, "%.4g .. %.4g", double(summary_.valueMin), double(summary_.valueMax));
     row(dvr() ? "value range" : "surface range", range);
-    const io::BrickStore::Damage damage = store_ ? store_->damage() : io::BrickStore::Damage{};
-    if (damage.bricks > 0) {
-      // Damaged bricks are never trusted: they show as holes; the panel says so, and which.
+    const io::Damage damage = source().damage();
+    if (damage.count > 0) {
+      // Damaged bricks (FCC) or leaves (Cartesian) are never trusted: they show as holes; the panel
+      // says so, and which.
       ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 140, 90, 255));
-      ImGui::TextWrapped("%llu damaged brick%s shown as holes. First: %s", (unsigned long long)damage.bricks,
-                         damage.bricks == 1 ? "" : "s", damage.first.c_str());
+      ImGui::TextWrapped("%s shown as holes. First: %s", io::damagedCountText(damage).c_str(), damage.first.c_str());
       ImGui::PopStyleColor();
     }
   }

@@ -105,9 +105,9 @@ class ViewerSession {
   // An FCC store, through a host cache of options.hostCacheBytes; isosurface mode.
   ViewerSession(const io::BrickStore& store, const RenderOptions& options, const Camera& initialCamera,
                 DatasetSummary summary);
-  // Any brick source (viewer/BrickSource.h: an FCC store's, or a Cartesian grid rendered as it is);
-  // `store`, the FCC store behind it or null, gives the damage it met and the spline's values under
-  // the cursor. With `dvr`, direct volume rendering with that transfer function (options' mode and
+  // Any brick source (viewer/BrickSource.h: an FCC store's, or a Cartesian grid rendered as it is; the
+  // panel reports the damage it met); `store`, the FCC store behind it or null, gives the spline's
+  // values under the cursor. With `dvr`, direct volume rendering with that transfer function (options' mode and
   // table are set from it); else options.mode must be Iso.
   ViewerSession(const BrickSource& source, const io::BrickStore* store, const RenderOptions& options,
                 const Camera& initialCamera, DatasetSummary summary, std::optional<DvrTransfer> dvr = std::nullopt);
@@ -226,7 +226,7 @@ class ViewerSession {
   std::string statusLine() const;  // of the last frame's figures; empty once settled
   void drawStreamingLine(int windowHeight);
 
-  const io::BrickStore* store_;  // for the damage it met (io/BrickStore.h) and the cursor's values; may be null
+  const io::BrickStore* store_;  // for the cursor's spline values; may be null
   Raycaster raycaster_;
   std::optional<DvrTransfer> dvr_, initialDvr_;  // in use; what the session opened with (--tf)
   float appliedDensityScale_ = 1.0f;

@@ -7,9 +7,12 @@
 #include <openvdb/tools/LevelSetSphere.h>
 #include <openvdb/tools/LevelSetUtil.h>
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 #include <vector>
 
+#include "LeafDamage.h"
 #include "io/CartesianBrickStore.h"
 #include "io/VdbFile.h"
 #include "sparse/Error.h"
@@ -109,6 +112,71 @@ TEST(CartesianBrickStore, NotAFloatGridIsOneLine) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
   }
+}
+
+// A dense fog-like grid on [0, 48)^3 (every leaf present), values z + x / 64 (all below the background).
+openvdb::FloatGrid::Ptr denseGrid(float background) {
+  auto grid = openvdb::FloatGrid::create(background);
+  auto accessor = grid->getAccessor();
+  for (int z = 0; z < 48; ++z)
+    for (int y = 0; y < 48; ++y)
+      for (int x = 0; x < 48; ++x) accessor.setValue(openvdb::Coord(x, y, z), float(z) + float(x) / 64.0f);
+  return grid;
+}
+
+// A leaf whose bytes are damaged is never trusted and never fails a read: it reads as the background
+// in every block and box that holds it (its own brick's and its neighbours'), the ranges hold the
+// background where the blocks do, every other point reads as stored, and the damage is recorded once,
+// naming the file and the leaf.
+TEST(CartesianBrickStore, DamagedLeafReadsAsTheBackgroundAndIsRecordedOnce) {
+  test::TempDir dir;
+  const float background = 100.0f;
+  auto grid = denseGrid(background);
+  const std::string path = writeGrid(dir, "dense", grid);
+  const openvdb::Coord damagedOrigin(16, 8, 24);
+  test::damageLeafValues(path, {"Tree_float_5_4_3"}, damagedOrigin);
+  const openvdb::CoordBBox damagedBox(damagedOrigin, damagedOrigin.offsetBy(7));
+
+  const Store store(path);
+  EXPECT_EQ(store.damage().count, 0u) << "opening reads no leaf";
+  const auto ranges = store.computeBrickRanges();
+  const Damage damage = store.damage();
+  EXPECT_EQ(damage.count, 1u);
+  EXPECT_EQ(damage.unit, "leaf");
+  EXPECT_EQ(damagedCountText(damage), "1 damaged leaf");
+  EXPECT_NE(damage.first.find(path), std::string::npos) << damage.first;
+  EXPECT_NE(damage.first.find("leaf at (16, 8, 24) is damaged"), std::string::npos) << damage.first;
+  ASSERT_EQ(damage.messages.size(), 1u);
+
+  const auto accessor = grid->getConstAccessor();
+  std::vector<float> block(Store::kBlockPoints);
+  int damagedPoints = 0;
+  // Every brick whose block holds a point of the damaged leaf (leaf 2 b + {-1 .. 2} of brick b).
+  for (int bz = 1; bz <= 2; ++bz)
+    for (int by = 0; by <= 1; ++by)
+      for (int bx = 0; bx <= 1; ++bx) {
+        const glm::ivec3 brick(bx, by, bz);
+        store.readBlock(brick, block.data());
+        float lo = INFINITY, hi = -INFINITY;
+        for (int z = 0; z < Store::kBlockDim; ++z)
+          for (int y = 0; y < Store::kBlockDim; ++y)
+            for (int x = 0; x < Store::kBlockDim; ++x) {
+              const openvdb::Coord p(16 * bx - 2 + x, 16 * by - 2 + y, 16 * bz - 2 + z);
+              const float v = block[(z * Store::kBlockDim + y) * Store::kBlockDim + x];
+              const bool damaged = damagedBox.isInside(p);
+              damagedPoints += damaged;
+              ASSERT_EQ(v, damaged ? background : accessor.getValue(p)) << "brick " << brick.x << brick.y << brick.z << " point " << p;
+              lo = std::min(lo, v);
+              hi = std::max(hi, v);
+            }
+        const auto r = std::find_if(ranges.begin(), ranges.end(), [&](const auto& e) { return e.brick == brick; });
+        ASSERT_NE(r, ranges.end()) << "brick " << brick.x << brick.y << brick.z;
+        EXPECT_LE(r->lo, lo);
+        EXPECT_GE(r->hi, hi) << "the range must hold the background the block now holds";
+      }
+  // Per axis the leaf's 8 points in one block and 2 in the other: (8 + 2)^3 over the eight blocks.
+  EXPECT_EQ(damagedPoints, 1000);
+  EXPECT_EQ(store.damage().count, 1u) << "each damaged leaf is recorded once";
 }
 
 }  // namespace
