@@ -13,9 +13,12 @@
 
 #include <atomic>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "CartesianRangeCache.h"
 #include "Damage.h"
 
 namespace fcc::io {
@@ -31,8 +34,9 @@ class CartesianBrickStore {
 
   // Opens `gridName` (empty: the first float grid) of `path`: OpenVDB parses its topology first in the
   // guard's process (io/VdbFile.h). InputError (one line) for a file without a float grid or with a
-  // transform that is not affine.
-  explicit CartesianBrickStore(const std::string& path, const std::string& gridName = {});
+  // transform that is not affine. `cacheRanges`: brickRanges() keeps the ranges in the user cache folder
+  // (io/CartesianRangeCache.h) and reads them from there on a later open of the same grid and file.
+  explicit CartesianBrickStore(const std::string& path, const std::string& gridName = {}, bool cacheRanges = false);
   ~CartesianBrickStore();
 
   const std::string& path() const { return path_; }
@@ -57,11 +61,20 @@ class CartesianBrickStore {
   // not all the background: conservative bounds of every CC reconstruction without prefilter (each is a
   // convex combination of the block's values). Reads every leaf once, in parallel; a damaged leaf
   // counts as the background there too, so a range holds what readBlock gives.
-  struct BrickRange {
-    glm::ivec3 brick;
-    float lo, hi;
-  };
+  using BrickRange = CartesianBrickRange;
   std::vector<BrickRange> computeBrickRanges() const;
+
+  // computeBrickRanges()'s ranges, computed once for this store (thread-safe; every later call returns
+  // the same vector). With `cacheRanges`, first looked for in the user cache under the file's path, size,
+  // modification time and grid name: a whole, matching cache file is read instead of the leaves; else
+  // they are computed and the cache file is written (atomically; not for a file that showed damage, whose
+  // every open meets and reports it again; a folder that cannot be written only costs the pass again).
+  const std::vector<BrickRange>& brickRanges() const;
+  enum class RangesFrom { NotYet, Leaves, Cache };
+  RangesFrom rangesFrom() const;
+  // The cache file brickRanges() reads and writes; empty without `cacheRanges` or when the source
+  // cannot be stat'ed.
+  std::string rangeCacheFile() const;
 
   // The damaged leaves met so far (io/Damage.h, unit "leaf"): never trusted, each reads as the
   // background everywhere — its brick's block and its neighbours' — so it renders as a hole, and is
@@ -86,6 +99,10 @@ class CartesianBrickStore {
   openvdb::CoordBBox activeBrickBox_;
   mutable DamageLog damageLog_{"leaf"};  // by leaf index
   mutable std::atomic<uint64_t> leavesRead_{0};
+  std::string rangeCacheKey_;  // io/CartesianRangeCache.h's key of this grid; empty: no caching
+  mutable std::mutex rangesMutex_;
+  mutable std::optional<std::vector<BrickRange>> ranges_;
+  mutable RangesFrom rangesFrom_ = RangesFrom::NotYet;
 };
 
 }  // namespace fcc::io

@@ -22,7 +22,8 @@ RenderData::RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, boo
     throw ValueError("--reconstruction " + std::string(info.name) + ": the renderer stores FCC and Cartesian grids only so far (valid: boxspline, " +
                      reconstructionNames(&cc) + "; `fccvdb compare` evaluates the BCC ones)");
   }
-  ccStore_ = std::make_unique<io::CartesianBrickStore>(flags.file, flags.grid);
+  // The bricks' ranges from the user cache, as conversions are (--no-cache: computed every time).
+  ccStore_ = std::make_unique<io::CartesianBrickStore>(flags.file, flags.grid, /*cacheRanges=*/!flags.noCache);
   source_ = std::make_unique<render::CartesianBrickSource>(*ccStore_, info);
 }
 

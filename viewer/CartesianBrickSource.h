@@ -15,8 +15,9 @@ namespace fcc::render {
 
 class CartesianBrickSource : public BrickSource {
  public:
-  // `reconstruction`: one of the CC lattice's (ValueError naming them otherwise). Reads every leaf once
-  // for the bricks' value ranges.
+  // `reconstruction`: one of the CC lattice's (ValueError naming them otherwise). The bricks' value
+  // ranges are the store's brickRanges() (every leaf read once per store, or the user cache's), widened
+  // here for a prefiltered reconstruction: sources of several reconstructions over one store share them.
   CartesianBrickSource(const io::CartesianBrickStore& store, const ReconstructionInfo& reconstruction);
 
   const std::string& path() const override { return store_.path(); }
