@@ -23,8 +23,16 @@ RenderData::RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, boo
                      reconstructionNames(&cc) + "; `fccvdb compare` evaluates the BCC ones)");
   }
   // The bricks' ranges from the user cache, as conversions are (--no-cache: computed every time).
-  ccStore_ = std::make_unique<io::CartesianBrickStore>(flags.file, flags.grid, /*cacheRanges=*/!flags.noCache);
+  ccStore_ = std::make_shared<io::CartesianBrickStore>(flags.file, flags.grid, /*cacheRanges=*/!flags.noCache);
   source_ = std::make_unique<render::CartesianBrickSource>(*ccStore_, info);
+}
+
+RenderData::RenderData(const RenderData& same, const std::string& reconstruction) : ccStore_(same.ccStore_) {
+  if (!ccStore_)
+    throw ValueError(same.source().path() + " is FCC data: its one reconstruction is boxspline (a Cartesian .vdb rendered "
+                     "as it is, view --reconstruction, offers the CC ones)");
+  // CartesianBrickSource refuses a reconstruction of another lattice by name.
+  source_ = std::make_unique<render::CartesianBrickSource>(*ccStore_, findReconstruction(reconstruction));
 }
 
 RenderData::~RenderData() = default;

@@ -20,6 +20,10 @@ class RenderData {
   // ValueError for an unknown --reconstruction (naming the valid ones) or one whose lattice the
   // renderer cannot store yet; InputError (one line) for a file that does not open.
   RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, bool quiet);
+  // The Cartesian grid `same` renders, with another CC reconstruction (the viewer's choice): the store —
+  // its topology, leaf index and bricks' ranges — is shared, so nothing is read again. ValueError for an
+  // unknown or non-CC name, or when `same` is FCC data (its one reconstruction is boxspline).
+  RenderData(const RenderData& same, const std::string& reconstruction);
   ~RenderData();
 
   const render::BrickSource& source() const { return *source_; }
@@ -53,7 +57,7 @@ class RenderData {
  private:
   std::unique_ptr<io::FccInput> input_;
   std::unique_ptr<io::BrickStore> fccStore_;
-  std::unique_ptr<io::CartesianBrickStore> ccStore_;
+  std::shared_ptr<io::CartesianBrickStore> ccStore_;  // shared by the RenderData of each reconstruction
   std::unique_ptr<render::BrickSource> source_;
   std::unique_ptr<render::PyramidLevels> levels_;
 };

@@ -111,10 +111,13 @@ void ViewerSession::drawPanel(int windowHeight) {
     if (colourEdit("background", background, &layout_.backgroundSwatch))
       settings_.background = linearFromSrgb(background);
   }
+  layout_.reconstructionCombo = {};
+  layout_.reconstructionItems.clear();
   if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("empty-space skipping", &settings_.skipEmpty);
     if (!dvr()) ImGui::Checkbox("finite-difference normals", &settings_.finiteDifferenceNormals);
     row("mode", dvr() ? "direct volume rendering" : "isosurface");
+    drawReconstructionChoice();
     row("brick layout", brickLayoutName(*raycaster_.options().layout));
   }
   drawCameraSection();
@@ -192,6 +195,29 @@ void ViewerSession::drawPanel(int windowHeight) {
   layout_.panelScrollMax = ImGui::GetScrollMaxY();  // ImGui scrolls a window taller than its content fits
   ImGui::PopItemWidth();
   ImGui::End();
+}
+
+// The reconstructions the source's lattice has: a Cartesian grid's CC ones to choose from (a choice
+// opens the data again with it, ViewerSession::frame), FCC data's one without a choice.
+void ViewerSession::drawReconstructionChoice() {
+  const ReconstructionInfo& inUse = source().reconstruction();
+  std::vector<const ReconstructionInfo*> choices;
+  for (const ReconstructionInfo& info : reconstructionInfos())
+    if (info.lattice == inUse.lattice) choices.push_back(&info);
+  // Only a Cartesian grid rendered as it is can be read with another of its lattice's reconstructions.
+  if (inUse.lattice != Lattice::Cc || choices.size() < 2) {
+    row("reconstruction", std::string(inUse.name));
+    return;
+  }
+  const bool open = ImGui::BeginCombo("reconstruction", settings_.reconstruction.c_str());
+  if (!open) layout_.reconstructionCombo = lastItemRect();  // the closed combo (open: the popup is current)
+  if (!open) return;
+  for (const ReconstructionInfo* info : choices) {
+    const std::string name(info->name);
+    if (ImGui::Selectable(name.c_str(), settings_.reconstruction == name)) settings_.reconstruction = name;
+    layout_.reconstructionItems.emplace_back(name, lastItemRect());
+  }
+  ImGui::EndCombo();
 }
 
 void ViewerSession::drawTransferSection() {
