@@ -154,19 +154,10 @@ bool BrickStore::readBrick(const glm::ivec3& brick, BrickValues& out) const {
     reader_->readLeaf(*leaf, reinterpret_cast<float*>(out.data()));
     return true;
   } catch (const InputError& e) {
-    {
-      std::lock_guard<std::mutex> lock(damageMutex_);
-      if (damaged_.insert(*leaf).second && damageMessages_.size() < kMaxDamageMessages)
-        damageMessages_.push_back(e.what());
-    }
+    damageLog_.record(*leaf, e.what());
     out.fill(grid_->background());
     return false;
   }
-}
-
-BrickStore::Damage BrickStore::damage() const {
-  std::lock_guard<std::mutex> lock(damageMutex_);
-  return {damaged_.size(), damageMessages_.empty() ? std::string() : damageMessages_.front(), damageMessages_};
 }
 
 }  // namespace fcc::io

@@ -9,11 +9,10 @@
 #include <array>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <unordered_set>
 #include <vector>
 
+#include "Damage.h"
 #include "sparse/BrickBounds.h"
 #include "sparse/FccGrid.h"
 
@@ -56,15 +55,10 @@ class BrickStore {
   // false, and is recorded once (damage()).
   bool readBrick(const glm::ivec3& brick, BrickValues& out) const;
 
-  // The damaged bricks met so far, and the first one's message ("FILE: leaf at (x, y, z) is damaged:
-  // WHAT"). Thread-safe.
-  struct Damage {
-    uint64_t bricks = 0;
-    std::string first;
-    std::vector<std::string> messages;  // the first kMaxDamageMessages, one a brick
-  };
-  static constexpr size_t kMaxDamageMessages = 20;
-  Damage damage() const;
+  // The damaged bricks met so far (io/Damage.h; unit "brick"), and the first one's message ("FILE: leaf
+  // at (x, y, z) is damaged: WHAT"). Thread-safe.
+  using Damage = io::Damage;
+  Damage damage() const { return damageLog_.damage(); }
   // True if brick has a leaf in the file (its values need decoding).
   bool hasLeaf(const glm::ivec3& brick) const;
   // The constant value of a brick without a leaf.
@@ -80,9 +74,7 @@ class BrickStore {
   glm::dmat4 worldFromIndex_{1.0};
   openvdb::CoordBBox activeBrickBox_;
   float valueMin_ = 0.0f, valueMax_ = 0.0f;
-  mutable std::mutex damageMutex_;
-  mutable std::unordered_set<uint64_t> damaged_;  // leaf indices
-  mutable std::vector<std::string> damageMessages_;
+  mutable DamageLog damageLog_{"brick"};  // by leaf index
 };
 
 }  // namespace fcc::io

@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <array>
 #include <map>
 
+#include "UserCache.h"
 #include "VdbFile.h"
 #include "WorldFromIndex.h"
 #include "VdbLeafReader.h"
@@ -31,7 +33,8 @@ void forEachBlockLeaf(const glm::ivec3& brick, Visit&& visit) {
 
 }  // namespace
 
-CartesianBrickStore::CartesianBrickStore(const std::string& path, const std::string& gridName) : path_(path) {
+CartesianBrickStore::CartesianBrickStore(const std::string& path, const std::string& gridName, bool cacheRanges)
+    : path_(path) {
   const std::vector<std::string> types{"Tree_float_5_4_3"};
   guardLeafRead(path, gridName, types);
   try {
@@ -68,6 +71,12 @@ CartesianBrickStore::CartesianBrickStore(const std::string& path, const std::str
   for (; tiles; ++tiles)
     if (*tiles != background_) grow(tiles.getBoundingBox());
   activeBrickBox_ = box;
+  // What the ranges depend on besides the file and the grid: how bricks and their blocks are cut.
+  if (cacheRanges)
+    rangeCacheKey_ = cartesianRangeCacheKey(path, reader_->gridName(),
+                                            "bricks " + std::to_string(kBrickSites) + ", blocks from -" +
+                                                std::to_string(kBlockLo) + " of " + std::to_string(kBlockDim) + " points, leaf slabs " +
+                                                std::to_string(kBlockLo));
 }
 
 CartesianBrickStore::~CartesianBrickStore() = default;
@@ -82,6 +91,17 @@ void CartesianBrickStore::worldBounds(glm::dvec3& lo, glm::dvec3& hi) const {
 float CartesianBrickStore::constantAt(const openvdb::Coord& origin) const {
   // Only where no leaf exists: getValue reads a tile or the background and loads nothing.
   return grid_->tree().getValue(origin);
+}
+
+bool CartesianBrickStore::readLeaf(size_t i, float* values) const {
+  leavesRead_.fetch_add(1, std::memory_order_relaxed);
+  try {
+    reader_->readLeaf(i, values);
+    return true;
+  } catch (const InputError& e) {  // the leaf's bytes failed our checks: never trusted (io/Damage.h)
+    damageLog_.record(i, e.what());
+    return false;
+  }
 }
 
 void CartesianBrickStore::readBlock(const glm::ivec3& brick, float* out) const {
@@ -103,13 +123,14 @@ void CartesianBrickStore::readBox(const glm::ivec3& boxMin, const glm::ivec3& di
         const glm::ivec3 lo = glm::max(leafMin, glm::ivec3(0)), hi = glm::min(leafMin + kLeafDim, dims);
         if (glm::any(glm::greaterThanEqual(lo, hi))) continue;
         const std::optional<size_t> index = reader_->leafIndexAt(origin);
-        if (!index) {
-          const float v = constantAt(origin);
+        // No leaf: a tile's value or the background; a damaged leaf: the background (a hole).
+        if (!index || !readLeaf(*index, leafValues.data())) {
+          const float v = index ? background_ : constantAt(origin);
           for (int z = lo.z; z < hi.z; ++z)
             for (int y = lo.y; y < hi.y; ++y) std::fill(at(lo.x, y, z), at(hi.x, y, z), v);
           continue;
         }
-        reader_->readLeaf(*index, leafValues.data());  // OpenVDB's order: x << 6 | y << 3 | z
+        // OpenVDB's order: x << 6 | y << 3 | z
         for (int z = lo.z; z < hi.z; ++z)
           for (int y = lo.y; y < hi.y; ++y)
             for (int x = lo.x; x < hi.x; ++x) {
@@ -134,7 +155,8 @@ std::vector<CartesianBrickStore::BrickRange> CartesianBrickStore::computeBrickRa
   std::vector<LeafRanges> leafRanges(leaves);
   tbb::parallel_for(size_t(0), leaves, [&](size_t i) {
     std::array<float, 512> values;
-    reader_->readLeaf(i, values.data());  // OpenVDB's order: x << 6 | y << 3 | z
+    // A damaged leaf reads as the background here as in readBox, so the ranges hold what blocks hold.
+    if (!readLeaf(i, values.data())) values.fill(background_);  // OpenVDB's order: x << 6 | y << 3 | z
     const float inf = std::numeric_limits<float>::infinity();
     LeafRanges r;
     r.all = glm::vec2(inf, -inf);
@@ -186,6 +208,46 @@ std::vector<CartesianBrickStore::BrickRange> CartesianBrickStore::computeBrickRa
   });
   for (const std::vector<BrickRange>& layer : byLayer) ranges.insert(ranges.end(), layer.begin(), layer.end());
   return ranges;
+}
+
+std::string CartesianBrickStore::rangeCacheFile() const {
+  return rangeCacheKey_.empty() ? std::string() : cartesianRangeCachePath(conversionCacheDir(), path_, rangeCacheKey_);
+}
+
+CartesianBrickStore::RangesFrom CartesianBrickStore::rangesFrom() const {
+  std::lock_guard<std::mutex> lock(rangesMutex_);
+  return rangesFrom_;
+}
+
+const std::vector<CartesianBrickStore::BrickRange>& CartesianBrickStore::brickRanges() const {
+  std::lock_guard<std::mutex> lock(rangesMutex_);
+  if (ranges_) return *ranges_;
+  const std::string file = rangeCacheFile();
+  if (!file.empty()) {
+    const openvdb::CoordBBox& b = activeBrickBox_;  // empty: lo > hi, and only an empty list is valid
+    const glm::ivec3 lo(b.min().x(), b.min().y(), b.min().z()), hi(b.max().x(), b.max().y(), b.max().z());
+    if (std::optional<std::vector<BrickRange>> cached = readCartesianRangeCache(file, rangeCacheKey_, lo, hi)) {
+      touchCacheFile(file);  // used now: the last to be evicted
+      ranges_ = std::move(cached);
+      rangesFrom_ = RangesFrom::Cache;
+      return *ranges_;
+    }
+  }
+  ranges_ = computeBrickRanges();
+  rangesFrom_ = RangesFrom::Leaves;
+  // A damaged file's ranges are not kept: each open then meets its damage again, and reports it.
+  if (!file.empty() && !damageLog_.any()) {
+    try {
+      const std::string dir = conversionCacheDir();
+      std::filesystem::create_directories(dir);
+      writeCartesianRangeCache(file, rangeCacheKey_, *ranges_);
+      boundCacheFolder(dir, file);
+    } catch (const std::exception&) {
+      // The cache only saves the pass over the leaves: a folder that cannot be written costs it again
+      // next time, and this open has its ranges.
+    }
+  }
+  return *ranges_;
 }
 
 }  // namespace fcc::io

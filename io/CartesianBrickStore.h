@@ -11,9 +11,15 @@
 #include <glm/glm.hpp>
 #include <openvdb/openvdb.h>
 
+#include <atomic>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "CartesianRangeCache.h"
+#include "Damage.h"
 
 namespace fcc::io {
 
@@ -28,8 +34,9 @@ class CartesianBrickStore {
 
   // Opens `gridName` (empty: the first float grid) of `path`: OpenVDB parses its topology first in the
   // guard's process (io/VdbFile.h). InputError (one line) for a file without a float grid or with a
-  // transform that is not affine.
-  explicit CartesianBrickStore(const std::string& path, const std::string& gridName = {});
+  // transform that is not affine. `cacheRanges`: brickRanges() keeps the ranges in the user cache folder
+  // (io/CartesianRangeCache.h) and reads them from there on a later open of the same grid and file.
+  explicit CartesianBrickStore(const std::string& path, const std::string& gridName = {}, bool cacheRanges = false);
   ~CartesianBrickStore();
 
   const std::string& path() const { return path_; }
@@ -44,24 +51,44 @@ class CartesianBrickStore {
   void worldBounds(glm::dvec3& lo, glm::dvec3& hi) const;
 
   // The block of brick b, x fastest: out[(z * 20 + y) * 20 + x] is the value at 16 b - 2 + (x, y, z).
-  // Thread-safe. InputError naming the leaf if one of its leaves is damaged.
+  // Thread-safe. A damaged leaf reads as the background (see damage()).
   void readBlock(const glm::ivec3& brick, float* out) const;
   // The grid's values at the points [boxMin, boxMin + dims), x fastest (dims.x * dims.y * dims.z floats).
-  // Thread-safe; InputError naming the leaf if one is damaged.
+  // Thread-safe. A damaged leaf reads as the background (see damage()).
   void readBox(const glm::ivec3& boxMin, const glm::ivec3& dims, float* out) const;
 
   // Per-brick (min, max) of every value of its block, for the bricks of activeBrickBox() whose block is
   // not all the background: conservative bounds of every CC reconstruction without prefilter (each is a
-  // convex combination of the block's values). Reads every leaf once, in parallel.
-  struct BrickRange {
-    glm::ivec3 brick;
-    float lo, hi;
-  };
+  // convex combination of the block's values). Reads every leaf once, in parallel; a damaged leaf
+  // counts as the background there too, so a range holds what readBlock gives.
+  using BrickRange = CartesianBrickRange;
   std::vector<BrickRange> computeBrickRanges() const;
+
+  // computeBrickRanges()'s ranges, computed once for this store (thread-safe; every later call returns
+  // the same vector). With `cacheRanges`, first looked for in the user cache under the file's path, size,
+  // modification time and grid name: a whole, matching cache file is read instead of the leaves; else
+  // they are computed and the cache file is written (atomically; not for a file that showed damage, whose
+  // every open meets and reports it again; a folder that cannot be written only costs the pass again).
+  const std::vector<BrickRange>& brickRanges() const;
+  enum class RangesFrom { NotYet, Leaves, Cache };
+  RangesFrom rangesFrom() const;
+  // The cache file brickRanges() reads and writes; empty without `cacheRanges` or when the source
+  // cannot be stat'ed.
+  std::string rangeCacheFile() const;
+
+  // The damaged leaves met so far (io/Damage.h, unit "leaf"): never trusted, each reads as the
+  // background everywhere — its brick's block and its neighbours' — so it renders as a hole, and is
+  // recorded once with its message ("FILE: leaf at (x, y, z) is damaged: WHAT"). Thread-safe.
+  Damage damage() const { return damageLog_.damage(); }
+  // Leaf buffers decoded so far, by every call (what tests count).
+  uint64_t leavesRead() const { return leavesRead_.load(std::memory_order_relaxed); }
 
  private:
   // The value every voxel of the leaf-sized box at `origin` has when there is no leaf there.
   float constantAt(const openvdb::Coord& origin) const;
+  // Leaf i's 512 values (OpenVDB's order) into `values`; false, with the damage recorded, when its bytes
+  // are damaged (then `values` is unspecified).
+  bool readLeaf(size_t i, float* values) const;
 
   std::string path_;
   std::shared_ptr<const VdbLeafReader> reader_;
@@ -70,6 +97,12 @@ class CartesianBrickStore {
   bool levelSet_ = false;
   glm::dmat4 worldFromIndex_{1.0};
   openvdb::CoordBBox activeBrickBox_;
+  mutable DamageLog damageLog_{"leaf"};  // by leaf index
+  mutable std::atomic<uint64_t> leavesRead_{0};
+  std::string rangeCacheKey_;  // io/CartesianRangeCache.h's key of this grid; empty: no caching
+  mutable std::mutex rangesMutex_;
+  mutable std::optional<std::vector<BrickRange>> ranges_;
+  mutable RangesFrom rangesFrom_ = RangesFrom::NotYet;
 };
 
 }  // namespace fcc::io

@@ -63,32 +63,6 @@ std::string describe(const std::string& input, const ConvertOptions& o) {
   return d.str();
 }
 
-void touch(const std::string& path) { ::utimensat(AT_FDCWD, path.c_str(), nullptr, 0); }
-
-// Removes the least recently used conversions until the folder holds at most `maxBytes` (never `keep`).
-void evict(const fs::path& dir, uint64_t maxBytes, const std::string& keep) {
-  struct Entry {
-    fs::path path;
-    fs::file_time_type used;
-    uint64_t bytes;
-  };
-  std::vector<Entry> entries;
-  uint64_t total = 0;
-  std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
-    if (!e.is_regular_file(ec) || e.path().extension() != ".vdb") continue;
-    const uint64_t bytes = e.file_size(ec);
-    entries.push_back({e.path(), e.last_write_time(ec), bytes});
-    total += bytes;
-  }
-  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.used < b.used; });
-  for (const Entry& e : entries) {
-    if (total <= maxBytes) break;
-    if (e.path == fs::path(keep)) continue;
-    if (fs::remove(e.path, ec)) total -= e.bytes;
-  }
-}
-
 std::string temporaryPath() {
   std::string pattern = (fs::temp_directory_path() / "fccvdb-XXXXXX.vdb").string();
   const int fd = ::mkstemps(pattern.data(), 4);
@@ -98,22 +72,6 @@ std::string temporaryPath() {
 }
 
 }  // namespace
-
-std::string conversionCacheDir() {
-  if (const char* d = std::getenv("FCCVDB_CACHE_DIR"); d && *d) return d;
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "fccvdb").string();
-  if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / ".cache" / "fccvdb").string();
-  return (fs::temp_directory_path() / "fccvdb-cache").string();
-}
-
-uint64_t conversionCacheMaxBytes() {
-  if (const char* m = std::getenv("FCCVDB_CACHE_MAX_MIB"); m && *m) {
-    char* end = nullptr;
-    const unsigned long long mib = std::strtoull(m, &end, 10);
-    if (end != m && *end == '\0') return uint64_t(mib) << 20;
-  }
-  return uint64_t(20) << 30;
-}
 
 bool holdsFccGrid(const std::string& path) {
   if (detectFormat(path) != Format::Vdb) return false;
@@ -140,7 +98,7 @@ FccInput::FccInput(const std::string& input, const ConvertOptions& options, bool
     std::snprintf(key, sizeof key, "%016llx", (unsigned long long)fnv1a(describe(input, o)));
     path_ = (dir / (fs::path(input).filename().string() + "-" + key + ".vdb")).string();
     if (fs::exists(path_)) {
-      touch(path_);
+      touchCacheFile(path_);
       origin_ = Origin::CacheHit;
       if (say) say("using the FCC conversion of " + input + " cached as " + path_);
       return;
@@ -148,7 +106,7 @@ FccInput::FccInput(const std::string& input, const ConvertOptions& options, bool
     if (say) say("converting " + input + " to FCC once; cached as " + path_ + " (--no-cache: a temporary file)");
     convertToFcc(input, path_, o, progress);
     origin_ = Origin::Converted;
-    evict(dir, conversionCacheMaxBytes(), path_);
+    boundCacheFolder(dir.string(), path_);
     return;
   }
   path_ = temporaryPath();

@@ -1,8 +1,8 @@
 // Any input as an FCC .vdb file: `render`, `view` and `bench render` take whatever `convert` takes. An
 // FCC .vdb is used as it is; anything else is converted once into the user's cache folder and reused
 // while the source (path, size, modification time) and the conversion's flags stay the same. The cache
-// is bounded in bytes, least recently used first out. Without the cache (--no-cache), the conversion
-// goes to a temporary file removed with this object.
+// is bounded in bytes, least recently used first out (io/UserCache.h). Without the cache (--no-cache),
+// the conversion goes to a temporary file removed with this object.
 #pragma once
 
 #include <openvdb/util/NullInterrupter.h>
@@ -11,13 +11,9 @@
 #include <string>
 
 #include "Convert.h"
+#include "UserCache.h"  // the folder and its bound, shared with the Cartesian ranges' cache
 
 namespace fcc::io {
-
-// The cache folder: $FCCVDB_CACHE_DIR, else $XDG_CACHE_HOME/fccvdb, else $HOME/.cache/fccvdb.
-std::string conversionCacheDir();
-// Its bound in bytes: $FCCVDB_CACHE_MAX_MIB (MiB), default 20 GiB.
-uint64_t conversionCacheMaxBytes();
 
 // True if `path` is a .vdb holding an FCC grid (from its grid descriptors alone).
 bool holdsFccGrid(const std::string& path);

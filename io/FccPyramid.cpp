@@ -40,7 +40,7 @@ class TemporaryFiles {
 
 void throwIfDamaged(const BrickStore& store) {
   const BrickStore::Damage damage = store.damage();
-  if (damage.bricks > 0) throw InputError(damage.first + " (the pyramid needs every brick; nothing was written)");
+  if (damage.count > 0) throw InputError(damage.first + " (the pyramid needs every brick; nothing was written)");
 }
 
 // The grids `input` may hold: level 0 (`base`), its bounds, its levels and theirs. Anything else would

@@ -10,7 +10,7 @@
 
 namespace fcc::cli {
 
-RenderData::RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, bool quiet) {
+RenderData::RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, bool quiet) : cacheRanges_(!flags.noCache) {
   // A BCC dataset is drawn with a BCC reconstruction, the view-independent one unless one is named.
   const bool bccFile = render::holdsBccGrids(flags.file);
   const std::string name = !flags.reconstruction.empty() ? flags.reconstruction : bccFile ? kDefaultBccReconstruction : "boxspline";
@@ -20,7 +20,7 @@ RenderData::RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, boo
     throw ValueError("--reconstruction " + std::string(info.name) + ": " + flags.file +
                      " holds a BCC dataset; its reconstructions are " + reconstructionNames(&bcc));
   if (info.lattice == Lattice::Bcc) {
-    auto bccSource = std::make_unique<render::BccBrickSource>(flags.file, info);
+    auto bccSource = std::make_unique<render::BccBrickSource>(flags.file, info, /*cacheRanges=*/!flags.noCache);
     levelSet_ = bccSource->levelSet();
     source_ = std::move(bccSource);
     return;
@@ -31,9 +31,23 @@ RenderData::RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, boo
     source_ = std::make_unique<render::FccBrickSource>(*fccStore_, hostCacheBytes);
     return;
   }
-  ccStore_ = std::make_unique<io::CartesianBrickStore>(flags.file, flags.grid);
+  // The bricks' ranges from the user cache, as conversions are (--no-cache: computed every time).
+  ccStore_ = std::make_shared<io::CartesianBrickStore>(flags.file, flags.grid, /*cacheRanges=*/!flags.noCache);
   levelSet_ = ccStore_->levelSet();
   source_ = std::make_unique<render::CartesianBrickSource>(*ccStore_, info);
+}
+
+RenderData::RenderData(const RenderData& same, const std::string& reconstruction)
+    : ccStore_(same.ccStore_), levelSet_(same.levelSet_), cacheRanges_(same.cacheRanges_) {
+  if (same.source().slotBlock() == render::SlotBlock::BccPacked) {  // the cosets opened again
+    source_ = std::make_unique<render::BccBrickSource>(same.source().path(), findReconstruction(reconstruction), cacheRanges_);
+    return;
+  }
+  if (!ccStore_)
+    throw ValueError(same.source().path() + " is FCC data: its one reconstruction is boxspline (a Cartesian .vdb rendered "
+                     "as it is, view --reconstruction, offers the CC ones)");
+  // CartesianBrickSource refuses a reconstruction of another lattice by name.
+  source_ = std::make_unique<render::CartesianBrickSource>(*ccStore_, findReconstruction(reconstruction));
 }
 
 RenderData::~RenderData() = default;
@@ -117,6 +131,6 @@ std::unique_ptr<render::ProjectedTetrahedra> RenderData::projectedTetrahedra(con
   return std::make_unique<render::ProjectedTetrahedra>(*source_, o);
 }
 
-io::BrickStore::Damage RenderData::damage() const { return fccStore_ ? fccStore_->damage() : io::BrickStore::Damage{}; }
+io::Damage RenderData::damage() const { return source_->damage(); }
 
 }  // namespace fcc::cli

@@ -26,6 +26,12 @@ class RenderData {
   // ValueError for an unknown --reconstruction (naming the valid ones) or one of another lattice than
   // a BCC dataset's; InputError (one line) for a file that does not open or is not of the lattice named.
   RenderData(const RenderFlags& flags, std::size_t hostCacheBytes, bool quiet);
+  // The Cartesian grid `same` renders, with another CC reconstruction (the viewer's choice): the store —
+  // its topology, leaf index and bricks' ranges — is shared, so nothing is read again; or the BCC
+  // dataset `same` renders, with another BCC reconstruction (its cosets opened again). ValueError for
+  // an unknown name or one of another lattice, or when `same` is FCC data (its one reconstruction is
+  // boxspline).
+  RenderData(const RenderData& same, const std::string& reconstruction);
   ~RenderData();
 
   const render::BrickSource& source() const { return *source_; }
@@ -58,16 +64,17 @@ class RenderData {
   // they do not draw.
   std::unique_ptr<render::ProjectedTetrahedra> projectedTetrahedra(const RenderFlags& flags,
                                                                    const render::RenderOptions& options) const;
-  // Damaged bricks met so far (FCC files: rendered as holes; a damaged Cartesian leaf fails the frame).
-  io::BrickStore::Damage damage() const;
+  // Damage met so far (io/Damage.h): FCC bricks, Cartesian or BCC leaves, each rendered as a hole.
+  io::Damage damage() const;
 
  private:
   std::unique_ptr<io::FccInput> input_;
   std::unique_ptr<io::BrickStore> fccStore_;
-  std::unique_ptr<io::CartesianBrickStore> ccStore_;
+  std::shared_ptr<io::CartesianBrickStore> ccStore_;  // shared by the RenderData of each reconstruction
   std::unique_ptr<render::BrickSource> source_;
   std::unique_ptr<render::PyramidLevels> levels_;
   bool levelSet_ = false;  // a Cartesian or BCC level set (FCC files: the store's rules)
+  bool cacheRanges_ = false;  // Cartesian and BCC bricks' ranges kept in the user cache (not --no-cache)
 };
 
 }  // namespace fcc::cli

@@ -81,7 +81,7 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
                  "Clipping box X0,Y0,Z0,X1,Y1,Z1 in world space (info --json gives the data's world_bounds): rays are "
                  "cut to it, bricks outside it are never read");
   addRawFlags(app, flags.source);
-  app.add_flag("--no-cache", flags.noCache, "Convert a Cartesian FILE into a temporary file instead of the user cache ($XDG_CACHE_HOME/fccvdb)");
+  app.add_flag("--no-cache", flags.noCache, "Convert a Cartesian FILE into a temporary file instead of the user cache ($XDG_CACHE_HOME/fccvdb); with --reconstruction, keep no brick ranges there");
   app.add_option("--iso", flags.iso,
                  "Isovalue (default: 0 for a level set; else Otsu's threshold of the samples' histogram, as "
                  "`fccvdb info` suggests; the middle of the range the surface can take for files without one); "

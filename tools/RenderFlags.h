@@ -24,7 +24,7 @@ struct RenderFlags {
   double gpuCacheMiB = 0.0, hostCacheMiB = 0.0;  // 0: the defaults
   std::string layout = "auto";                   // a render::BrickLayout by name, or auto (chooseBrickLayout)
   SourceFlags source;                            // how to read a Cartesian FILE (raw layout)
-  bool noCache = false;                          // convert a Cartesian FILE into a temporary file
+  bool noCache = false;                          // convert a Cartesian FILE into a temporary file; no cached ranges
   std::string reconstruction;                    // empty: FCC (converting a Cartesian FILE); else by name
   std::string mode = "iso";                      // iso | dvr (render::parseRenderMode)
   std::string tf = "grayscale";                  // DVR: a preset or a file (io/TransferFunctionFile.h)

@@ -63,7 +63,7 @@ std::string checkJson(const std::optional<io::BrickStore::Damage>& damage) {
   if (!damage) return "";
   std::string list;
   for (const std::string& m : damage->messages) list += (list.empty() ? "" : ", ") + jsonString(m);
-  return ", \"check\": {\"bricks_damaged\": " + std::to_string(damage->bricks) + ", \"damaged\": [" + list + "]}";
+  return ", \"check\": {\"bricks_damaged\": " + std::to_string(damage->count) + ", \"damaged\": [" + list + "]}";
 }
 
 double percent(uint64_t part, uint64_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0.0; }
@@ -284,7 +284,7 @@ Command addInfoCommand(CLI::App& parent) {
                           jsonNumber(s.voxelSize.y()).c_str(), jsonNumber(s.voxelSize.z()).c_str(),
                           worldBounds.c_str(), meta.c_str(),
                           boundsJson(b).c_str(), levelsJson(levels).c_str(), checkJson(damage).c_str());
-              return damage && damage->bricks > 0 ? 1 : 0;
+              return damage && damage->count > 0 ? 1 : 0;
             }
             std::printf("file:          %s\n", args->file.c_str());
             std::printf("grid:          %s (%s, %s)\n", s.name.c_str(), s.lattice.c_str(), s.gridClass.c_str());
@@ -356,11 +356,11 @@ Command addInfoCommand(CLI::App& parent) {
             }
             if (damage) {
               std::printf("check:         %llu bricks read, %llu damaged\n", (unsigned long long)s.bricks,
-                          (unsigned long long)damage->bricks);
+                          (unsigned long long)damage->count);
               for (const std::string& m : damage->messages) std::printf("damaged:       %s\n", m.c_str());
-              if (damage->bricks > 0) {
+              if (damage->count > 0) {
                 std::fprintf(stderr, "fccvdb: %s: %llu damaged bricks (first: %s)\n", args->file.c_str(),
-                             (unsigned long long)damage->bricks, damage->first.c_str());
+                             (unsigned long long)damage->count, damage->first.c_str());
                 return 1;
               }
             }

@@ -178,11 +178,11 @@ Command addRenderCommand(CLI::App& parent) {
             else if (!args->quiet && levels > 1)
               std::fprintf(stderr, "fccvdb: note: --lod-bias: several or translucent surfaces are drawn at full resolution\n");
             if (!args->quiet) std::fprintf(stderr, "camera: %s\n", cameraFlags(camera).c_str());
-            const io::BrickStore::Damage damage = data.damage();
-            if (damage.bricks > 0) {
-              std::fprintf(stderr, "fccvdb: %llu damaged brick%s rendered as holes in %s (first: %s)%s\n",
-                           (unsigned long long)damage.bricks, damage.bricks == 1 ? "" : "s", args->output.c_str(),
-                           damage.first.c_str(), args->allowDamaged ? "" : "; --allow-damaged to exit 0");
+            // FCC bricks or Cartesian leaves, each never trusted: read as the background (io/Damage.h).
+            const io::Damage damage = data.damage();
+            if (damage.count > 0) {
+              std::fprintf(stderr, "fccvdb: %s rendered as holes in %s (first: %s)%s\n", io::damagedCountText(damage).c_str(),
+                           args->output.c_str(), damage.first.c_str(), args->allowDamaged ? "" : "; --allow-damaged to exit 0");
               if (!args->allowDamaged) return 1;
             }
             return 0;

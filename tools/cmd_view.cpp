@@ -55,6 +55,20 @@ Dataset openDataset(const RenderFlags& flags, std::size_t hostCacheBytes) {
   return d;
 }
 
+// The Cartesian grid `current` shows, with another reconstruction (the panel's choice): its store is
+// shared (nothing read again); the view and the look are the session's, carried over
+// (runOpeningFiles). ValueError (one line) for FCC data or a reconstruction of another lattice.
+Dataset reopenDataset(const Dataset& current, const std::string& reconstruction) {
+  Dataset d;
+  d.flags = current.flags;
+  d.flags.reconstruction = reconstruction;
+  d.data = std::make_unique<RenderData>(*current.data, reconstruction);
+  d.iso = current.iso;
+  d.surfaces = current.surfaces;
+  d.dvr = current.dvr;
+  return d;
+}
+
 // The flags for a file opened from the window: the budgets and layout stay; what belonged to the
 // first file (its grid, isovalue, camera, raw layout) goes, so the new one gets its own defaults.
 RenderFlags flagsForAnotherFile(const RenderFlags& first, const std::string& path) {
@@ -144,20 +158,26 @@ Command addViewCommand(CLI::App& parent) {
             };
             std::unique_ptr<render::ViewerSession> session = newSession(data);
             // --record-path: the first file's frames (a file opened from the window ends the recording:
-            // a path belongs to the data it was recorded over).
+            // a path belongs to the data it was recorded over; another reconstruction of it goes on).
             render::CameraPathRecorder recorder(args->flags.file);
             if (!args->recordPath.empty()) session->recordPath(&recorder);
             // Another file dropped on the window or typed after O replaces the dataset; the window,
-            // budgets and layout stay. One that does not open leaves the old one, and says why.
+            // budgets and layout stay. One that does not open leaves the old one, and says why. The
+            // panel's reconstruction replaces the source over the same store, keeping the view.
             render::runOpeningFiles(
                 data, session, [&](render::ViewerSession& s) { return window.run(s); },
                 [&](const std::string& path) {
                   return openDataset(flagsForAnotherFile(args->flags, path), budgets.hostCacheBytes);
                 },
+                [&](const std::string& reconstruction) { return reopenDataset(data, reconstruction); },
                 newSession,
-                [&](const std::string& path) {
-                  window.setTitle("fccvdb — " + path);
-                  print("opened " + path);
+                [&](const render::OpenRequest& request) {
+                  if (!request.path.empty()) {
+                    window.setTitle("fccvdb — " + request.path);
+                    print("opened " + request.path);
+                  } else {
+                    print(data.flags.file + ": reconstruction " + request.reconstruction);
+                  }
                 });
             if (!args->recordPath.empty()) {
               if (recorder.path().points.empty()) throw Error("--record-path " + args->recordPath + ": no frame was drawn, nothing recorded");

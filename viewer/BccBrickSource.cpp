@@ -34,7 +34,7 @@ bool holdsBccGrids(const std::string& path) {
   return primary && secondary;
 }
 
-BccBrickSource::BccBrickSource(const std::string& path, const ReconstructionInfo& reconstruction)
+BccBrickSource::BccBrickSource(const std::string& path, const ReconstructionInfo& reconstruction, bool cacheRanges)
     : path_(path), reconstruction_(reconstruction) {
   if (reconstruction.lattice != Lattice::Bcc) {
     const Lattice bcc = Lattice::Bcc;
@@ -44,8 +44,8 @@ BccBrickSource::BccBrickSource(const std::string& path, const ReconstructionInfo
   if (!holdsBccGrids(path))
     throw InputError(path + ": not a BCC dataset (it needs the float grids '" + kBccPrimaryGridName + "' and '" +
                          kBccSecondaryGridName + "': docs/FORMAT.md)");
-  primary_ = std::make_unique<io::CartesianBrickStore>(path, kBccPrimaryGridName);
-  secondary_ = std::make_unique<io::CartesianBrickStore>(path, kBccSecondaryGridName);
+  primary_ = std::make_unique<io::CartesianBrickStore>(path, kBccPrimaryGridName, cacheRanges);
+  secondary_ = std::make_unique<io::CartesianBrickStore>(path, kBccSecondaryGridName, cacheRanges);
   // Coset voxel m is BCC site 2m (primary) or 2m + 1 (secondary): the secondary's map is the primary's
   // moved by half a voxel.
   worldFromIndex_ = primary_->worldFromIndex() * glm::dmat4(glm::dmat3(0.5));
@@ -70,7 +70,7 @@ BccBrickSource::BccBrickSource(const std::string& path, const ReconstructionInfo
   std::vector<glm::ivec3> cosetBricks;
   const float bg = background();
   for (const io::CartesianBrickStore* store : {primary_.get(), secondary_.get()})
-    for (const auto& r : store->computeBrickRanges()) {
+    for (const auto& r : store->brickRanges()) {
       auto [it, added] = cosetRange.try_emplace(brickKey(r.brick), glm::vec2(bg));
       if (added) cosetBricks.push_back(r.brick);
       it->second = glm::vec2(std::min(it->second.x, r.lo), std::max(it->second.y, r.hi));
@@ -101,6 +101,17 @@ void BccBrickSource::worldBounds(glm::dvec3& lo, glm::dvec3& hi) const {
   secondary_->worldBounds(lo2, hi2);
   lo = glm::min(lo, lo2);
   hi = glm::max(hi, hi2);
+}
+
+io::Damage BccBrickSource::damage() const {
+  io::Damage d = primary_->damage();
+  const io::Damage s = secondary_->damage();
+  d.unit = "leaf";
+  d.count += s.count;
+  if (d.first.empty()) d.first = s.first;
+  for (const std::string& m : s.messages)
+    if (d.messages.size() < io::Damage::kMaxMessages) d.messages.push_back(m);
+  return d;
 }
 
 void BccBrickSource::forEachVaryingBrick(const std::function<void(const glm::ivec3&, float, float)>& visit) const {

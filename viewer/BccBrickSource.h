@@ -23,8 +23,9 @@ class BccBrickSource : public BrickSource {
  public:
   // Opens both cosets of `path`. `reconstruction`: one of the BCC lattice's (ValueError naming them
   // otherwise). InputError (one line) for a file without both cosets, or whose cosets disagree (their
-  // transforms not half a voxel apart, their backgrounds different).
-  BccBrickSource(const std::string& path, const ReconstructionInfo& reconstruction);
+  // transforms not half a voxel apart, their backgrounds different). `cacheRanges`: the cosets' brick
+  // ranges kept in the user cache (io::CartesianBrickStore's).
+  BccBrickSource(const std::string& path, const ReconstructionInfo& reconstruction, bool cacheRanges = false);
   ~BccBrickSource() override;
 
   const std::string& path() const override { return path_; }
@@ -39,6 +40,7 @@ class BccBrickSource : public BrickSource {
   void forEachVaryingBrick(const std::function<void(const glm::ivec3&, float, float)>& visit) const override;
   std::size_t varyingBrickCount() const override { return ranges_.size(); }
   void decode(std::vector<LoadedBrick>& chunk) const override;
+  io::Damage damage() const override;  // both cosets' damaged leaves (holes)
   bool levelSet() const { return primary_->levelSet(); }
 
  private:

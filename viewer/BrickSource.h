@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "io/Damage.h"
 #include "sparse/Reconstruction.h"
 
 namespace fcc::render {
@@ -73,9 +74,12 @@ class BrickSource {
   virtual void forEachVaryingBrick(const std::function<void(const glm::ivec3&, float lo, float hi)>& visit) const = 0;
   virtual std::size_t varyingBrickCount() const = 0;
   // Fills each brick's block (LoadedBrick::halo, resized here). The bricks of one call are mostly
-  // neighbours. Called on several loader threads at once. A failure throws (io::InputError: one line).
+  // neighbours. Called on several loader threads at once. A damaged leaf is no failure: it reads as the
+  // background (a hole) and is recorded in damage(); anything else throws (io::InputError: one line).
   virtual void decode(std::vector<LoadedBrick>& chunk) const = 0;
   virtual HostCacheUse hostCacheUse() const { return {}; }
+  // The damage met so far, reading ranges or decoding (io/Damage.h): what `render` and the panel report.
+  virtual io::Damage damage() const = 0;
 };
 
 }  // namespace fcc::render

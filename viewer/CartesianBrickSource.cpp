@@ -43,7 +43,7 @@ CartesianBrickSource::CartesianBrickSource(const io::CartesianBrickStore& store,
                      reconstructionNames(&cc) + ")");
   }
   prefiltered_ = reconstruction.prefilter == Prefilter::CubicBSpline;
-  ranges_ = store.computeBrickRanges();
+  ranges_ = store.brickRanges();  // the raw samples' (from the user cache when the store keeps them there)
   if (prefiltered_) {
     // A coefficient is sum h_k s_k over the samples within kPad of it, with sum h_k = 1, so it lies
     // within gain * r of m for the samples' range [m - r, m + r] there; the padded block of brick b lies

@@ -15,8 +15,9 @@ namespace fcc::render {
 
 class CartesianBrickSource : public BrickSource {
  public:
-  // `reconstruction`: one of the CC lattice's (ValueError naming them otherwise). Reads every leaf once
-  // for the bricks' value ranges.
+  // `reconstruction`: one of the CC lattice's (ValueError naming them otherwise). The bricks' value
+  // ranges are the store's brickRanges() (every leaf read once per store, or the user cache's), widened
+  // here for a prefiltered reconstruction: sources of several reconstructions over one store share them.
   CartesianBrickSource(const io::CartesianBrickStore& store, const ReconstructionInfo& reconstruction);
 
   const std::string& path() const override { return store_.path(); }
@@ -31,6 +32,8 @@ class CartesianBrickSource : public BrickSource {
   void forEachVaryingBrick(const std::function<void(const glm::ivec3&, float, float)>& visit) const override;
   std::size_t varyingBrickCount() const override { return ranges_.size(); }
   void decode(std::vector<LoadedBrick>& chunk) const override;
+  // Damaged leaves (the store's): each reads as the background, a hole (io/CartesianBrickStore.h).
+  io::Damage damage() const override { return store_.damage(); }
 
   // The factor by which the interpolating prefilter can widen a range about its middle: the sum of
   // the absolute values of its 3D impulse response, (sum |h|)^3 of the 1D one.

@@ -35,6 +35,7 @@ class FccBrickSource : public BrickSource {
   std::size_t varyingBrickCount() const override;
   void decode(std::vector<LoadedBrick>& chunk) const override;
   HostCacheUse hostCacheUse() const override { return {cache_->bytesUsed(), cache_->budgetBytes()}; }
+  io::Damage damage() const override { return store_.damage(); }
 
  private:
   const io::BrickStore& store_;

@@ -70,7 +70,7 @@ void ViewerSession::drawOpenField() {
   // Esc closes the field (and, the field having the keys this frame, does not quit the viewer).
   const bool cancelled = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false);
   if ((entered || ImGui::Button("open")) && openField_.path[0] != '\0') {
-    openRequest_ = std::string(openField_.path);
+    openRequest_ = OpenRequest{std::string(openField_.path), {}};
     openField_.shown = false;
   }
   if (cancelled) openField_.shown = false;

@@ -111,10 +111,13 @@ void ViewerSession::drawPanel(int windowHeight) {
     if (colourEdit("background", background, &layout_.backgroundSwatch))
       settings_.background = linearFromSrgb(background);
   }
+  layout_.reconstructionCombo = {};
+  layout_.reconstructionItems.clear();
   if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("empty-space skipping", &settings_.skipEmpty);
     if (!dvr()) ImGui::Checkbox("finite-difference normals", &settings_.finiteDifferenceNormals);
     row("mode", dvr() ? "direct volume rendering" : "isosurface");
+    drawReconstructionChoice();
     row("brick layout", brickLayoutName(*raycaster_.options().layout));
   }
   drawCameraSection();
@@ -138,12 +141,12 @@ void ViewerSession::drawPanel(int windowHeight) {
     }
     std::snprintf(range, sizeof range, "%.4g .. %.4g", double(summary_.valueMin), double(summary_.valueMax));
     row(dvr() ? "value range" : "surface range", range);
-    const io::BrickStore::Damage damage = store_ ? store_->damage() : io::BrickStore::Damage{};
-    if (damage.bricks > 0) {
-      // Damaged bricks are never trusted: they show as holes; the panel says so, and which.
+    const io::Damage damage = source().damage();
+    if (damage.count > 0) {
+      // Damaged bricks (FCC) or leaves (Cartesian) are never trusted: they show as holes; the panel
+      // says so, and which.
       ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 140, 90, 255));
-      ImGui::TextWrapped("%llu damaged brick%s shown as holes. First: %s", (unsigned long long)damage.bricks,
-                         damage.bricks == 1 ? "" : "s", damage.first.c_str());
+      ImGui::TextWrapped("%s shown as holes. First: %s", io::damagedCountText(damage).c_str(), damage.first.c_str());
       ImGui::PopStyleColor();
     }
   }
@@ -192,6 +195,30 @@ void ViewerSession::drawPanel(int windowHeight) {
   layout_.panelScrollMax = ImGui::GetScrollMaxY();  // ImGui scrolls a window taller than its content fits
   ImGui::PopItemWidth();
   ImGui::End();
+}
+
+// The reconstructions the source's lattice has: a Cartesian grid's CC ones or a BCC dataset's BCC ones
+// to choose from (a choice opens the data again with it, ViewerSession::frame), FCC data's one without
+// a choice.
+void ViewerSession::drawReconstructionChoice() {
+  const ReconstructionInfo& inUse = source().reconstruction();
+  std::vector<const ReconstructionInfo*> choices;
+  for (const ReconstructionInfo& info : reconstructionInfos())
+    if (info.lattice == inUse.lattice) choices.push_back(&info);
+  // Only a Cartesian grid or a BCC dataset rendered as it is can be read with another of its lattice's.
+  if ((inUse.lattice != Lattice::Cc && inUse.lattice != Lattice::Bcc) || choices.size() < 2) {
+    row("reconstruction", std::string(inUse.name));
+    return;
+  }
+  const bool open = ImGui::BeginCombo("reconstruction", settings_.reconstruction.c_str());
+  if (!open) layout_.reconstructionCombo = lastItemRect();  // the closed combo (open: the popup is current)
+  if (!open) return;
+  for (const ReconstructionInfo* info : choices) {
+    const std::string name(info->name);
+    if (ImGui::Selectable(name.c_str(), settings_.reconstruction == name)) settings_.reconstruction = name;
+    layout_.reconstructionItems.emplace_back(name, lastItemRect());
+  }
+  ImGui::EndCombo();
 }
 
 void ViewerSession::drawTransferSection() {

@@ -74,6 +74,7 @@ void ViewerSession::init(const RenderOptions& options) {
   settings_.finiteDifferenceNormals = options.finiteDifferenceNormals;
   settings_.clipLo = options.clipLo;  // +-1e30 (the default): no box
   settings_.clipHi = options.clipHi;
+  settings_.reconstruction = std::string(raycaster_.source().reconstruction().name);
   if (dvr_) {
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
@@ -90,6 +91,37 @@ void ViewerSession::init(const RenderOptions& options) {
     } catch (const Error&) {  // read once already (--tf); a file changed since then offers no maps
     }
   }
+}
+
+SessionView ViewerSession::view() const {
+  return SessionView{camera_, initialCamera_, settings_, dvr_, loadedFunctions_, pathRecorder_, outputDirectory_};
+}
+
+void ViewerSession::restoreView(const SessionView& view) {
+  camera_ = view.camera;
+  initialCamera_ = view.initialCamera;
+  settings_ = view.settings;
+  settings_.reconstruction = std::string(source().reconstruction().name);  // this session's: asking again would loop
+  pathRecorder_ = view.pathRecorder;
+  outputDirectory_ = view.outputDirectory;
+  if (dvr_ && view.dvr) {
+    // The function in use, edits included, in data values: the same look whatever range the new
+    // reconstruction takes (fitting the preset again to it would move the colours).
+    dvr_ = view.dvr;
+    settings_.transferFunction = dvr_->spec;
+    settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
+    raycaster_.setTransfer(dvr_->table());
+    editor_->reset(dvr_->function);
+    appliedRevision_ = baseRevision_ = editor_->revision();
+    loadedFunctions_ = view.loadedFunctions;
+    for (const auto& loaded : loadedFunctions_) {
+      try {
+        addColorMapsOf(loaded.first);
+      } catch (const Error&) {  // read once already; a file changed since then offers no maps
+      }
+    }
+  }
+  applySettings();  // surfaces, light, skipping, normals, clipping box: before the first frame
 }
 
 void ViewerSession::notify(const std::string& text) {
@@ -367,6 +399,13 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   redraw_.drawn(look, raycaster_.surfaceRect(), overlays, uiHash);
   // A setting edited in this frame's panel shows from the next frame: this one is not the final image.
   const bool changed = applySettings() || settings_.background != look.background;
+  // Another reconstruction (the panel's combo) is another source: this session asks for its data again
+  // with it (viewer/OpenAnotherFile.h), which replaces the session and keeps the view; until then, and
+  // if that fails, the combo shows the one in use.
+  if (settings_.reconstruction != source().reconstruction().name) {
+    openRequest_ = OpenRequest{{}, settings_.reconstruction};
+    settings_.reconstruction = std::string(source().reconstruction().name);
+  }
   updateStats(step, double(coveredArea(regions)) / double(std::max<long long>(1, look.imageArea().area())), !uiShown);
   // This frame's image is complete (its pass was the last one) and its line told a settled frame.
   shownSettled_ = shownStatusLine_.empty() && settled() && !changed;

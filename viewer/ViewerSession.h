@@ -46,6 +46,9 @@ struct ViewerSettings {
   float densityScale = 1.0f;
   // The clipping box, world space (RenderOptions::clipLo/clipHi); the panel's sliders span the data.
   glm::dvec3 clipLo{-1e30}, clipHi{1e30};
+  // The reconstruction the source is rendered with (its name; the panel's combo for a Cartesian grid).
+  // Another name asks for the data again with it (ViewerSession::takeOpenRequest), keeping the view.
+  std::string reconstruction;
   bool showPanel = true;
   bool showHelp = false;
 };
@@ -66,6 +69,10 @@ struct PanelLayout {
   ImRectF colorMapCombo, transferPathField, transferLoad, transferSave;
   std::vector<ImRectF> opacityPoints;
   ImRectF addSurface, removeLastSurface;  // the Surfaces section's buttons (empty when not shown)
+  // The Renderer section's reconstruction combo while closed (empty for FCC data: no choice), and its
+  // items (name, where) while open.
+  ImRectF reconstructionCombo;
+  std::vector<std::pair<std::string, ImRectF>> reconstructionItems;
   std::string histogramTooltip;  // the last one shown
   // The help window's rows: the rightmost end of a key's text and the leftmost start of a description;
   // the keys it lists (those that apply to the mode).
@@ -99,15 +106,37 @@ struct ViewerStats {
   LevelMix levels;
 };
 
+// What a session asks whoever opens datasets for (viewer/OpenAnotherFile.h): another file, dropped on
+// the window or typed after O; or, with `path` empty, its own data again with another reconstruction
+// (the panel's choice), the view kept (ViewerSession::view).
+struct OpenRequest {
+  std::string path;
+  std::string reconstruction;
+  bool operator==(const OpenRequest& o) const { return path == o.path && reconstruction == o.reconstruction; }
+};
+
+// What a session hands on to the one that replaces it over the same data (another reconstruction):
+// the camera (and the one R goes back to), the panel's settings — surfaces, colours, light, clipping
+// box, transfer function — the transfer function in use with what the panel loaded, and where its
+// keys write files and record the camera.
+struct SessionView {
+  Camera camera, initialCamera;
+  ViewerSettings settings;
+  std::optional<DvrTransfer> dvr;
+  std::vector<std::pair<std::string, TransferFunction>> loadedFunctions;
+  CameraPathRecorder* pathRecorder = nullptr;
+  std::string outputDirectory;
+};
+
 class ViewerSession {
  public:
   // Needs a current OpenGL 4.5 context and an ImGui context with its OpenGL backend.
   // An FCC store, through a host cache of options.hostCacheBytes; isosurface mode.
   ViewerSession(const io::BrickStore& store, const RenderOptions& options, const Camera& initialCamera,
                 DatasetSummary summary);
-  // Any brick source (viewer/BrickSource.h: an FCC store's, or a Cartesian grid rendered as it is);
-  // `store`, the FCC store behind it or null, gives the damage it met and the spline's values under
-  // the cursor. With `dvr`, direct volume rendering with that transfer function (options' mode and
+  // Any brick source (viewer/BrickSource.h: an FCC store's, or a Cartesian grid rendered as it is; the
+  // panel reports the damage it met); `store`, the FCC store behind it or null, gives the spline's
+  // values under the cursor. With `dvr`, direct volume rendering with that transfer function (options' mode and
   // table are set from it); else options.mode must be Iso.
   ViewerSession(const BrickSource& source, const io::BrickStore* store, const RenderOptions& options,
                 const Camera& initialCamera, DatasetSummary summary, std::optional<DvrTransfer> dvr = std::nullopt);
@@ -169,11 +198,17 @@ class ViewerSession {
   // The isovalue keys' steps, as fractions of the surface range: + / - and Page Up / Page Down.
   static constexpr float kIsoKeyStep = 0.01f, kIsoPageStep = 0.1f;
 
-  // Another file to open in this window: from a file dropped on it (requestOpen) or typed after O.
-  // The window hands it to whoever opens datasets (`fccvdb view`), which replaces this session.
-  void requestOpen(const std::string& path) { openRequest_ = path; }
-  std::optional<std::string> takeOpenRequest() { return std::exchange(openRequest_, std::nullopt); }
+  // Another file to open in this window: from a file dropped on it (requestOpen) or typed after O; or
+  // this data with another reconstruction (the panel's choice, settings().reconstruction). The window
+  // hands it to whoever opens datasets (`fccvdb view`), which replaces this session.
+  void requestOpen(const std::string& path) { openRequest_ = OpenRequest{path, {}}; }
+  std::optional<OpenRequest> takeOpenRequest() { return std::exchange(openRequest_, std::nullopt); }
   bool openFieldShown() const { return openField_.shown; }
+  // The view to carry over to a session of the same data (another reconstruction), and taking it on:
+  // the settings apply at once (the first frame is of the view kept), the transfer function in use
+  // replaces the one this session was made with.
+  SessionView view() const;
+  void restoreView(const SessionView& view);
 
   const Camera& camera() const { return camera_; }
   void setCamera(const Camera& camera) { camera_ = camera; }
@@ -201,6 +236,7 @@ class ViewerSession {
   bool applySettings();  // true when a setting changed the image (it restarts the frame)
   void applyTransfer();  // DVR: a new table when the transfer function or density scale changed
   void drawTransferSection();  // viewer/ViewerPanel.cpp
+  void drawReconstructionChoice();  // viewer/ViewerPanel.cpp
   void drawSurfacesSection();  // viewer/PanelSurfaces.cpp
   std::vector<Isosurface> surfacesOfSettings() const;  // settings_'s surfaces, the first from iso/surfaceColor
   float& selectedIso();        // the isovalue the keys and the histogram move
@@ -226,7 +262,7 @@ class ViewerSession {
   std::string statusLine() const;  // of the last frame's figures; empty once settled
   void drawStreamingLine(int windowHeight);
 
-  const io::BrickStore* store_;  // for the damage it met (io/BrickStore.h) and the cursor's values; may be null
+  const io::BrickStore* store_;  // for the cursor's spline values; may be null
   Raycaster raycaster_;
   std::optional<DvrTransfer> dvr_, initialDvr_;  // in use; what the session opened with (--tf)
   float appliedDensityScale_ = 1.0f;
@@ -257,7 +293,7 @@ class ViewerSession {
   int fbWidth_ = 0, fbHeight_ = 0, windowHeight_ = 0;  // of the last frame
   bool screenshotRequested_ = false;
   CameraPathRecorder* pathRecorder_ = nullptr;
-  std::optional<std::string> openRequest_;
+  std::optional<OpenRequest> openRequest_;
   struct OpenField {
     bool shown = false, focus = false;
     char path[1024] = {};

@@ -89,7 +89,7 @@ double ViewerWindow::aspect() const {
 
 void ViewerWindow::setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
 
-std::optional<std::string> ViewerWindow::run(ViewerSession& session) {
+std::optional<OpenRequest> ViewerWindow::run(ViewerSession& session) {
   const bool automated = !options_.screenshot.empty();
   int frames = 0;
   while (!glfwWindowShouldClose(window_)) {
@@ -119,7 +119,7 @@ std::optional<std::string> ViewerWindow::run(ViewerSession& session) {
       return std::nullopt;
     }
     glfwSwapBuffers(window_);
-    if (std::optional<std::string> next = session.takeOpenRequest()) return next;
+    if (std::optional<OpenRequest> next = session.takeOpenRequest()) return next;
   }
   return std::nullopt;
 }

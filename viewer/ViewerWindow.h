@@ -36,10 +36,10 @@ class ViewerWindow {
   // The framebuffer's aspect ratio (for framing the camera before the session exists).
   double aspect() const;
   // Runs until the window closes (or the automation screenshot is written): nullopt; or until the
-  // session is asked to open another file (dropped on the window, or typed after O): its path, and
-  // the window stays open for the next session. The session reports the files it writes
-  // (ViewerSession::setReport).
-  std::optional<std::string> run(ViewerSession& session);
+  // session is asked to open another file (dropped on the window, or typed after O) or its data with
+  // another reconstruction (the panel): the request, and the window stays open for the next session.
+  // The session reports the files it writes (ViewerSession::setReport).
+  std::optional<OpenRequest> run(ViewerSession& session);
   void setTitle(const std::string& title);
 
  private:

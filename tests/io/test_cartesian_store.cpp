@@ -1,15 +1,27 @@
 // The Cartesian brick store (direct rendering of float grids, issue 17) against OpenVDB's own reads: every
 // point of a brick's block, and the per-brick ranges, for a level set (interior tiles, exterior background)
-// and a fog volume (interior tiles of 1).
+// and a fog volume (interior tiles of 1); a damaged leaf read as the background; the ranges kept in the
+// user cache (io/CartesianRangeCache.h).
 #include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <sys/stat.h>
 
 #include <openvdb/io/File.h>
 #include <openvdb/tools/LevelSetSphere.h>
 #include <openvdb/tools/LevelSetUtil.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <vector>
 
+#include "LeafDamage.h"
 #include "io/CartesianBrickStore.h"
 #include "io/VdbFile.h"
 #include "sparse/Error.h"
@@ -108,6 +120,291 @@ TEST(CartesianBrickStore, NotAFloatGridIsOneLine) {
     FAIL() << "opened";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+}
+
+// A dense fog-like grid on [0, 48)^3 (every leaf present), values z + x / 64 (all below the background).
+openvdb::FloatGrid::Ptr denseGrid(float background) {
+  auto grid = openvdb::FloatGrid::create(background);
+  auto accessor = grid->getAccessor();
+  for (int z = 0; z < 48; ++z)
+    for (int y = 0; y < 48; ++y)
+      for (int x = 0; x < 48; ++x) accessor.setValue(openvdb::Coord(x, y, z), float(z) + float(x) / 64.0f);
+  return grid;
+}
+
+// A leaf whose bytes are damaged is never trusted and never fails a read: it reads as the background
+// in every block and box that holds it (its own brick's and its neighbours'), the ranges hold the
+// background where the blocks do, every other point reads as stored, and the damage is recorded once,
+// naming the file and the leaf.
+TEST(CartesianBrickStore, DamagedLeafReadsAsTheBackgroundAndIsRecordedOnce) {
+  test::TempDir dir;
+  const float background = 100.0f;
+  auto grid = denseGrid(background);
+  const std::string path = writeGrid(dir, "dense", grid);
+  const openvdb::Coord damagedOrigin(16, 8, 24);
+  test::damageLeafValues(path, {"Tree_float_5_4_3"}, damagedOrigin);
+  const openvdb::CoordBBox damagedBox(damagedOrigin, damagedOrigin.offsetBy(7));
+
+  const Store store(path);
+  EXPECT_EQ(store.damage().count, 0u) << "opening reads no leaf";
+  const auto ranges = store.computeBrickRanges();
+  const Damage damage = store.damage();
+  EXPECT_EQ(damage.count, 1u);
+  EXPECT_EQ(damage.unit, "leaf");
+  EXPECT_EQ(damagedCountText(damage), "1 damaged leaf");
+  EXPECT_NE(damage.first.find(path), std::string::npos) << damage.first;
+  EXPECT_NE(damage.first.find("leaf at (16, 8, 24) is damaged"), std::string::npos) << damage.first;
+  ASSERT_EQ(damage.messages.size(), 1u);
+
+  const auto accessor = grid->getConstAccessor();
+  std::vector<float> block(Store::kBlockPoints);
+  int damagedPoints = 0;
+  // Every brick whose block holds a point of the damaged leaf (leaf 2 b + {-1 .. 2} of brick b).
+  for (int bz = 1; bz <= 2; ++bz)
+    for (int by = 0; by <= 1; ++by)
+      for (int bx = 0; bx <= 1; ++bx) {
+        const glm::ivec3 brick(bx, by, bz);
+        store.readBlock(brick, block.data());
+        float lo = INFINITY, hi = -INFINITY;
+        for (int z = 0; z < Store::kBlockDim; ++z)
+          for (int y = 0; y < Store::kBlockDim; ++y)
+            for (int x = 0; x < Store::kBlockDim; ++x) {
+              const openvdb::Coord p(16 * bx - 2 + x, 16 * by - 2 + y, 16 * bz - 2 + z);
+              const float v = block[(z * Store::kBlockDim + y) * Store::kBlockDim + x];
+              const bool damaged = damagedBox.isInside(p);
+              damagedPoints += damaged;
+              ASSERT_EQ(v, damaged ? background : accessor.getValue(p)) << "brick " << brick.x << brick.y << brick.z << " point " << p;
+              lo = std::min(lo, v);
+              hi = std::max(hi, v);
+            }
+        const auto r = std::find_if(ranges.begin(), ranges.end(), [&](const auto& e) { return e.brick == brick; });
+        ASSERT_NE(r, ranges.end()) << "brick " << brick.x << brick.y << brick.z;
+        EXPECT_LE(r->lo, lo);
+        EXPECT_GE(r->hi, hi) << "the range must hold the background the block now holds";
+      }
+  // Per axis the leaf's 8 points in one block and 2 in the other: (8 + 2)^3 over the eight blocks.
+  EXPECT_EQ(damagedPoints, 1000);
+  EXPECT_EQ(store.damage().count, 1u) << "each damaged leaf is recorded once";
+}
+
+// The user cache folder of one test: FCCVDB_CACHE_DIR (and FCCVDB_CACHE_MAX_MIB when given) set while
+// it lives.
+struct ScopedCache {
+  test::TempDir dir;
+  explicit ScopedCache(const char* maxMiB = nullptr) {
+    ::setenv("FCCVDB_CACHE_DIR", (dir / "cache").c_str(), 1);
+    if (maxMiB) ::setenv("FCCVDB_CACHE_MAX_MIB", maxMiB, 1);
+  }
+  ~ScopedCache() {
+    ::unsetenv("FCCVDB_CACHE_DIR");
+    ::unsetenv("FCCVDB_CACHE_MAX_MIB");
+  }
+  std::vector<std::string> files() const {
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(dir.path / "cache", ec)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+};
+
+std::string readAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+void writeAll(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// Bit for bit the same ranges, in the same order.
+void expectSameRanges(const std::vector<Store::BrickRange>& a, const std::vector<Store::BrickRange>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].brick, b[i].brick) << i;
+    ASSERT_EQ(std::memcmp(&a[i].lo, &b[i].lo, sizeof(float)), 0) << i;
+    ASSERT_EQ(std::memcmp(&a[i].hi, &b[i].hi, sizeof(float)), 0) << i;
+  }
+}
+
+// A level set with leaves and interior tiles, written as `name`.
+std::string writeSphere(const test::TempDir& dir, const std::string& name, float radius) {
+  return writeGrid(dir, name, openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(radius, openvdb::Vec3f(1.5f, -2.0f, 3.0f), 1.0f, 3.0f));
+}
+
+// The second open of a grid reads its ranges from the user cache: the same ranges bit for bit, and no
+// leaf read — not even once the leaves are damaged behind the cache's back (same size and modification
+// time: the cache cannot know, and the damage is met only when a brick is decoded).
+TEST(CartesianBrickStore, SecondOpenReadsTheRangesFromTheUserCacheAndNoLeaf) {
+  const ScopedCache cache;
+  test::TempDir dir;
+  const std::string path = writeSphere(dir, "ls", 21.0f);
+  std::vector<Store::BrickRange> first;
+  {
+    const Store store(path, "", /*cacheRanges=*/true);
+    first = store.brickRanges();
+    EXPECT_EQ(store.rangesFrom(), Store::RangesFrom::Leaves);
+    EXPECT_GT(store.leavesRead(), 0u);
+    expectSameRanges(first, store.computeBrickRanges());
+    EXPECT_TRUE(std::filesystem::exists(store.rangeCacheFile())) << store.rangeCacheFile();
+    EXPECT_EQ(std::filesystem::path(store.rangeCacheFile()).parent_path(), cache.dir.path / "cache");
+  }
+  ASSERT_EQ(cache.files().size(), 1u);
+  EXPECT_EQ(cache.files()[0].rfind("ls.vdb-", 0), 0u) << cache.files()[0];
+  {
+    const Store store(path, "", true);
+    expectSameRanges(store.brickRanges(), first);
+    EXPECT_EQ(store.rangesFrom(), Store::RangesFrom::Cache);
+    EXPECT_EQ(store.leavesRead(), 0u) << "the ranges came from the leaves again";
+  }
+  // Damage a leaf in place, keeping the size and the modification time.
+  struct stat before {};
+  ASSERT_EQ(::stat(path.c_str(), &before), 0);
+  openvdb::Coord someLeaf;
+  {
+    const VdbLeafReader reader(path, "", {"Tree_float_5_4_3"});
+    someLeaf = reader.leafOrigin(reader.leafCount() / 2);
+  }
+  test::damageLeafValues(path, {"Tree_float_5_4_3"}, someLeaf);
+  {
+    const Store check(path);  // the damage is real: the leaves' pass meets it
+    check.computeBrickRanges();
+    ASSERT_EQ(check.damage().count, 1u);
+  }
+  const timespec times[2] = {before.st_atim, before.st_mtim};
+  ASSERT_EQ(::utimensat(AT_FDCWD, path.c_str(), times, 0), 0);
+  {
+    const Store store(path, "", true);
+    expectSameRanges(store.brickRanges(), first);
+    EXPECT_EQ(store.rangesFrom(), Store::RangesFrom::Cache);
+    EXPECT_EQ(store.damage().count, 0u) << "a leaf was read for the ranges";
+    EXPECT_EQ(store.leavesRead(), 0u);
+  }
+}
+
+// A cache file that is truncated, garbled or empty, or of another key, is no cache: the ranges are
+// computed from the leaves (the same ranges) and the file is written again, whole, so the next open
+// reads it. Never a throw.
+TEST(CartesianBrickStore, DamagedRangeCacheFileIsRecomputedAndRewritten) {
+  const ScopedCache cache;
+  test::TempDir dir;
+  const std::string path = writeSphere(dir, "ls", 21.0f);
+  std::vector<Store::BrickRange> reference;
+  std::string file, good;
+  {
+    const Store store(path, "", true);
+    reference = store.brickRanges();
+    file = store.rangeCacheFile();
+    good = readAll(file);
+  }
+  ASSERT_GT(good.size(), 64u);
+  const std::vector<std::pair<std::string, std::string>> damages = {
+      {"empty", std::string()},
+      {"truncated in the records", good.substr(0, good.size() / 2)},
+      {"truncated in the checksum", good.substr(0, good.size() - 3)},
+      {"one more byte", good + "x"},
+      {"a record's bit flipped", [&] { std::string b = good; b[b.size() - 20] ^= 0x10; return b; }()},
+      {"the key's bit flipped", [&] { std::string b = good; b[20] ^= 0x01; return b; }()},
+      {"the count made huge", [&] {
+         std::string b = good;
+         const std::size_t keyBytes = std::size_t(uint8_t(b[12])) | std::size_t(uint8_t(b[13])) << 8;
+         b[16 + keyBytes + 7] = char(0x7f);
+         return b;
+       }()},
+      {"another magic", "FCCRNG9\n" + good.substr(8)},
+      {"garbage", std::string(good.size(), '\xa5')},
+  };
+  for (const auto& [what, bytes] : damages) {
+    SCOPED_TRACE(what);
+    writeAll(file, bytes);
+    {
+      const Store store(path, "", true);
+      expectSameRanges(store.brickRanges(), reference);
+      EXPECT_EQ(store.rangesFrom(), Store::RangesFrom::Leaves);
+    }
+    EXPECT_EQ(readAll(file), good) << "the cache file is written again, whole";
+    const Store again(path, "", true);
+    again.brickRanges();
+    EXPECT_EQ(again.rangesFrom(), Store::RangesFrom::Cache);
+  }
+}
+
+// Another source is another key: a file rewritten (other values, other size), or one whose modification
+// time alone changed, is read from its leaves again; so is another grid of the same file.
+TEST(CartesianBrickStore, ChangedSourceInvalidatesTheCachedRanges) {
+  const ScopedCache cache;
+  test::TempDir dir;
+  const std::string path = writeSphere(dir, "ls", 21.0f);
+  std::vector<Store::BrickRange> small;
+  {
+    const Store store(path, "", true);
+    small = store.brickRanges();
+  }
+  // Rewritten: a larger sphere under the same name.
+  writeSphere(dir, "ls", 27.0f);
+  std::vector<Store::BrickRange> large;
+  {
+    const Store store(path, "", true);
+    large = store.brickRanges();
+    EXPECT_EQ(store.rangesFrom(), Store::RangesFrom::Leaves) << "the old file's ranges were used";
+    EXPECT_GT(large.size(), small.size());
+    expectSameRanges(large, store.computeBrickRanges());
+  }
+  // Only the modification time.
+  struct stat st {};
+  ASSERT_EQ(::stat(path.c_str(), &st), 0);
+  timespec times[2] = {st.st_atim, st.st_mtim};
+  times[1].tv_sec -= 100;
+  ASSERT_EQ(::utimensat(AT_FDCWD, path.c_str(), times, 0), 0);
+  {
+    const Store store(path, "", true);
+    expectSameRanges(store.brickRanges(), large);
+    EXPECT_EQ(store.rangesFrom(), Store::RangesFrom::Leaves) << "a changed modification time must invalidate";
+  }
+  {
+    const Store store(path, "", true);
+    store.brickRanges();
+    EXPECT_EQ(store.rangesFrom(), Store::RangesFrom::Cache);
+  }
+}
+
+// Without caching (`--no-cache`) nothing is read from or written to the folder; a file whose leaves
+// showed damage keeps no ranges there (each open meets and reports the damage again); the folder is
+// bounded, least recently used out, with the conversions.
+TEST(CartesianBrickStore, NoCacheDamagedFilesAndTheFolderBound) {
+  {
+    const ScopedCache cache;
+    test::TempDir dir;
+    const std::string path = writeSphere(dir, "ls", 21.0f);
+    const Store store(path);
+    EXPECT_FALSE(store.brickRanges().empty());
+    EXPECT_EQ(store.rangeCacheFile(), "");
+    EXPECT_TRUE(cache.files().empty());
+  }
+  {
+    const ScopedCache cache;
+    test::TempDir dir;
+    auto grid = denseGrid(100.0f);
+    const std::string path = writeGrid(dir, "dense", grid);
+    test::damageLeafValues(path, {"Tree_float_5_4_3"}, openvdb::Coord(16, 8, 24));
+    for (int open = 0; open < 2; ++open) {
+      const Store store(path, "", true);
+      store.brickRanges();
+      EXPECT_EQ(store.rangesFrom(), Store::RangesFrom::Leaves);
+      EXPECT_EQ(store.damage().count, 1u) << "open " << open;
+    }
+    EXPECT_TRUE(cache.files().empty());
+  }
+  {
+    const ScopedCache cache("0");  // every file but the one just written goes
+    test::TempDir dir;
+    const std::string a = writeSphere(dir, "a", 21.0f), b = writeSphere(dir, "b", 21.0f);
+    Store(a, "", true).brickRanges();
+    ASSERT_EQ(cache.files().size(), 1u);
+    EXPECT_EQ(cache.files()[0].rfind("a.vdb-", 0), 0u);
+    Store(b, "", true).brickRanges();
+    ASSERT_EQ(cache.files().size(), 1u);
+    EXPECT_EQ(cache.files()[0].rfind("b.vdb-", 0), 0u) << "the least recently used file was kept";
   }
 }
 

@@ -1,7 +1,8 @@
 // Damaged files, as a user meets them: seeded campaigns of bit flips, truncations and overwritten runs
 // over small FCC files (synth, and a converted level set) run through `info`, `render` and `probe`:
 // every run ends by itself with status 0 or 1, and a failure says so in one line; never a signal.
-// And a brick whose bytes are damaged is rendered as a hole and named, exit 1 unless --allow-damaged.
+// And a brick whose bytes are damaged is rendered as a hole and named, exit 1 unless --allow-damaged; so is
+// a damaged leaf of a Cartesian grid rendered as it is (--reconstruction).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -12,9 +13,13 @@
 #include <random>
 #include <string>
 
+#include "ExrRead.h"
 #include "RunCommand.h"
 #include "io/VdbLeafReader.h"
 #include "sparse/FccGrid.h"
+#include "tests/io/LeafDamage.h"
+#include "tests/viewer/CartesianTestSupport.h"
+#include "viewer/Camera.h"
 
 namespace fcc::test {
 namespace {
@@ -144,6 +149,87 @@ TEST(CliDamage, DamagedBrickIsAHoleNamedInOneLine) {
   const CommandResult cleanCheck = runFccvdb("info " + good + " --check");
   EXPECT_EQ(cleanCheck.status, 0) << cleanCheck.err;
   EXPECT_THAT(cleanCheck.out, HasSubstr(", 0 damaged"));
+}
+
+// `render --reconstruction trilinear` of a Cartesian .vdb with one damaged leaf: the frame renders and
+// is written, one line names the file, the leaf and the damage (exit 1, or 0 with --allow-damaged, as
+// for FCC bricks); every pixel whose ray passes nowhere near the leaf before its surface is the
+// undamaged image's, bit for bit, and no surface lies inside the leaf (a trilinear cell blends the
+// data with the background the leaf reads as only within one voxel of its faces).
+TEST(CliDamage, DamagedCartesianLeafIsAHoleNamedInOneLine) {
+  TempDir dir;
+  const std::string good = dir / "plane.vdb", bad = dir / "damaged.vdb";
+  const float background = 100.0f;  // the plane z = 20.5 of f = z; the background lies above it
+  writeCartesianFile(good, [](const glm::ivec3& ijk) { return float(ijk.z); }, 1.0, openvdb::Vec3d(0.0), background);
+  std::filesystem::copy_file(good, bad);
+  damageLeafValues(bad, {"Tree_float_5_4_3"}, openvdb::Coord(16, 16, 16));
+  const glm::dvec3 leafLo(16.0), leafHi(24.0);
+
+  render::Camera camera;  // world = index space
+  camera.eye = glm::dvec3(30.0, 18.0, 70.0);
+  camera.lookat = glm::dvec3(22.0, 22.0, 20.0);
+  camera.fovYDegrees = 55.0;
+  const int w = 64, h = 48;
+  const std::string env = "FCCVDB_CACHE_DIR=" + (dir / "cache") + " ";
+  const std::string flags = " --reconstruction trilinear --iso 20.5 --res 64x48 --eye 30,18,70 --lookat 22,22,20 --up 0,1,0 --fov 55 --quiet";
+  const CommandResult clean = runShell(env + FCC_FCCVDB_EXE + " render " + good + " " + (dir / "good.exr") + flags);
+  if (failedForLackOfGl(clean)) GTEST_SKIP() << clean.err;
+  ASSERT_EQ(clean.status, 0) << clean.err;
+  EXPECT_EQ(clean.err, "");
+
+  const CommandResult r = runShell(env + FCC_FCCVDB_EXE + " render " + bad + " " + (dir / "bad.exr") + flags);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("1 damaged leaf rendered as holes"));
+  EXPECT_THAT(r.err, HasSubstr(bad + ": leaf at (16, 16, 16) is damaged"));
+  EXPECT_THAT(r.err, HasSubstr("--allow-damaged"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "bad.exr")) << "the image is written all the same";
+  const CommandResult allowed =
+      runShell(env + FCC_FCCVDB_EXE + " render " + bad + " " + (dir / "allowed.exr") + flags + " --allow-damaged");
+  EXPECT_EQ(allowed.status, 0) << allowed.err;
+  EXPECT_EQ(lineCount(allowed.err), 1) << allowed.err;
+  EXPECT_THAT(allowed.err, HasSubstr("1 damaged leaf"));
+
+  int ew = 0, eh = 0;
+  const char* channels[] = {"R", "G", "B", "A", "Z"};
+  std::vector<std::vector<float>> before, after;
+  for (const char* c : channels) {
+    before.push_back(readExrChannel(dir / "good.exr", c, ew, eh));
+    after.push_back(readExrChannel(dir / "allowed.exr", c, ew, eh));
+  }
+  ASSERT_EQ(ew, w);
+  ASSERT_EQ(eh, h);
+  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+  const auto meetsBox = [&](const glm::dvec3& d, double tMax, const glm::dvec3& lo, const glm::dvec3& hi) {
+    double t0 = 0.0, t1 = tMax;
+    for (int a = 0; a < 3; ++a) {
+      double ta = (lo[a] - camera.eye[a]) / d[a], tb = (hi[a] - camera.eye[a]) / d[a];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+    }
+    return t0 <= t1;
+  };
+  int unchanged = 0, holeBefore = 0;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const std::size_t i = std::size_t(py) * w + px;
+      const glm::dvec3 d = render::pixelRay(frame, px, py, w, h);
+      const auto insideLeaf = [&](float depth) {  // more than one voxel inside its faces
+        const glm::dvec3 p = camera.eye + double(depth) * d;
+        return glm::all(glm::greaterThan(p, leafLo + 1.0)) && glm::all(glm::lessThan(p, leafHi - 1.0));
+      };
+      const bool hitBefore = before[3][i] > 0.5f, hitAfter = after[3][i] > 0.5f;
+      holeBefore += hitBefore && insideLeaf(before[4][i]);
+      EXPECT_FALSE(hitAfter && insideLeaf(after[4][i])) << "a surface inside the damaged leaf at pixel (" << px << ", " << py << ")";
+      if (meetsBox(d, hitBefore ? double(before[4][i]) : 1e9, leafLo - 2.0, leafHi + 2.0)) continue;
+      ++unchanged;
+      for (int c = 0; c < 5; ++c)
+        ASSERT_EQ(after[c][i], before[c][i]) << channels[c] << " of pixel (" << px << ", " << py << ")";
+    }
+  std::printf("%d pixels away from the damaged leaf unchanged; %d saw the plane inside it\n", unchanged, holeBefore);
+  EXPECT_GT(unchanged, w * h / 10);
+  EXPECT_GT(holeBefore, 20) << "the camera must see the plane inside the damaged leaf";
 }
 
 }  // namespace

@@ -210,6 +210,39 @@ TEST(CliRender, IsoOutsideTheRangeWarnsInOneLine) {
   EXPECT_THAT(bench.err, HasSubstr("isovalue 1000 is outside the values the reconstruction takes in " + vdb));
 }
 
+// `render --reconstruction` keeps a Cartesian grid's brick ranges in the user cache beside the
+// conversions (one .ccranges file, docs/FORMAT.md) and renders the same image from them; --no-cache
+// neither reads nor writes one. (That a cached open reads no leaf: test_cartesian_store.)
+TEST(CliRender, CartesianRangesAreKeptInTheUserCache) {
+  TempDir dir;
+  const std::string cache = dir / "cache", source = dir / "sphere.vdb";
+  std::filesystem::copy_file(std::string(FCC_SHARED_DATA_DIR) + "/sphere.vdb", source);
+  auto render = [&](const std::string& out, const std::string& extra) {
+    return runShell("FCCVDB_CACHE_DIR=" + cache + " " + FCC_FCCVDB_EXE + " render " + source + " " + (dir / out) +
+                    " --res 48x48 --quiet --reconstruction tricubic" + extra);
+  };
+  auto rangeFiles = [&] {
+    int n = 0;
+    std::error_code ec;
+    for (auto& e : std::filesystem::directory_iterator(cache, ec)) n += e.path().extension() == ".ccranges";
+    return n;
+  };
+  const CommandResult uncached = render("a.exr", " --no-cache");
+  if (failedForLackOfGl(uncached)) GTEST_SKIP() << uncached.err;
+  ASSERT_EQ(uncached.status, 0) << uncached.err;
+  EXPECT_EQ(rangeFiles(), 0) << "--no-cache wrote a range file";
+  ASSERT_EQ(render("b.exr", "").status, 0);
+  EXPECT_EQ(rangeFiles(), 1);
+  ASSERT_EQ(render("c.exr", "").status, 0);  // from the cache
+  EXPECT_EQ(rangeFiles(), 1);
+  int w = 0, h = 0;
+  for (const char* c : {"R", "A", "Z"}) {
+    const std::vector<float> a = readExrChannel(dir / "a.exr", c, w, h);
+    EXPECT_EQ(readExrChannel(dir / "b.exr", c, w, h), a) << c;
+    EXPECT_EQ(readExrChannel(dir / "c.exr", c, w, h), a) << c << ": the cached ranges gave another image";
+  }
+}
+
 // Any input convert takes renders directly: converted once into the cache, then reused; a changed
 // source is converted again; --no-cache converts into a temporary file that does not outlive the run.
 TEST(CliRender, CartesianInputConvertsOnceIntoTheCacheAndIsReused) {

@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,7 @@ struct SessionHarness {
   static constexpr std::size_t kLargePoolBytes = std::size_t(64) << 20;
   // The window's size (the tests' pixel helpers assume kWidth x kHeight).
   int width = kWidth, height = kHeight;
-  io::BrickStore store;
+  std::optional<io::BrickStore> store;  // the FCC file's, for the sessions the harness makes
   std::unique_ptr<render::FccBrickSource> source;  // DVR sessions' (the other constructor)
   render::HeadlessImGui imgui{width, height};
   render::OffscreenTarget target{width, height};
@@ -35,7 +36,7 @@ struct SessionHarness {
   // panel, more image, fewer rays on llvmpipe); `view`'s own window is 1280 x 800 at font scale 1.
   explicit SessionHarness(const std::string& path, float iso = 0.3f, std::size_t gpuCacheBytes = kSmallPoolBytes,
                           glm::ivec2 size = {kWidth, kHeight}, float fontScale = 0.5f)
-      : width(size.x), height(size.y), store(path) {
+      : width(size.x), height(size.y), store(std::in_place, path) {
     ImGuiIO& io = ImGui::GetIO();
     io.FontGlobalScale = fontScale;
     // The keys text fields use, mapped as GLFW's backend maps them.
@@ -46,18 +47,24 @@ struct SessionHarness {
     render::RenderOptions options;
     options.iso = iso;
     options.gpuCacheBytes = gpuCacheBytes;
-    session = std::make_unique<render::ViewerSession>(store, options, smallBlobsCamera(), render::summarizeDataset(store));
+    session = std::make_unique<render::ViewerSession>(*store, options, smallBlobsCamera(), render::summarizeDataset(*store));
+  }
+  // ImGui and the target only: the test makes the session (a Cartesian source, a loop over datasets).
+  struct NoSession {};
+  explicit SessionHarness(NoSession, glm::ivec2 size = {kWidth, kHeight}, float fontScale = 0.5f)
+      : width(size.x), height(size.y) {
+    ImGui::GetIO().FontGlobalScale = fontScale;
   }
   // A DVR session over an FCC source with the preset `tf` fitted as `view --mode dvr --tf` fits it.
   SessionHarness(const std::string& path, const std::string& tf, std::size_t gpuCacheBytes = kLargePoolBytes)
-      : store(path), source(std::make_unique<render::FccBrickSource>(store, std::size_t(64) << 20)) {
+      : store(std::in_place, path), source(std::make_unique<render::FccBrickSource>(*store, std::size_t(64) << 20)) {
     ImGui::GetIO().FontGlobalScale = 0.5f;
     render::RenderOptions options;
     options.gpuCacheBytes = gpuCacheBytes;
     render::DvrTransfer dvr{tf, render::fitTransferFunction(transferFunctionPreset(tf), *source),
                             OpticalScale{render::defaultUnitDistance(*source), 1.0}};
-    session = std::make_unique<render::ViewerSession>(*source, &store, options, smallBlobsCamera(),
-                                                      render::summarizeDataset(store), std::move(dvr));
+    session = std::make_unique<render::ViewerSession>(*source, &*store, options, smallBlobsCamera(),
+                                                      render::summarizeDataset(*store), std::move(dvr));
   }
 
   // One frame; `input` sets ImGui's input state for it (keys, mouse) before ImGui::NewFrame().

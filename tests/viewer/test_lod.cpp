@@ -198,6 +198,7 @@ class SlowSource : public render::BrickSource {
     inner_.decode(chunk);
   }
   render::HostCacheUse hostCacheUse() const override { return inner_.hostCacheUse(); }
+  io::Damage damage() const override { return inner_.damage(); }
 
  private:
   const render::BrickSource& inner_;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "RenderTestSupport.h"
 #include "io/CartesianBrickStore.h"
 #include "io/VdbFile.h"
+#include "tests/io/LeafDamage.h"
 #include "sparse/CubicBSpline.h"
 #include "sparse/LatticeSamples.h"
 #include "sparse/ReferenceRaycast.h"
@@ -198,6 +200,97 @@ TEST_F(RenderCartesian, SmallPoolGivesTheSameImage) {
       hits += i % 4 == 3 && reference.rgba[i] > 0.5f;
     }
     EXPECT_GT(hits, w * h / 10);
+  }
+}
+
+// Whether the ray eye + t d, 0 <= t <= tMax, meets the box [lo, hi] (slabs).
+bool rayMeetsBox(const glm::dvec3& eye, const glm::dvec3& d, double tMax, const glm::dvec3& lo, const glm::dvec3& hi) {
+  double t0 = 0.0, t1 = tMax;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0.0) {
+      if (eye[a] < lo[a] || eye[a] > hi[a]) return false;
+      continue;
+    }
+    double ta = (lo[a] - eye[a]) / d[a], tb = (hi[a] - eye[a]) / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 <= t1;
+}
+
+// A leaf whose bytes are damaged renders as a hole, with every CC reconstruction: the frame renders
+// (no throw), the damage is recorded once, no surface lies inside the leaf (but within the
+// reconstruction's reach of its faces: the cells there blend the data with the background the leaf
+// now holds), and a ray that passes nowhere near the leaf — not within `reach` of it before its
+// surface — gives the undamaged image's pixel: bit for bit where the blocks it reads are unchanged;
+// for the interpolating tricubic within float noise (its prefilter spreads the jump at the leaf's
+// faces, decaying by 0.27 a voxel, over every block around).
+TEST_F(RenderCartesian, DamagedLeafRendersAsAHole) {
+  TempDir dir;
+  const std::string good = dir / "plane.vdb", bad = dir / "damaged.vdb";
+  // The plane z = 20.5 of f = z; the background (also what the damaged leaf reads as) lies above it.
+  const float background = 100.0f, iso = 20.5f;
+  writeCartesianFile(good, [](const glm::ivec3& ijk) { return float(ijk.z); }, 1.0, openvdb::Vec3d(0.0), background);
+  std::filesystem::copy_file(good, bad);
+  const glm::dvec3 leafLo(16.0), leafHi(24.0);  // the leaf's voxels [16, 24)^3 hold the plane
+  test::damageLeafValues(bad, {"Tree_float_5_4_3"}, openvdb::Coord(16, 16, 16));
+
+  render::Camera camera;  // world = index space
+  camera.eye = glm::dvec3(30.0, 18.0, 70.0);
+  camera.lookat = glm::dvec3(22.0, 22.0, 20.0);
+  camera.fovYDegrees = 55.0;
+  const int w = 64, h = 64;
+  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+  struct Case {
+    const char* name;
+    double reach;       // index units around the leaf where the image may change
+    double wall;        // index units inside the leaf's faces where the blend may still cross the isovalue
+    float tolerance;    // on every channel of the pixels beyond the reach
+  };
+  for (const Case& c : {Case{"trilinear", 2.0, 1.0, 0.0f}, Case{"type6", 3.0, 1.5, 0.0f},
+                        Case{"tricubic-bspline", 3.0, 2.0, 0.0f}, Case{"tricubic", 10.0, 2.0, 1e-3f}}) {
+    SCOPED_TRACE(c.name);
+    const render::FrameImages reference = renderCartesian(good, c.name, camera, w, h, iso);
+    const io::CartesianBrickStore store(bad);
+    const render::CartesianBrickSource source(store, findReconstruction(c.name));
+    render::RenderOptions options;
+    options.iso = iso;
+    render::Raycaster raycaster(source, options);
+    raycaster.render(camera, w, h);
+    const render::FrameImages damaged = raycaster.readImages();
+    EXPECT_EQ(source.damage().count, 1u);
+    EXPECT_NE(source.damage().first.find("leaf at (16, 16, 16) is damaged"), std::string::npos) << source.damage().first;
+
+    int unchanged = 0, holeBefore = 0;
+    for (int py = 0; py < h; ++py)
+      for (int px = 0; px < w; ++px) {
+        const std::size_t i = std::size_t(py) * w + px;
+        const glm::dvec3 d = render::pixelRay(frame, px, py, w, h);
+        const bool hitBefore = reference.rgba[4 * i + 3] > 0.5f, hitAfter = damaged.rgba[4 * i + 3] > 0.5f;
+        const double tBefore = hitBefore ? reference.normalDepth[4 * i + 3] : 1e9;
+        const glm::dvec3 inset(c.wall);
+        const auto insideLeaf = [&](double t) {
+          const glm::dvec3 p = camera.eye + t * d;
+          return glm::all(glm::greaterThan(p, leafLo + inset)) && glm::all(glm::lessThan(p, leafHi - inset));
+        };
+        if (hitBefore && insideLeaf(tBefore)) ++holeBefore;
+        EXPECT_FALSE(hitAfter && insideLeaf(damaged.normalDepth[4 * i + 3]))
+            << "a surface inside the damaged leaf at pixel (" << px << ", " << py << ")";
+        if (rayMeetsBox(camera.eye, d, tBefore, leafLo - c.reach, leafHi + c.reach)) continue;
+        ++unchanged;
+        for (int k = 0; k < 4; ++k) {
+          ASSERT_NEAR(damaged.rgba[4 * i + k], reference.rgba[4 * i + k], c.tolerance) << "pixel (" << px << ", " << py << ")";
+          if (!hitBefore) continue;  // a miss's depth is +inf
+          ASSERT_NEAR(damaged.normalDepth[4 * i + k], reference.normalDepth[4 * i + k], c.tolerance)
+              << "pixel (" << px << ", " << py << ")";
+        }
+        EXPECT_EQ(hitAfter, hitBefore);
+      }
+    std::printf("%s: %d pixels beyond the damaged leaf's reach unchanged, %d pixels saw the plane inside the leaf\n",
+                c.name, unchanged, holeBefore);
+    EXPECT_GT(unchanged, w * h / 10);
+    EXPECT_GT(holeBefore, 20) << "the camera must see the plane inside the damaged leaf";
   }
 }
 

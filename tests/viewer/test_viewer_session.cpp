@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "CartesianTestSupport.h"
 #include "SessionHarness.h"
 #include "tests/tools/ExrRead.h"
 #include "viewer/CameraFile.h"
@@ -335,9 +336,9 @@ TEST_F(ViewerSession, OpenFieldAsksForAnotherFile) {
   h.type("/data/other.nii");
   EXPECT_FALSE(h.session->takeOpenRequest()) << "nothing is asked before Enter";
   h.press(GLFW_KEY_ENTER);
-  const std::optional<std::string> asked = h.session->takeOpenRequest();
+  const std::optional<render::OpenRequest> asked = h.session->takeOpenRequest();
   ASSERT_TRUE(asked);
-  EXPECT_EQ(*asked, "/data/other.nii");
+  EXPECT_EQ(*asked, (render::OpenRequest{"/data/other.nii", ""}));
   EXPECT_FALSE(h.session->openFieldShown());
   EXPECT_FALSE(h.session->takeOpenRequest()) << "asked once";
 
@@ -348,7 +349,7 @@ TEST_F(ViewerSession, OpenFieldAsksForAnotherFile) {
   EXPECT_FALSE(h.session->takeOpenRequest());
 
   h.session->requestOpen("/dropped.vdb");
-  EXPECT_EQ(h.session->takeOpenRequest().value_or(""), "/dropped.vdb");
+  EXPECT_EQ(h.session->takeOpenRequest().value_or(render::OpenRequest{}).path, "/dropped.vdb");
 }
 
 // `fccvdb view`'s loop over files (viewer/OpenAnotherFile.h, the code cmd_view runs): a path typed after
@@ -376,7 +377,7 @@ TEST_F(ViewerSession, OpeningAnotherFileShowsItAndReleasesTheOldOne) {
   const render::ViewerSession* firstSession = h.session.get();
   std::vector<std::string> opened;
   int runs = 0;
-  const auto run = [&](render::ViewerSession& s) -> std::optional<std::string> {
+  const auto run = [&](render::ViewerSession& s) -> std::optional<render::OpenRequest> {
     EXPECT_EQ(&s, h.session.get());
     switch (runs++) {
       case 0:  // the first file: shown; then O, a path that does not open, Enter
@@ -402,14 +403,158 @@ TEST_F(ViewerSession, OpeningAnotherFileShowsItAndReleasesTheOldOne) {
         return std::nullopt;
     }
   };
+  const auto noReconstructions = [](const std::string&) -> std::shared_ptr<io::BrickStore> {
+    throw ValueError("FCC data has one reconstruction");
+  };
   render::runOpeningFiles(data, h.session, run, [](const std::string& path) { return std::make_shared<io::BrickStore>(path); },
-                          makeSession, [&](const std::string& path) { opened.push_back(path); });
+                          noReconstructions, makeSession,
+                          [&](const render::OpenRequest& request) { opened.push_back(request.path); });
   EXPECT_EQ(runs, 3);
   EXPECT_EQ(opened, std::vector<std::string>{second});
   ASSERT_TRUE(h.session);
   EXPECT_EQ(data->path(), second);
   const int panel = int(std::ceil(h.session->panelWidth()));
   EXPECT_GT(differingChannels(firstImage, h.pixels(), panel), 1000) << "the window still shows the first file";
+}
+
+// A Cartesian grid's data as `view` holds it (tools/cmd_view.cpp's Dataset): the store, shared by the
+// sources of each reconstruction.
+struct CartesianData {
+  std::shared_ptr<io::CartesianBrickStore> store;
+  std::shared_ptr<render::CartesianBrickSource> source;
+};
+
+// The panel of a Cartesian session lists the CC reconstructions. Choosing tricubic on a trilinear
+// session through the combo asks for the data again with it, and `view`'s loop (viewer/OpenAnotherFile.h)
+// replaces the session over the same store (nothing read again for the ranges): the source's
+// reconstruction is tricubic, the camera and the look (isovalue, background) are kept — the image is
+// a fresh tricubic session's with that camera and look, bit for bit — and it differs from the trilinear
+// one. A reconstruction of another lattice leaves the session as it was, with a notice. FCC data
+// shows its one reconstruction without a choice.
+TEST_F(ViewerSession, CartesianPanelSwitchesTheReconstructionKeepingTheView) {
+  TempDir dir;
+  const std::string path = dir / "wavy.vdb";
+  test::writeCartesianFile(path, test::wavy, 1.0, openvdb::Vec3d(0.0));
+  render::Camera camera;
+  camera.lookat = glm::dvec3(24.0);
+  camera.eye = glm::dvec3(90.0, 70.0, 80.0);
+  const glm::vec3 background(0.2f, 0.1f, 0.05f);
+  const float iso = 0.3f;
+  const auto makeSession = [&](const CartesianData& d) {
+    render::RenderOptions options;
+    options.iso = 0.35f;
+    options.gpuCacheBytes = SessionHarness::kLargePoolBytes;
+    return std::make_unique<render::ViewerSession>(*d.source, nullptr, options, camera, render::summarizeSource(*d.source));
+  };
+  const auto sourceOf = [](const io::CartesianBrickStore& store, const std::string& name) {
+    return std::make_shared<render::CartesianBrickSource>(store, findReconstruction(name));
+  };
+  // The pixels beside the panel that differ between two images of the harness.
+  const auto differing = [](const SessionHarness& h, const std::vector<unsigned char>& a, const std::vector<unsigned char>& b) {
+    const int panel = int(std::ceil(h.session->panelWidth()));
+    int n = 0;
+    for (int y = 0; y < h.height; ++y)
+      for (int x = panel; x < h.width; ++x)
+        for (int c = 0; c < 4; ++c) {
+          const std::size_t i = (std::size_t(y) * h.width + x) * 4 + c;
+          n += a[i] != b[i];
+        }
+    return n;
+  };
+
+  std::vector<unsigned char> trilinearImage, tricubicImage;
+  render::Camera keptCamera;
+  {
+    SessionHarness h(SessionHarness::NoSession{}, {SessionHarness::kWidth, 480});
+    auto store = std::make_shared<io::CartesianBrickStore>(path);
+    CartesianData data{store, sourceOf(*store, "trilinear")};
+    h.session = makeSession(data);
+    std::vector<render::OpenRequest> opened;
+    int runs = 0;
+    uint64_t leavesReadBySources = 0;  // while a source of another reconstruction is made
+    const auto run = [&](render::ViewerSession& s) -> std::optional<render::OpenRequest> {
+      switch (runs++) {
+        case 0: {  // trilinear: another camera and look, then tricubic from the combo
+          EXPECT_EQ(s.settings().reconstruction, "trilinear");
+          s.setCamera(render::orbit(s.camera(), 60.0, -25.0));
+          s.settings().background = background;
+          s.settings().iso = iso;
+          EXPECT_TRUE(h.settle());
+          keptCamera = s.camera();
+          trilinearImage = h.pixels();
+          const render::ImRectF combo = s.panelLayout().reconstructionCombo;
+          EXPECT_FALSE(combo.empty()) << "no reconstruction combo for a Cartesian grid";
+          EXPECT_LT(combo.y1, float(h.height)) << "the combo is below the window";
+          h.click(combo.centreX(), combo.centreY());
+          h.frame();
+          std::vector<std::string> listed;
+          render::ImRectF tricubic;
+          for (const auto& [name, rect] : s.panelLayout().reconstructionItems) {
+            listed.push_back(name);
+            if (name == "tricubic") tricubic = rect;
+          }
+          EXPECT_EQ(listed, (std::vector<std::string>{"trilinear", "tricubic", "tricubic-bspline", "type6"}));
+          EXPECT_FALSE(tricubic.empty());
+          h.click(tricubic.centreX(), tricubic.centreY());
+          return s.takeOpenRequest();
+        }
+        case 1: {  // tricubic, with the view kept; then a reconstruction of another lattice
+          EXPECT_EQ(std::string(s.source().reconstruction().name), "tricubic");
+          EXPECT_EQ(s.settings().reconstruction, "tricubic");
+          EXPECT_EQ(s.camera().eye, keptCamera.eye);
+          EXPECT_EQ(s.camera().lookat, keptCamera.lookat);
+          EXPECT_EQ(s.camera().up, keptCamera.up);
+          EXPECT_EQ(s.settings().background, background);
+          EXPECT_EQ(s.settings().iso, iso);
+          EXPECT_TRUE(h.settle());
+          tricubicImage = h.pixels();
+          EXPECT_GT(differing(h, trilinearImage, tricubicImage), 100) << "tricubic must change the image";
+          s.settings().reconstruction = "boxspline";
+          h.frame();
+          return s.takeOpenRequest();
+        }
+        default:  // still tricubic, saying why; then the window closes
+          EXPECT_EQ(std::string(s.source().reconstruction().name), "tricubic");
+          EXPECT_EQ(s.settings().reconstruction, "tricubic");
+          EXPECT_EQ(s.notice().rfind("cannot switch to boxspline: ", 0), 0u) << s.notice();
+          return std::nullopt;
+      }
+    };
+    render::runOpeningFiles(
+        data, h.session, run, [](const std::string&) -> CartesianData { throw ValueError("no other file here"); },
+        [&](const std::string& name) {
+          const uint64_t before = data.store->leavesRead();
+          CartesianData other{data.store, nullptr};
+          try {
+            other.source = sourceOf(*data.store, name);
+          } catch (...) {
+            leavesReadBySources += data.store->leavesRead() - before;
+            throw;
+          }
+          leavesReadBySources += data.store->leavesRead() - before;
+          return other;
+        },
+        makeSession,
+        [&](const render::OpenRequest& request) { opened.push_back(request); });
+    EXPECT_EQ(runs, 3);
+    EXPECT_EQ(opened, (std::vector<render::OpenRequest>{{"", "tricubic"}}));
+    EXPECT_EQ(data.store, store);
+    EXPECT_EQ(leavesReadBySources, 0u) << "the ranges were read again for another reconstruction";
+
+    // A fresh tricubic session with that camera and look draws the same image.
+    CartesianData fresh{store, sourceOf(*store, "tricubic")};
+    h.session.reset();
+    h.session = makeSession(fresh);
+    h.session->setCamera(keptCamera);
+    h.session->settings().background = background;
+    h.session->settings().iso = iso;
+    EXPECT_TRUE(h.settle());
+    EXPECT_EQ(differing(h, tricubicImage, h.pixels()), 0) << "the switched session's view is not the one kept";
+    h.session.reset();
+  }
+  SessionHarness fcc(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes, {SessionHarness::kWidth, 480});
+  fcc.frame();
+  EXPECT_TRUE(fcc.session->panelLayout().reconstructionCombo.empty()) << "FCC data has no choice";
 }
 
 // At `view`'s default window (1280 x 800, font scale 1) the panel, its sections as they open, is taller

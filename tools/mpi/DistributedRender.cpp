@@ -228,11 +228,13 @@ class DistributedRenderer {
     return all;
   }
 
-  // Damaged bricks met by all ranks together (collective).
-  uint64_t damagedBricks() const {
-    uint64_t mine = data_->damage().bricks, all = 0;
+  // Damage met by all ranks together (collective): FCC bricks or Cartesian leaves (io/Damage.h).
+  io::Damage damage() const {
+    io::Damage d = data_->damage();
+    uint64_t mine = d.count, all = 0;
     MPI_Allreduce(&mine, &all, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
-    return all;
+    d.count = all;
+    return d;
   }
 
   bool dvr() const { return options_.mode == render::RenderMode::Dvr; }
@@ -269,8 +271,8 @@ int renderDistributed(const DistributedRenderRequest& request) {
   cli::RankReport report;
   const std::vector<float> whole = renderer->frame(renderer->camera(), report);
   const std::vector<cli::RankReport> reports = renderer->reports(report);
-  const uint64_t damaged = renderer->damagedBricks();
-  const int status = damaged > 0 && !request.allowDamaged ? 1 : 0;
+  const io::Damage damage = renderer->damage();
+  const int status = damage.count > 0 && !request.allowDamaged ? 1 : 0;
   if (w.rank != 0) return status;
 
   const int width = renderer->width(), height = renderer->height();
@@ -301,9 +303,9 @@ int renderDistributed(const DistributedRenderRequest& request) {
     std::fprintf(stderr, "wrote %s: %dx%d, %s, %d ranks, %llu bricks read in all, slowest render %.3f s, compositing %.3f s\n",
                  request.output.c_str(), width, height, what.c_str(), w.size, (unsigned long long)read, slowest, compositing);
   }
-  if (damaged > 0)
-    std::fprintf(stderr, "fccvdb: %llu damaged brick%s rendered as holes in %s%s\n", (unsigned long long)damaged,
-                 damaged == 1 ? "" : "s", request.output.c_str(), request.allowDamaged ? "" : "; --allow-damaged to exit 0");
+  if (damage.count > 0)
+    std::fprintf(stderr, "fccvdb: %s rendered as holes in %s%s\n", io::damagedCountText(damage).c_str(),
+                 request.output.c_str(), request.allowDamaged ? "" : "; --allow-damaged to exit 0");
   return status;
 }
 
