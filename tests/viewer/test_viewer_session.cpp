@@ -15,6 +15,7 @@
 #include "CartesianTestSupport.h"
 #include "SessionHarness.h"
 #include "tests/tools/ExrRead.h"
+#include "viewer/BccBrickSource.h"
 #include "viewer/CameraFile.h"
 #include "viewer/CameraPath.h"
 #include "viewer/HistogramAxis.h"
@@ -555,6 +556,43 @@ TEST_F(ViewerSession, CartesianPanelSwitchesTheReconstructionKeepingTheView) {
   SessionHarness fcc(test::writeSmallBlobs(dir), 0.3f, SessionHarness::kLargePoolBytes, {SessionHarness::kWidth, 480});
   fcc.frame();
   EXPECT_TRUE(fcc.session->panelLayout().reconstructionCombo.empty()) << "FCC data has no choice";
+}
+
+// A BCC dataset's panel lists the BCC reconstructions; choosing one asks for the data again with it
+// (view's loop then opens the cosets with it, tools/RenderData.h, as for a Cartesian grid above).
+TEST_F(ViewerSession, BccPanelOffersTheBccReconstructions) {
+  TempDir dir;
+  const std::string path = dir / "wavy_bcc.vdb";
+  test::writeBccFile(path, test::wavy, 1.0, openvdb::Vec3d(0.0));
+  render::Camera camera;
+  camera.lookat = glm::dvec3(24.0);
+  camera.eye = glm::dvec3(90.0, 70.0, 80.0);
+  const auto barycentric = std::make_shared<render::BccBrickSource>(path, findReconstruction("barycentric"));
+  render::RenderOptions options;
+  options.iso = 0.35f;
+  options.gpuCacheBytes = SessionHarness::kLargePoolBytes;
+  SessionHarness h(SessionHarness::NoSession{}, {SessionHarness::kWidth, 480});
+  h.session = std::make_unique<render::ViewerSession>(*barycentric, nullptr, options, camera, render::summarizeSource(*barycentric));
+  render::ViewerSession& s = *h.session;
+  EXPECT_TRUE(h.settle());
+  EXPECT_EQ(s.settings().reconstruction, "barycentric");
+  const render::ImRectF combo = s.panelLayout().reconstructionCombo;
+  ASSERT_FALSE(combo.empty()) << "no reconstruction combo for a BCC dataset";
+  h.click(combo.centreX(), combo.centreY());
+  h.frame();
+  std::vector<std::string> listed;
+  render::ImRectF sheared;
+  for (const auto& [name, rect] : s.panelLayout().reconstructionItems) {
+    listed.push_back(name);
+    if (name == "sheared-trilinear") sheared = rect;
+  }
+  EXPECT_EQ(listed, (std::vector<std::string>{"barycentric", "sheared-trilinear", "bilinear-spatial", "bilinear"}));
+  ASSERT_FALSE(sheared.empty());
+  h.click(sheared.centreX(), sheared.centreY());
+  const std::optional<render::OpenRequest> request = s.takeOpenRequest();
+  ASSERT_TRUE(request.has_value());
+  EXPECT_EQ(*request, (render::OpenRequest{"", "sheared-trilinear"}));
+  h.session.reset();
 }
 
 // At `view`'s default window (1280 x 800, font scale 1) the panel, its sections as they open, is taller
