@@ -152,7 +152,7 @@ TEST(CliRender, BadInputsGiveOneLineStatus1AndNoOutput) {
       {"render " + (dir / "nothere.vdb") + " -o " + (dir / "h.png"), "nothere.vdb"},
       {"render " + vdb + " -o " + (dir / "i.png") + " --eye 1,1,1 --lookat 1,1,1", "coincide"},
       {"render " + cartesian + " -o " + (dir / "j.png") + " --reconstruction nearest", "valid: trilinear"},
-      {"render " + cartesian + " -o " + (dir / "k.png") + " --reconstruction barycentric", "FCC and Cartesian grids only"},
+      {"render " + cartesian + " -o " + (dir / "k.png") + " --reconstruction barycentric", "not a BCC dataset"},
       {"render " + vdb + " -o " + (dir / "l.png") + " --reconstruction trilinear", "holds no grid of type Tree_float"},
       {"render " + vdb + " -o " + (dir / "m.png") + " --mode dvr --tf nope", "grayscale"},
       {"render " + vdb + " -o " + (dir / "n.png") + " --mode dvr --tf " + (dir / "nothere.json"), "nothere.json"},

@@ -84,6 +84,24 @@ inline std::string describe(const render::PixelRect& r) {
 // slots (by layout), so a frame needs several passes and bricks are evicted and reloaded.
 inline constexpr std::size_t kSmallPoolBytes = std::size_t(1) << 20;
 
+// Two images bit for bit, colour and normal/depth (a failure names the first component that differs);
+// the count of hit pixels (alpha > 0.5) of the first.
+inline int expectSameImages(const render::FrameImages& a, const render::FrameImages& b) {
+  EXPECT_EQ(a.rgba.size(), b.rgba.size());
+  EXPECT_EQ(a.normalDepth.size(), b.normalDepth.size());
+  if (a.rgba.size() != b.rgba.size() || a.normalDepth.size() != b.normalDepth.size()) return 0;
+  int hits = 0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+    if (a.rgba[i] != b.rgba[i] || !(a.normalDepth[i] == b.normalDepth[i])) {
+      ADD_FAILURE() << "component " << i << ": " << a.rgba[i] << " vs " << b.rgba[i] << ", normal/depth "
+                    << a.normalDepth[i] << " vs " << b.normalDepth[i];
+      return hits;
+    }
+    hits += i % 4 == 3 && a.rgba[i] > 0.5f;
+  }
+  return hits;
+}
+
 inline std::string writeSmallBlobs(const TempDir& dir) {
   const std::string path = dir / "blobs.vdb";
   EXPECT_EQ(test::runFccvdb("synth blobs " + path + " --dims 96,96,96 --quiet").status, 0);
