@@ -47,6 +47,10 @@ const float kDvrAmbient = 0.3;
 // The ray and the unit cell integrateCell is in (dvrBeginCell), for the gradient at a sub-step.
 vec3 gDvrO, gDvrD;
 ivec3 gDvrCell;
+// 2^-k while a pyramid level k is marched (raycast.comp's FCC_LOD path; 1 otherwise): its index space is
+// level 0's scaled by 2^-k, so its gradient is 2^k times level 0's while its d is 2^-k times, and
+// uNormalFromIndex (level 0's) needs the gradient scaled back.
+float gDvrLevelScale = 1.0;
 // march_fcc.glsl's or march_cc.glsl's: the reconstruction's index-space gradient at xyz in unit cell
 // `cell` (xyz kept inside it, so the stencil stays inside the slot's halo).
 vec3 dvrGradient(ivec3 cell, vec3 xyz);
@@ -55,7 +59,7 @@ vec3 dvrGradient(ivec3 cell, vec3 xyz);
 // one, and d (index displacement per world unit) gives dot(world gradient, unit world direction).
 float dvrShadeAt(float t) {
   vec3 g = dvrGradient(gDvrCell, gDvrO + t * gDvrD);
-  float len = length(uNormalFromIndex * g);
+  float len = length(uNormalFromIndex * g) * gDvrLevelScale;
   if (!(len > 0.0)) return 1.0;
   return kDvrAmbient + (1.0 - kDvrAmbient) * min(abs(dot(g, gDvrD)) / len, 1.0);
 }

@@ -463,6 +463,9 @@ void main() {
           invDLevel = invD * uLevelSize[level];
         }
 #if FCC_MODE_DVR
+#if FCC_DVR_SHADING
+        gDvrLevelScale = uLevelScale[level];
+#endif
         if (marchBrick(b >> level, entry, oLevel, dLevel, invDLevel, t, tExitBrick, st)) {
           found = true;  // opaque enough: nothing behind is integrated or requested
           break;
@@ -577,7 +580,7 @@ void main() {
   imageStore(uResume, pixel, vec4(provisional ? tProvisional : -1.0));
   if (provisional) imageStore(uResumeState, pixel, vec4(stateProvisional));
   if (found && !provisional) atomicAdd(levelHits[hitLevel], 1u);
-  // (A coarser level's gradient is in its own index space: 2^-k times level 0's, the same direction.)
+  // (A coarser level's gradient is in its own index space: 2^k times level 0's, the same direction.)
 #else
   imageStore(uResume, pixel, vec4(-1.0));
 #endif

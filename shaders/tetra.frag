@@ -47,8 +47,13 @@ void main() {
   vec3 o = (uIndexFromWorld * vec4(uEye, 1.0)).xyz;
   vec3 d = mat3(uIndexFromWorld) * dirWorld;
   Tetrahedron tet = tetrahedra[vTetrahedron];
-  // Only this face's fragments of rays that enter through it (d against its outward normal).
-  if (!(dot(tet.plane[vFace].xyz, d) < 0.0)) discard;
+  // Only this face's fragments of rays that enter through it (d against its outward normal); with the
+  // eye inside the tetrahedron, whose entering faces lie behind it (clipped), the face each ray leaves
+  // through instead, from t = 0.
+  bool eyeInside = true;
+  for (int f = 0; f < 4; ++f) eyeInside = eyeInside && dot(tet.plane[f].xyz, o) <= tet.plane[f].w;
+  float faceDen = dot(tet.plane[vFace].xyz, d);
+  if (eyeInside ? !(faceDen > 0.0) : !(faceDen < 0.0)) discard;
   // Entering planes (d against the outward normal) raise tIn, leaving ones lower tOut.
   float tIn = 0.0, tOut = 1.0 / 0.0;
   for (int f = 0; f < 4; ++f) {

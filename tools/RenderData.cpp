@@ -124,6 +124,8 @@ int RenderData::applyLevels(const RenderFlags& flags, bool levelsByDefault, bool
 std::unique_ptr<render::ProjectedTetrahedra> RenderData::projectedTetrahedra(const RenderFlags& flags,
                                                                             const render::RenderOptions& options) const {
   if (flags.dvrMethod != "tetrahedra") return nullptr;
+  if (!flags.clip.empty())
+    throw ValueError("--dvr-method tetrahedra draws every tetrahedron with data: --clip is the raycaster's (drop one of them)");
   render::ProjectedTetrahedra::Options o;
   o.transfer = options.transfer;
   o.shading = options.dvrShading;

@@ -66,18 +66,25 @@ BccBrickSource::BccBrickSource(const std::string& path, const ReconstructionInfo
 
   // BCC brick b's coset voxels [8b - 2, 8b + 10) lie in coset brick B = b >> 1's block [16B - 2, 16B + 18):
   // the hull of both cosets' ranges there (the background where a coset lists none) bounds it.
-  std::unordered_map<uint64_t, glm::vec2> cosetRange;
+  struct Listed {
+    glm::vec2 range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+    int cosets = 0;  // how many cosets list the brick: the background joins the hull below two
+  };
+  std::unordered_map<uint64_t, Listed> cosetRange;
   std::vector<glm::ivec3> cosetBricks;
   const float bg = background();
   for (const io::CartesianBrickStore* store : {primary_.get(), secondary_.get()})
     for (const auto& r : store->brickRanges()) {
-      auto [it, added] = cosetRange.try_emplace(brickKey(r.brick), glm::vec2(bg));
+      auto [it, added] = cosetRange.try_emplace(brickKey(r.brick));
       if (added) cosetBricks.push_back(r.brick);
-      it->second = glm::vec2(std::min(it->second.x, r.lo), std::max(it->second.y, r.hi));
+      Listed& l = it->second;
+      l.range = glm::vec2(std::min(l.range.x, r.lo), std::max(l.range.y, r.hi));
+      ++l.cosets;
     }
   valueMin_ = valueMax_ = bg;
   for (const glm::ivec3& B : cosetBricks) {
-    const glm::vec2 range = cosetRange[brickKey(B)];
+    const Listed& l = cosetRange[brickKey(B)];
+    const glm::vec2 range = l.cosets < 2 ? glm::vec2(std::min(l.range.x, bg), std::max(l.range.y, bg)) : l.range;
     valueMin_ = std::min(valueMin_, range.x);
     valueMax_ = std::max(valueMax_, range.y);
     for (int i = 0; i < 8; ++i) ranges_.push_back({2 * B + glm::ivec3(i & 1, (i >> 1) & 1, i >> 2), range.x, range.y});

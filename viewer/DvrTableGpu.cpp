@@ -10,9 +10,11 @@ DvrTableGpu::DvrTableGpu(const TransferTable& table) { upload(table); }
 
 void DvrTableGpu::upload(const TransferTable& table) {
   const std::size_t entryBytes = std::size_t(table.size()) * sizeof(glm::vec4);
-  if (!entries_ || entryBytes > entries_->size()) {
-    entries_ = std::make_unique<GlBuffer>(entryBytes);
-    prefix_ = std::make_unique<GlBuffer>(std::size_t(table.size() + 1) * sizeof(int32_t));
+  if (!entries_ || entryBytes > entries_->size()) {  // both made before either is replaced
+    auto entries = std::make_unique<GlBuffer>(entryBytes);
+    auto prefix = std::make_unique<GlBuffer>(std::size_t(table.size() + 1) * sizeof(int32_t));
+    entries_ = std::move(entries);
+    prefix_ = std::move(prefix);
   }
   entries_->write(table.entries().data(), entryBytes);
   const std::vector<int>& prefix = table.nonZeroPrefix();

@@ -17,6 +17,42 @@
 namespace fcc::render {
 namespace {
 
+// The GL state render() changes, put back as it was (the caller may draw with it next). Not the SSBO
+// bindings nor the program: every program of the renderer binds itself and its buffers before it runs
+// (and the program current before may be one deleted since, which glUseProgram would refuse).
+class SavedGlState {
+ public:
+  SavedGlState() {
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer_);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer_);
+    glGetIntegerv(GL_VIEWPORT, viewport_);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertexArray_);
+    glGetIntegerv(GL_BLEND_SRC_RGB, &blend_[0]);
+    glGetIntegerv(GL_BLEND_DST_RGB, &blend_[1]);
+    glGetIntegerv(GL_BLEND_SRC_ALPHA, &blend_[2]);
+    glGetIntegerv(GL_BLEND_DST_ALPHA, &blend_[3]);
+    blendOn_ = glIsEnabled(GL_BLEND);
+    depthOn_ = glIsEnabled(GL_DEPTH_TEST);
+    cullOn_ = glIsEnabled(GL_CULL_FACE);
+  }
+  ~SavedGlState() {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, glIsFramebuffer(GLuint(framebuffer_)) ? GLuint(framebuffer_) : 0);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, glIsFramebuffer(GLuint(readFramebuffer_)) ? GLuint(readFramebuffer_) : 0);
+    glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+    glBindVertexArray(glIsVertexArray(GLuint(vertexArray_)) ? GLuint(vertexArray_) : 0);
+    glBlendFuncSeparate(GLenum(blend_[0]), GLenum(blend_[1]), GLenum(blend_[2]), GLenum(blend_[3]));
+    (blendOn_ ? glEnable : glDisable)(GL_BLEND);
+    (depthOn_ ? glEnable : glDisable)(GL_DEPTH_TEST);
+    (cullOn_ ? glEnable : glDisable)(GL_CULL_FACE);
+  }
+  SavedGlState(const SavedGlState&) = delete;
+  SavedGlState& operator=(const SavedGlState&) = delete;
+
+ private:
+  GLint framebuffer_ = 0, readFramebuffer_ = 0, viewport_[4] = {}, vertexArray_ = 0, blend_[4] = {};
+  GLboolean blendOn_ = GL_FALSE, depthOn_ = GL_FALSE, cullOn_ = GL_FALSE;
+};
+
 // As tetra.vert and tetra.frag read it (std430: vec4s only).
 struct GpuTetrahedron {
   glm::vec4 vertex[4];
@@ -172,9 +208,9 @@ ProjectedTetrahedra::ProjectedTetrahedra(const BrickSource& source, Options opti
       withDefines(embedded::shaders("shaders/tetra.frag"), options_.shading ? "#define FCC_DVR_SHADING 1\n" : ""),
       "projected tetrahedra");
   table_->setUniforms(program_, -1.0f);  // no early stop inside a segment: segments composite afterwards
+  if (options_.timeGpu) timer_ = std::make_unique<GpuInterval>();  // before the objects the destructor frees
   glCreateVertexArrays(1, &vertexArray_);
   glCreateFramebuffers(1, &framebuffer_);
-  if (options_.timeGpu) timer_ = std::make_unique<GpuInterval>();
 }
 
 ProjectedTetrahedra::~ProjectedTetrahedra() {
@@ -222,23 +258,23 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   glProgramUniform2i(p, glGetUniformLocation(p, "uResolution"), width, height);
 
   if (timer_) timer_->begin();
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-  glViewport(0, 0, width, height);
-  const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  glClearBufferfv(GL_COLOR, 0, clear);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glEnable(GL_BLEND);
-  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // "over", premultiplied, back to front
-  tetrahedra_->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-  orderBuffer_->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
-  table_->bind();
-  program_.use();
-  glBindVertexArray(vertexArray_);
-  if (!order_.empty()) glDrawArraysInstanced(GL_TRIANGLES, 0, 12, GLsizei(order_.size()));
-  glBindVertexArray(0);
-  glDisable(GL_BLEND);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  {
+    const SavedGlState saved;
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    glViewport(0, 0, width, height);
+    const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearBufferfv(GL_COLOR, 0, clear);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // "over", premultiplied, back to front
+    tetrahedra_->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    orderBuffer_->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+    table_->bind();
+    program_.use();
+    glBindVertexArray(vertexArray_);
+    if (!order_.empty()) glDrawArraysInstanced(GL_TRIANGLES, 0, 12, GLsizei(order_.size()));
+  }  // the caller's state back
   if (timer_) timer_->end();
   glFinish();
   checkGl("drawing " + std::to_string(order_.size()) + " projected tetrahedra");

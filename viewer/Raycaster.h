@@ -145,7 +145,8 @@ struct LevelMix {
   // complete frame's image shows none of them; a progressive frame's may).
   std::vector<uint64_t> standInBricksPerLevel;
   // Of the pixels whose ray hit the surface, the share whose hit was drawn from level 0 (1 when no
-  // pixel hit, or without levels). Progressive frames count final hits only.
+  // pixel hit, or without levels). Progressive frames count final hits only. DVR (no hits): the share
+  // of the bricks drawn that are level 0's.
   double fullResolutionFraction = 1.0;
   double lodBias = 0.0;  // the bias in effect: RenderOptions::lodBias plus what the renderer added
 };

@@ -179,7 +179,8 @@ TEST(Cli, SynthBccHoldsTheFieldAtTheBccSitesAndRenders) {
   ASSERT_EQ(tetra.status, 0) << tetra.err;
   EXPECT_THAT(tetra.err, HasSubstr("projected tetrahedra"));
   EXPECT_GT(std::filesystem::file_size(dir / "pt.png"), 100u);
-  for (const std::string& bad : {std::string(" --dvr-method tetrahedra"), std::string(" --mode dvr --dvr-method tetrahedra --reconstruction bilinear")}) {
+  for (const std::string& bad : {std::string(" --dvr-method tetrahedra"), std::string(" --mode dvr --dvr-method tetrahedra --reconstruction bilinear"),
+                                 std::string(" --mode dvr --dvr-method tetrahedra --clip 0,0,0,0.5,0.5,0.5")}) {
     const auto refused = runFccvdb("render " + vdb + " -o " + (dir / "z.png") + bad);
     EXPECT_EQ(refused.status, 1) << bad;
     EXPECT_EQ(lineCount(refused.err), 1) << refused.err;

@@ -354,6 +354,25 @@ TEST_F(Lod, DvrDrawsEachBrickFromItsLevel) {
   EXPECT_LT(meanDifference(coarserImage), 0.01) << "a coarser spline of the same field";
   EXPECT_NE(coarserImage.rgba, full.rgba);
 
+  // Shaded: a coarser level's gradient is in its own index space (2^k times level 0's): shading by it
+  // must come out as level 0's would, close to the full-resolution shaded image.
+  render::RenderOptions shaded = dvrOptions();
+  shaded.dvrShading = true;
+  render::Raycaster shadedFull(opened.level0, shaded);
+  shadedFull.render(nearCamera(), kW, kH);
+  const render::FrameImages shadedFullImage = shadedFull.readImages();
+  shaded.coarserLevels = opened.levels.sources();
+  shaded.lodBias = 1.0f;
+  render::Raycaster shadedLevels(opened.level0, shaded);
+  shadedLevels.render(nearCamera(), kW, kH);
+  const render::FrameImages shadedLevelsImage = shadedLevels.readImages();
+  double shadedDifference = 0.0;
+  for (std::size_t i = 0; i < shadedFullImage.rgba.size(); ++i)
+    shadedDifference += std::abs(double(shadedLevelsImage.rgba[i]) - shadedFullImage.rgba[i]);
+  shadedDifference /= double(shadedFullImage.rgba.size());
+  std::printf("shaded, bias 1: mean difference %.4g\n", shadedDifference);
+  EXPECT_LT(shadedDifference, 0.01) << "the coarser levels' shading differs from level 0's";
+
   // Out of core through the levels: a pool of a few dozen slots, the bias held, the same image.
   render::RenderOptions small = dvrOptions(test::kSmallPoolBytes);
   small.coarserLevels = opened.levels.sources();

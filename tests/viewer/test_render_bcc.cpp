@@ -119,6 +119,32 @@ TEST(BccStorage, CosetsHoldTheirSitesWhereTheIndexSays) {
   EXPECT_GT(bricks, 0);
 }
 
+// A brick whose both cosets hold data throughout gets their range, without the background: data 0.5 on
+// [0, 96)^3 of BCC index space (coset voxels [0, 48)), so coset brick 1's block [14, 34)^3 lies inside.
+TEST(BccStorage, RangesLeaveTheBackgroundOutInsideTheData) {
+  TempDir dir;
+  const std::string path = dir / "constant_bcc.vdb";
+  initializeVdb();
+  const BccGrids grids = buildBccGrids(SiteBox{glm::ivec3(0), glm::ivec3(95)}, 2.0f, [](const glm::ivec3&) { return 0.5f; },
+                                       *openvdb::math::Transform::createLinearTransform(1.0));
+  io::writeVdbAtomically(path, openvdb::GridCPtrVec{grids.primary, grids.secondary}, /*overwrite=*/true);
+  const render::BccBrickSource source(path, findReconstruction("barycentric"));
+  int inside = 0, edge = 0;
+  source.forEachVaryingBrick([&](const glm::ivec3& brick, float lo, float hi) {
+    // BCC bricks 2..3 per axis lie in coset brick 1.
+    if (glm::all(glm::greaterThanEqual(brick, glm::ivec3(2))) && glm::all(glm::lessThanEqual(brick, glm::ivec3(3)))) {
+      ++inside;
+      EXPECT_EQ(lo, 0.5f);
+      EXPECT_EQ(hi, 0.5f);
+    } else {
+      ++edge;
+      EXPECT_EQ(hi, 2.0f) << "a block that reaches beyond the data holds the background";
+    }
+  });
+  EXPECT_EQ(inside, 8);
+  EXPECT_GT(edge, 0);
+}
+
 // The device and the CPU reference on every BCC scheme, from a view down -z with positive shears and
 // one mostly along +y with a negative shear (the stack schemes take both from the view).
 TEST_F(RenderBcc, EveryReconstructionMatchesTheCpuReference) {

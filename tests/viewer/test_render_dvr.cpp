@@ -257,9 +257,11 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
   std::printf("%zu tetrahedra with data\n", pt.tetrahedronCount());
   EXPECT_GT(pt.tetrahedronCount(), 1000u);
   const glm::dvec3 lookat(source.worldFromIndex() * glm::dvec4(24.0, 24.0, 24.0, 1.0));
-  for (const glm::dvec3 offset : {glm::dvec3(30.0, 22.0, 36.0), glm::dvec3(-14.0, -44.0, 20.0)}) {
+  // Two views from outside, and one from inside the data (the eye inside a tetrahedron: its segment
+  // from the eye to where the ray leaves it).
+  for (const glm::dvec3 offset : {glm::dvec3(30.0, 22.0, 36.0), glm::dvec3(-14.0, -44.0, 20.0), glm::dvec3(0.31, 0.17, 0.23)}) {
     render::Camera camera;
-    camera.lookat = lookat;
+    camera.lookat = lookat + (glm::length(offset) < 1.0 ? glm::dvec3(6.0, -2.0, 3.0) : glm::dvec3(0.0));
     camera.eye = lookat + offset;
     camera.fovYDegrees = 35.0;
     const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
@@ -303,6 +305,18 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
   // Other data, or another reconstruction: one line saying what it draws.
   const render::BccBrickSource sheared(path, findReconstruction("sheared-trilinear"));
   EXPECT_THROW(render::ProjectedTetrahedra(sheared, ptOptions), ValueError);
+  // GL state is the caller's again after a frame (the viewer draws with it next).
+  glEnable(GL_DEPTH_TEST);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE);
+  pt.render(camera, w, h);
+  EXPECT_TRUE(glIsEnabled(GL_DEPTH_TEST));
+  EXPECT_FALSE(glIsEnabled(GL_BLEND));
+  GLint src = 0, dst = 0;
+  glGetIntegerv(GL_BLEND_SRC_RGB, &src);
+  glGetIntegerv(GL_BLEND_DST_RGB, &dst);
+  EXPECT_EQ(src, GL_SRC_ALPHA);
+  EXPECT_EQ(dst, GL_ONE);
+  glDisable(GL_DEPTH_TEST);
 }
 
 // Skipping (bricks, nodes, cells, segments the transfer function maps to zero) and a pool of a few
