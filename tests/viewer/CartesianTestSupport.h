@@ -5,7 +5,9 @@
 
 #include <openvdb/openvdb.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
 
@@ -14,6 +16,7 @@
 #include "io/CartesianBrickStore.h"
 #include "io/VdbFile.h"
 #include "sparse/BccGrids.h"
+#include "sparse/ReferenceRaycast.h"
 #include "viewer/CartesianBrickSource.h"
 #include "viewer/Raycaster.h"
 
@@ -55,6 +58,51 @@ inline void writeBccFile(const std::string& path, const std::function<float(cons
   xform->postTranslate(origin);
   const BccGrids grids = buildBccGrids(SiteBox{glm::ivec3(0), glm::ivec3(kDim - 1)}, background, values, *xform);
   io::writeVdbAtomically(path, openvdb::GridCPtrVec{grids.primary, grids.secondary}, /*overwrite=*/true);
+}
+
+// The device's isosurface image against the CPU reference raycaster (sparse/ReferenceRaycast.h), pixel
+// by pixel, as both renderers' tests on the Cartesian and BCC lattices compare them: both find the roots
+// of the same polynomials in float and differ by rounding only. A pixel disagrees where one hits and
+// the other misses or their depths differ by more than kDepthTolVoxels index units (depths are world
+// distances: `worldPerIndex` converts); where both hit, the normals must agree within kNormalTolDegrees;
+// at most kMaxDisagreeingFraction of the image may disagree, and the surface must cover a quarter of it.
+inline void expectReferenceIsosurface(const std::string& what, const render::FrameImages& gpu, const render::Camera& camera,
+                                      const glm::dmat4& indexFromWorld, double worldPerIndex, const Reconstruction& recon,
+                                      const SiteValue& sites, const CellBounds& bounds, float iso) {
+  constexpr double kDepthTolVoxels = 2e-3;
+  constexpr double kNormalTolDegrees = 0.1;
+  constexpr double kMaxDisagreeingFraction = 0.005;
+  const int w = gpu.width, h = gpu.height;
+  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
+  const glm::vec3 o(indexFromWorld * glm::dvec4(camera.eye, 1.0));
+  int hits = 0, disagree = 0;
+  double worstDepth = 0.0, worstAngle = 0.0;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const glm::vec3 d(glm::dmat3(indexFromWorld) * render::pixelRay(frame, px, py, w, h));
+      const RayHit ref = firstHit(recon, sites, bounds, o, d, 0.0f, 400.0f, iso);
+      const std::size_t i = std::size_t(py) * w + px;
+      const bool hit = gpu.rgba[4 * i + 3] > 0.5f;
+      const double depthVoxels = ref.hit && hit ? std::abs(double(gpu.normalDepth[4 * i + 3]) - ref.t) / worldPerIndex : 0.0;
+      if (hit != ref.hit || depthVoxels > kDepthTolVoxels) {
+        ++disagree;
+        std::printf("%s: pixel (%d, %d) device %s t %.6g, reference %s t %.6g\n", what.c_str(), px, py, hit ? "hit" : "miss",
+                    double(gpu.normalDepth[4 * i + 3]), ref.hit ? "hit" : "miss", double(ref.t));
+        continue;
+      }
+      if (!hit) continue;
+      ++hits;
+      const glm::dvec3 nRef = glm::normalize(glm::transpose(glm::dmat3(indexFromWorld)) * glm::dvec3(ref.gradient));
+      const glm::dvec3 n(gpu.normalDepth[4 * i], gpu.normalDepth[4 * i + 1], gpu.normalDepth[4 * i + 2]);
+      const double angle = glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(n), nRef), -1.0, 1.0)));
+      worstDepth = std::max(worstDepth, depthVoxels);
+      worstAngle = std::max(worstAngle, angle);
+      EXPECT_LT(angle, kNormalTolDegrees) << what << ": pixel (" << px << ", " << py << ")";
+    }
+  std::printf("%s: %d hits agree (worst depth %.3g voxels, normal %.3g degrees), %d pixels disagree\n", what.c_str(), hits,
+              worstDepth, worstAngle, disagree);
+  EXPECT_GT(hits, w * h / 4) << what << ": the surface should cover a good part of the image";
+  EXPECT_LE(disagree, int(kMaxDisagreeingFraction * w * h)) << what;
 }
 
 inline render::FrameImages renderCartesian(const std::string& path, const std::string& reconstruction, const render::Camera& camera,

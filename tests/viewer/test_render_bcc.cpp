@@ -32,11 +32,6 @@ using test::kBackground;
 using test::kDim;
 using test::wavy;
 
-// As test_render_cartesian's: both raycasters find the roots of the same polynomials in float.
-constexpr double kDepthTolVoxels = 2e-3;
-constexpr double kNormalTolDegrees = 0.1;
-constexpr double kMaxDisagreeingFraction = 0.005;
-
 constexpr double kScale = 0.5;  // world units per BCC index unit
 const openvdb::Vec3d kOrigin(-3.0, 1.0, 2.0);
 
@@ -170,41 +165,15 @@ TEST_F(RenderBcc, EveryReconstructionMatchesTheCpuReference) {
     const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
     const glm::vec3 forwardIndex(glm::dmat3(indexFromWorld) * frame.forward);
     const glm::ivec3 params = spline::bcc_sheared_params_for_view(forwardIndex);
-    const glm::vec3 o(indexFromWorld * glm::dvec4(camera.eye, 1.0));
     for (const char* name : {"barycentric", "sheared-trilinear", "bilinear-spatial", "bilinear"}) {
       SCOPED_TRACE(std::string(name) + ", stack axis " + std::to_string(params.x) + ", shears " + std::to_string(params.y) +
                    " " + std::to_string(params.z));
       const render::FrameImages gpu = renderBcc(path, name, camera, w, h, iso);
       const std::unique_ptr<Reconstruction> recon = makeReconstruction(name);
       recon->setView(forwardIndex);
-      int hits = 0, disagree = 0;
-      double worstDepth = 0.0, worstAngle = 0.0;
-      for (int py = 0; py < h; ++py)
-        for (int px = 0; px < w; ++px) {
-          const glm::vec3 d(glm::dmat3(indexFromWorld) * render::pixelRay(frame, px, py, w, h));
-          const RayHit ref = firstHit(*recon, samples.accessor(), bounds, o, d, 0.0f, 400.0f, iso);
-          const std::size_t i = std::size_t(py) * w + px;
-          const bool hit = gpu.rgba[4 * i + 3] > 0.5f;
-          const double depthVoxels = ref.hit && hit ? std::abs(double(gpu.normalDepth[4 * i + 3]) - ref.t) / kScale : 0.0;
-          if (hit != ref.hit || depthVoxels > kDepthTolVoxels) {
-            ++disagree;
-            std::printf("%s: pixel (%d, %d) device %s t %.6g, reference %s t %.6g\n", name, px, py, hit ? "hit" : "miss",
-                        double(gpu.normalDepth[4 * i + 3]), ref.hit ? "hit" : "miss", double(ref.t));
-            continue;
-          }
-          if (!hit) continue;
-          ++hits;
-          const glm::dvec3 nRef = glm::normalize(glm::transpose(glm::dmat3(indexFromWorld)) * glm::dvec3(ref.gradient));
-          const glm::dvec3 n(gpu.normalDepth[4 * i], gpu.normalDepth[4 * i + 1], gpu.normalDepth[4 * i + 2]);
-          const double angle = glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(n), nRef), -1.0, 1.0)));
-          worstDepth = std::max(worstDepth, depthVoxels);
-          worstAngle = std::max(worstAngle, angle);
-          EXPECT_LT(angle, kNormalTolDegrees) << "pixel (" << px << ", " << py << ")";
-        }
-      std::printf("%s (axis %d, shears %d %d): %d hits agree (worst depth %.3g voxels, normal %.3g degrees), %d pixels disagree\n",
-                  name, params.x, params.y, params.z, hits, worstDepth, worstAngle, disagree);
-      EXPECT_GT(hits, w * h / 4) << "the surface should cover a good part of the image";
-      EXPECT_LE(disagree, int(kMaxDisagreeingFraction * w * h));
+      test::expectReferenceIsosurface(std::string(name) + " (axis " + std::to_string(params.x) + ", shears " + std::to_string(params.y) + " " +
+                                          std::to_string(params.z) + ")",
+                                      gpu, camera, indexFromWorld, kScale, *recon, samples.accessor(), bounds, iso);
     }
   }
 }

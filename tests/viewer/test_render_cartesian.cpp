@@ -36,14 +36,6 @@ using test::renderCartesian;
 using test::wavy;
 using test::writeCartesianFile;
 
-// Depth (voxels) and normal (degrees) agreement of the device and the CPU raycaster: both find the
-// roots of the same polynomials in float; they differ by rounding only.
-constexpr double kDepthTolVoxels = 2e-3;
-constexpr double kNormalTolDegrees = 0.1;
-// Pixels where one of them hits and the other misses, or they find different roots: only rays that
-// graze the surface (a matter of the last float bits), at most this fraction of the image.
-constexpr double kMaxDisagreeingFraction = 0.005;
-
 class RenderCartesian : public GlSuite {};
 
 TEST_F(RenderCartesian, EveryReconstructionMatchesTheCpuReference) {
@@ -62,7 +54,6 @@ TEST_F(RenderCartesian, EveryReconstructionMatchesTheCpuReference) {
   camera.fovYDegrees = 35.0;
   const int w = 64, h = 56;
   const float iso = 0.35f;
-  const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
 
   for (const char* name : {"trilinear", "tricubic-bspline", "tricubic", "type6"}) {
     SCOPED_TRACE(name);
@@ -79,37 +70,7 @@ TEST_F(RenderCartesian, EveryReconstructionMatchesTheCpuReference) {
     samples.prefilter(info.prefilter);
     const CellBounds bounds(samples);
     const std::unique_ptr<Reconstruction> recon = makeReconstruction(name);
-    const glm::vec3 o(indexFromWorld * glm::dvec4(camera.eye, 1.0));
-
-    int hits = 0, disagree = 0;
-    double worstDepth = 0.0, worstAngle = 0.0;
-    for (int py = 0; py < h; ++py)
-      for (int px = 0; px < w; ++px) {
-        const glm::dvec3 dWorld = render::pixelRay(frame, px, py, w, h);
-        const glm::vec3 d(glm::dmat3(indexFromWorld) * dWorld);
-        const RayHit ref = firstHit(*recon, samples.accessor(), bounds, o, d, 0.0f, 400.0f, iso);
-        const std::size_t i = std::size_t(py) * w + px;
-        const bool hit = gpu.rgba[4 * i + 3] > 0.5f;
-        const double depthVoxels = ref.hit && hit ? std::abs(double(gpu.normalDepth[4 * i + 3]) - ref.t) / scale : 0.0;
-        if (hit != ref.hit || depthVoxels > kDepthTolVoxels) {
-          ++disagree;
-          std::printf("%s: pixel (%d, %d) device %s t %.6g, reference %s t %.6g\n", name, px, py, hit ? "hit" : "miss",
-                      double(gpu.normalDepth[4 * i + 3]), ref.hit ? "hit" : "miss", double(ref.t));
-          continue;
-        }
-        if (!hit) continue;
-        ++hits;
-        const glm::dvec3 nRef = glm::normalize(glm::transpose(glm::dmat3(indexFromWorld)) * glm::dvec3(ref.gradient));
-        const glm::dvec3 n(gpu.normalDepth[4 * i], gpu.normalDepth[4 * i + 1], gpu.normalDepth[4 * i + 2]);
-        const double angle = glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(n), nRef), -1.0, 1.0)));
-        worstDepth = std::max(worstDepth, depthVoxels);
-        worstAngle = std::max(worstAngle, angle);
-        EXPECT_LT(angle, kNormalTolDegrees) << "pixel (" << px << ", " << py << ")";
-      }
-    std::printf("%s: %d hits agree (worst depth %.3g voxels, normal %.3g degrees), %d pixels disagree\n", name, hits,
-                worstDepth, worstAngle, disagree);
-    EXPECT_GT(hits, w * h / 4) << "the surface should cover a good part of the image";
-    EXPECT_LE(disagree, int(kMaxDisagreeingFraction * w * h));
+    test::expectReferenceIsosurface(name, gpu, camera, indexFromWorld, scale, *recon, samples.accessor(), bounds, iso);
   }
 }
 
