@@ -151,6 +151,32 @@ TEST(CliDamage, DamagedBrickIsAHoleNamedInOneLine) {
   EXPECT_THAT(cleanCheck.out, HasSubstr(", 0 damaged"));
 }
 
+// A damaged leaf of one coset of a BCC dataset: read as the background (a hole), named in one line and
+// counted as a Cartesian grid's, the image written all the same; --allow-damaged exits 0.
+TEST(CliDamage, DamagedBccLeafIsAHoleNamedInOneLine) {
+  TempDir dir;
+  const std::string good = dir / "wavy_bcc.vdb", bad = dir / "damaged_bcc.vdb";
+  test::writeBccFile(good, test::wavy, 1.0, openvdb::Vec3d(0.0));  // coset voxels [0, 24)^3: leaves at 0, 8, 16
+  std::filesystem::copy_file(good, bad);
+  damageLeafValues(bad, {"Tree_float_5_4_3"}, openvdb::Coord(8, 8, 8));  // the first float grid: bcc_primary
+  const std::string env = "FCCVDB_CACHE_DIR=" + (dir / "cache") + " ";
+  const std::string flags = " --iso 0.35 --res 48x40 --quiet";
+  const CommandResult clean = runShell(env + FCC_FCCVDB_EXE + " render " + good + " " + (dir / "good.png") + flags);
+  if (failedForLackOfGl(clean)) GTEST_SKIP() << clean.err;
+  ASSERT_EQ(clean.status, 0) << clean.err;
+  EXPECT_EQ(clean.err, "");
+  const CommandResult r = runShell(env + FCC_FCCVDB_EXE + " render " + bad + " " + (dir / "bad.png") + flags);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("1 damaged leaf rendered as holes"));
+  EXPECT_THAT(r.err, HasSubstr(bad + ": leaf at (8, 8, 8) is damaged"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "bad.png")) << "the image is written all the same";
+  const CommandResult allowed =
+      runShell(env + FCC_FCCVDB_EXE + " render " + bad + " " + (dir / "allowed.png") + flags + " --allow-damaged");
+  EXPECT_EQ(allowed.status, 0) << allowed.err;
+  EXPECT_THAT(allowed.err, HasSubstr("1 damaged leaf"));
+}
+
 // `render --reconstruction trilinear` of a Cartesian .vdb with one damaged leaf: the frame renders and
 // is written, one line names the file, the leaf and the damage (exit 1, or 0 with --allow-damaged, as
 // for FCC bricks); every pixel whose ray passes nowhere near the leaf before its surface is the
