@@ -17,7 +17,7 @@ struct DatasetSummary {
   std::string file, grid;   // grid: empty where unknown (a Cartesian source)
   uint64_t samples = 0;     // active FCC samples (four per active packed voxel); 0 where unknown
   uint64_t bricks = 0;      // leaves (FCC); bricks whose values vary (a Cartesian source)
-  uint64_t bytes = 0;       // decoded size of the leaves' values (a Cartesian source: 16^3 floats a brick)
+  uint64_t bytes = 0;       // decoded size of the leaves' values (a Cartesian source: 16^3 floats a brick, BCC 2 x 8^3)
   float valueMin = 0.0f, valueMax = 0.0f;  // the range the surface can take: the spline's (the bounds' hull)
   // The data's range: the samples' before the prefilter, as convert/synth recorded them
   // (fcc_sample_min/max); the spline overshoots it where the data jumps. False for other files.

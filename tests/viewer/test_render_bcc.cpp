@@ -22,6 +22,7 @@
 #include "sparse/ReferenceRaycast.h"
 #include "tests/tools/RunCommand.h"
 #include "viewer/BccBrickSource.h"
+#include "viewer/DatasetSummary.h"
 
 namespace fcc {
 namespace {
@@ -112,6 +113,23 @@ TEST(BccStorage, CosetsHoldTheirSitesWhereTheIndexSays) {
     for (std::size_t i = 0; i < 2 * 1728; ++i) ASSERT_TRUE(lo <= one[0].halo[i] && one[0].halo[i] <= hi);
   });
   EXPECT_GT(bricks, 0);
+}
+
+// The panel's summary of a BCC source: each sampled brick's own sites (2 x 8^3: both cosets' voxels of
+// the brick, not the halo), counted once, within the source's range.
+TEST(BccStorage, SummaryCountsEachBricksOwnSites) {
+  TempDir dir;
+  const std::string path = dir / "wavy_bcc.vdb";
+  writeBccFile(path);
+  const render::BccBrickSource source(path, findReconstruction("barycentric"));
+  const render::DatasetSummary s = render::summarizeSource(source, /*maxBricks=*/1000, /*bins=*/32);
+  EXPECT_EQ(s.bricks, source.varyingBrickCount());
+  EXPECT_EQ(s.bytes, s.bricks * 1024 * sizeof(float));
+  EXPECT_EQ(s.histogramBricks, s.bricks) << "every brick sampled (fewer than maxBricks)";
+  EXPECT_EQ(s.histogramValues, s.histogramBricks * 1024);
+  double counted = 0.0;
+  for (float c : s.histogram) counted += c;
+  EXPECT_EQ(counted, double(s.histogramValues));
 }
 
 // A brick whose both cosets hold data throughout gets their range, without the background: data 0.5 on
