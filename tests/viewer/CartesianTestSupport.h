@@ -18,6 +18,7 @@
 #include "sparse/BccGrids.h"
 #include "sparse/ReferenceRaycast.h"
 #include "viewer/CartesianBrickSource.h"
+#include "tests/viewer/RenderTestSupport.h"
 #include "viewer/Raycaster.h"
 
 namespace fcc::test {
@@ -111,10 +112,7 @@ inline render::FrameImages renderCartesian(const std::string& path, const std::s
   const io::CartesianBrickStore store(path);
   const render::CartesianBrickSource source(store, findReconstruction(reconstruction));
   options.iso = iso;
-  render::Raycaster raycaster(source, options);
-  const render::FrameStats s = raycaster.render(camera, width, height);
-  if (stats) *stats = s;
-  return raycaster.readImages();
+  return renderSource(source, camera, width, height, options, stats);
 }
 
 }  // namespace fcc::test

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -84,6 +85,15 @@ inline std::string describe(const render::PixelRect& r) {
 // slots (by layout), so a frame needs several passes and bricks are evicted and reloaded.
 inline constexpr std::size_t kSmallPoolBytes = std::size_t(1) << 20;
 
+// One complete frame of `source` with `options`: the image, and the frame's stats into `stats` if given.
+inline render::FrameImages renderSource(const render::BrickSource& source, const render::Camera& camera, int width, int height,
+                                        const render::RenderOptions& options, render::FrameStats* stats = nullptr) {
+  render::Raycaster raycaster(source, options);
+  const render::FrameStats s = raycaster.render(camera, width, height);
+  if (stats) *stats = s;
+  return raycaster.readImages();
+}
+
 // Two images bit for bit, colour and normal/depth (a failure names the first component that differs);
 // the count of hit pixels (alpha > 0.5) of the first.
 inline int expectSameImages(const render::FrameImages& a, const render::FrameImages& b) {
@@ -100,6 +110,23 @@ inline int expectSameImages(const render::FrameImages& a, const render::FrameIma
     hits += i % 4 == 3 && a.rgba[i] > 0.5f;
   }
   return hits;
+}
+
+// Out of core: the isosurface at `iso` through a pool of six slots of 20^3 floats (and their cell
+// bounds), which must evict and reload bricks, is the unbounded pool's image bit for bit.
+inline void expectSixSlotsGiveTheSameImage(const render::BrickSource& source, const render::Camera& camera, int width,
+                                           int height, float iso) {
+  render::RenderOptions unbounded, small;
+  unbounded.iso = small.iso = iso;
+  small.gpuCacheBytes = 6 * (8000 * 4 + 4096);
+  render::FrameStats bigStats, smallStats;
+  const render::FrameImages reference = renderSource(source, camera, width, height, unbounded, &bigStats);
+  const render::FrameImages limited = renderSource(source, camera, width, height, small, &smallStats);
+  std::printf("%s: unbounded %d passes, %llu uploads; six slots %d passes, %llu uploads\n",
+              std::string(source.reconstruction().name).c_str(), bigStats.passes, (unsigned long long)bigStats.bricksUploaded,
+              smallStats.passes, (unsigned long long)smallStats.bricksUploaded);
+  EXPECT_GT(smallStats.bricksUploaded, bigStats.bricksUploaded) << "the small pool must have evicted bricks";
+  EXPECT_GT(expectSameImages(reference, limited), width * height / 10);
 }
 
 inline std::string writeSmallBlobs(const TempDir& dir) {

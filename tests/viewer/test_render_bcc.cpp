@@ -48,10 +48,7 @@ render::FrameImages renderBcc(const std::string& path, const std::string& recons
                               render::FrameStats* stats = nullptr) {
   const render::BccBrickSource source(path, findReconstruction(reconstruction));
   options.iso = iso;
-  render::Raycaster raycaster(source, options);
-  const render::FrameStats s = raycaster.render(camera, width, height);
-  if (stats) *stats = s;
-  return raycaster.readImages();
+  return test::renderSource(source, camera, width, height, options, stats);
 }
 
 class RenderBcc : public GlSuite {};
@@ -205,18 +202,9 @@ TEST_F(RenderBcc, SmallPoolGivesTheSameImage) {
   render::Camera camera;
   camera.lookat = glm::dvec3(worldFromIndex * glm::dvec4(24.0, 24.0, 24.0, 1.0));
   camera.eye = camera.lookat + glm::dvec3(45.0, 35.0, 40.0);
-  const int w = 48, h = 48;
-  render::RenderOptions small;
-  small.gpuCacheBytes = 6 * (8000 * 4 + 4096);  // six slots of 20^3 floats and their cell bounds
   for (const char* name : {"barycentric", "sheared-trilinear"}) {
     SCOPED_TRACE(name);
-    render::FrameStats bigStats, smallStats;
-    const render::FrameImages reference = renderBcc(path, name, camera, w, h, 0.35f, {}, &bigStats);
-    const render::FrameImages limited = renderBcc(path, name, camera, w, h, 0.35f, small, &smallStats);
-    std::printf("%s: unbounded %d passes, %llu uploads; six slots %d passes, %llu uploads\n", name, bigStats.passes,
-                (unsigned long long)bigStats.bricksUploaded, smallStats.passes, (unsigned long long)smallStats.bricksUploaded);
-    EXPECT_GT(smallStats.bricksUploaded, bigStats.bricksUploaded) << "the small pool must have evicted bricks";
-    EXPECT_GT(test::expectSameImages(reference, limited), w * h / 10);
+    test::expectSixSlotsGiveTheSameImage(render::BccBrickSource(path, findReconstruction(name)), camera, 48, 48, 0.35f);
   }
 }
 

@@ -27,6 +27,7 @@ namespace {
 
 using test::GlSuite;
 using test::TempDir;
+using test::renderSource;
 
 // The bound: the device against the CPU reference, PSNR of premultiplied RGBA.
 constexpr double kMinPsnrDb = 45.0;
@@ -40,14 +41,6 @@ render::RenderOptions dvrOptions(const TransferTable& table) {
   options.mode = render::RenderMode::Dvr;
   options.transfer = std::make_shared<const TransferTable>(table);
   return options;
-}
-
-render::FrameImages renderSource(const render::BrickSource& source, const render::Camera& camera, int w, int h,
-                                 const render::RenderOptions& options, render::FrameStats* stats = nullptr) {
-  render::Raycaster raycaster(source, options);
-  const render::FrameStats s = raycaster.render(camera, w, h);
-  if (stats) *stats = s;
-  return raycaster.readImages();
 }
 
 double psnr(const render::FrameImages& image, const std::vector<DvrPixel>& reference) {

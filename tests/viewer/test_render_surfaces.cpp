@@ -46,14 +46,6 @@ constexpr double kGrazingFraction = 0.01;
 constexpr double kReferenceColorTol = 2e-3;
 constexpr double kMaxDisagreeingFraction = 0.01;
 
-render::FrameImages renderWith(const render::BrickSource& source, const render::Camera& camera, int w, int h,
-                               const render::RenderOptions& options, render::FrameStats* stats = nullptr) {
-  render::Raycaster raycaster(source, options);
-  const render::FrameStats s = raycaster.render(camera, w, h);
-  if (stats) *stats = s;
-  return raycaster.readImages();
-}
-
 render::RenderOptions withSurfaces(const std::vector<render::Isosurface>& surfaces, render::RenderOptions options = {}) {
   options.iso = surfaces.at(0).iso;
   options.surfaceColor = surfaces[0].color;
@@ -102,7 +94,7 @@ TEST_F(RenderSurfaces, NestedSpheresMatchTheAnalyticComposite) {
   const io::BrickStore store(path);
   const render::FccBrickSource source(store, std::size_t(64) << 20);
   const render::RenderOptions options = withSurfaces({inner, outer});
-  const render::FrameImages img = renderWith(source, camera, w, h, options);
+  const render::FrameImages img = test::renderSource(source, camera, w, h, options);
   const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
   const glm::dvec3 light = lightWorld(frame, options.lightInCamera);
 
@@ -173,7 +165,7 @@ TEST_F(RenderSurfaces, MatchesTheCpuReference) {
   const std::vector<render::Isosurface> surfaces{
       {0.3f, {0.85f, 0.72f, 0.52f}, 0.4f}, {0.6f, {0.25f, 0.5f, 0.85f}, 0.6f}, {0.9f, {0.8f, 0.3f, 0.25f}, 1.0f}};
   const render::RenderOptions options = withSurfaces(surfaces);
-  const render::FrameImages gpu = renderWith(source, camera, w, h, options);
+  const render::FrameImages gpu = test::renderSource(source, camera, w, h, options);
 
   const FccGrid::Ptr grid = io::readFccGrid(path);
   // The tree itself, not an accessor (not thread-safe): rows run in parallel.
@@ -272,7 +264,7 @@ TEST_F(RenderSurfaces, CartesianAndBccReconstructionsMatchTheCpuReference) {
     const std::unique_ptr<render::BrickSource> source =
         bcc ? std::unique_ptr<render::BrickSource>(std::make_unique<render::BccBrickSource>(bccPath, info))
             : std::make_unique<render::CartesianBrickSource>(store, info);
-    const render::FrameImages gpu = renderWith(*source, camera, w, h, options);
+    const render::FrameImages gpu = test::renderSource(*source, camera, w, h, options);
     const int pad = kBSplinePrefilterReach + 4;
     LatticeSamples samples(info.lattice, glm::ivec3(-pad), glm::ivec3(test::kDim + 2 * pad), test::kBackground);
     samples.fill([](const glm::ivec3& ijk) {
@@ -329,9 +321,9 @@ TEST_F(RenderSurfaces, SmallPoolAndSkippingChangeNoBit) {
   small.gpuCacheBytes = small.hostCacheBytes = test::kSmallPoolBytes;
   noSkip.skipEmpty = false;
   render::FrameStats bigStats, smallStats;
-  const render::FrameImages reference = renderWith(render::FccBrickSource(store, std::size_t(64) << 20), camera, w, h, options, &bigStats);
-  const render::FrameImages limited = renderWith(render::FccBrickSource(store, test::kSmallPoolBytes), camera, w, h, small, &smallStats);
-  const render::FrameImages unskipped = renderWith(render::FccBrickSource(store, std::size_t(64) << 20), camera, w, h, noSkip);
+  const render::FrameImages reference = test::renderSource(render::FccBrickSource(store, std::size_t(64) << 20), camera, w, h, options, &bigStats);
+  const render::FrameImages limited = test::renderSource(render::FccBrickSource(store, test::kSmallPoolBytes), camera, w, h, small, &smallStats);
+  const render::FrameImages unskipped = test::renderSource(render::FccBrickSource(store, std::size_t(64) << 20), camera, w, h, noSkip);
   std::printf("unbounded: %d passes, %llu uploads; 1 MiB: %d passes, %llu uploads\n", bigStats.passes,
               (unsigned long long)bigStats.bricksUploaded, smallStats.passes, (unsigned long long)smallStats.bricksUploaded);
   EXPECT_GT(smallStats.bricksUploaded, bigStats.bricksUploaded) << "the small pool must have evicted bricks";
@@ -357,7 +349,7 @@ TEST_F(RenderSurfaces, OneOpaqueSurfaceIsTheSingleSurfacePath) {
   const render::FccBrickSource source(store, std::size_t(64) << 20);
   render::RenderOptions plain;
   plain.iso = 0.3f;
-  const render::FrameImages single = renderWith(source, camera, w, h, plain);
+  const render::FrameImages single = test::renderSource(source, camera, w, h, plain);
   render::Raycaster listed(source, render::RenderOptions{});
   listed.setSurfaces({render::Isosurface{0.3f, plain.surfaceColor, 1.0f}});
   EXPECT_FALSE(render::compositesSurfaces(listed.options()));
@@ -369,7 +361,7 @@ TEST_F(RenderSurfaces, OneOpaqueSurfaceIsTheSingleSurfacePath) {
   const render::RenderOptions twoOptions =
       withSurfaces({render::Isosurface{0.3f, plain.surfaceColor, 1.0f}, render::Isosurface{0.6f, glm::vec3(1.0f), 0.0f}});
   ASSERT_TRUE(render::compositesSurfaces(twoOptions));
-  const render::FrameImages composited = renderWith(source, camera, w, h, twoOptions);
+  const render::FrameImages composited = test::renderSource(source, camera, w, h, twoOptions);
   int hits = 0, differ = 0;
   for (std::size_t p = 0; p < single.rgba.size() / 4; ++p) {
     hits += single.rgba[4 * p + 3] > 0.5f;
