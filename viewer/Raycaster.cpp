@@ -172,7 +172,8 @@ Raycaster::Uniforms Raycaster::uniformsOf(const GlProgram& program, bool lenient
                   at("uNormalFromIndex"), at("uIso"), at("uBrickMin"), at("uBrickDims"), at("uNodeDims"),
                   at("uPass"), at("uFirstPass"), at("uFirstColumn"), at("uColumnOffset"),
                   at("uRequestCapacity"), at("uLookahead"), at("uSkipEmpty"), at("uFiniteDifferenceNormals"),
-                  at("uSurfaceColor"), at("uLightDir"), at("uClipLo"), at("uClipHi")};
+                  at("uSurfaceColor"), at("uLightDir"), at("uClipLo"), at("uClipHi"),
+                  glGetUniformLocation(program.id(), "uBccParams")};  // BCC programs only (-1 elsewhere)
 }
 
 void Raycaster::buildSurfacesProgram() {
@@ -546,7 +547,7 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
     // The BCC stack schemes' axis and shears, once per frame from the view (march_bcc.glsl): the same
     // choice as Reconstruction::setView with the forward direction in index space.
     const glm::ivec3 params = spline::bcc_sheared_params_for_view(glm::vec3(glm::dmat3(indexFromWorld) * frame.forward));
-    glProgramUniform3iv(p, glGetUniformLocation(p, "uBccParams"), 1, &params.x);
+    glProgramUniform3iv(p, u.bccParams, 1, &params.x);
   }
   if (lod) {
     const int levels = residency_->levelCount();

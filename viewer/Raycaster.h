@@ -345,7 +345,8 @@ class Raycaster {
   // raycast.comp's uniform locations, looked up once.
   struct Uniforms {
     GLint resolution, eye, forward, right, up, indexFromWorld, normalFromIndex, iso, brickMin, brickDims, nodeDims,
-        pass, firstPass, firstColumn, columnOffset, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir, clipLo, clipHi;
+        pass, firstPass, firstColumn, columnOffset, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir, clipLo, clipHi,
+        bccParams;
   } uniforms_{}, surfacesUniforms_{};
   Uniforms uniformsOf(const GlProgram& program, bool dvr, bool anyInactive = false) const;
   std::unique_ptr<GlReadbackBuffer> passResultsReadback_;
