@@ -96,11 +96,25 @@ float tfMaxExtinctionOn(float lo, float hi) {
   return m;
 }
 
+// Measurement knobs (FCCVDB_SHADER_DEFINES, docs/RENDERER.md): table entries a sub-step may span, and a
+// fixed sub-step count per segment instead of the rule (0: the rule).
+#ifndef FCC_DVR_STEP_ENTRIES
+#define FCC_DVR_STEP_ENTRIES 1.0
+#endif
+#ifndef FCC_DVR_FIXED_STEPS
+#define FCC_DVR_FIXED_STEPS 0
+#endif
+
 // Sub-steps for a segment of `len` world units whose values lie in [lo, hi].
 int dvrSteps(float lo, float hi, float len) {
+#if FCC_DVR_FIXED_STEPS > 0
+  // (the table's maxima still read, so that the program keeps its uniforms)
+  return (uTfBinMax[0] < -1.0 || uTfBinEntries < 0) ? FCC_DVR_FIXED_STEPS + 1 : FCC_DVR_FIXED_STEPS;
+#else
   float depth = tfMaxExtinctionOn(lo, hi) * len / kDvrStepDepth;
-  float entries = (hi - lo) * uTfScale;
+  float entries = (hi - lo) * uTfScale / float(FCC_DVR_STEP_ENTRIES);
   return clamp(int(ceil(max(depth, entries))), 1, kDvrMaxSteps);
+#endif
 }
 
 // One sub-step [ta, ta + h] at value v: composited exactly for the medium held constant.

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -20,6 +22,31 @@ constexpr std::size_t kSlotBoundsBytes = kSlotVoxels * 2 * sizeof(float);
 constexpr std::size_t kUploadBatch = 256; // bricks the loader holds ready, and render()'s upload batch (4 MB)
 constexpr std::size_t kStepUploadBatch = 32;  // step()'s upload batch, checked against its time budget
 constexpr int kMaxPasses = 1 << 20;       // a frame that needs more has a bug, not a small pool
+
+// FCCVDB_SHADER_DEFINES="NAME=VALUE;NAME2": extra #defines for the raycaster's programs, for measuring
+// variants of a shader stage on a GPU without a rebuild (docs/RENDERER.md, "Measuring shader variants").
+// Not a user setting: the defines it may set are the shaders' own measurement knobs.
+std::string shaderDefinesFromEnvironment() {
+  const char* spec = std::getenv("FCCVDB_SHADER_DEFINES");
+  std::string out;
+  if (!spec) return out;
+  std::string item;
+  for (const char* c = spec;; ++c) {
+    if (*c == ';' || *c == '\0') {
+      if (!item.empty()) {
+        const std::size_t eq = item.find('=');
+        out += "#define " + (eq == std::string::npos ? item + " 1" : item.substr(0, eq) + " " + item.substr(eq + 1)) + "\n";
+      }
+      item.clear();
+      if (*c == '\0') break;
+    } else if (std::isalnum(static_cast<unsigned char>(*c)) || *c == '_' || *c == '=' || *c == '.') {
+      item += *c;
+    } else {
+      throw ValueError(std::string("FCCVDB_SHADER_DEFINES: '") + *c + "' is not allowed; valid: NAME=VALUE items separated by ';' (letters, digits, _ and .)");
+    }
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -99,7 +126,7 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
       dvr ? std::string("#define FCC_MODE_DVR 1\n") + (options.dvrShading ? "#define FCC_DVR_SHADING 1\n" : "") : "";
   const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
                                    "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
-  raycastDefines_ = defines + modeDefines + groupDefines;
+  raycastDefines_ = defines + modeDefines + groupDefines + shaderDefinesFromEnvironment();
   program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_), "shaders/raycast.comp");
   // A CPU rasteriser gets the cheap coefficient-hull cell bounds, a GPU the BB-coefficient ones
   // (both conservative; the image is the same, only the work skipped differs).
