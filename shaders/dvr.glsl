@@ -16,11 +16,8 @@ layout(std430, binding = 13) readonly buffer TfPrefix { int tfPrefix[]; };
 uniform float uTfMin;          // the value of entry 0
 uniform float uTfScale;        // entries per unit of value: (size - 1) / (vmax - vmin)
 uniform int uTfSize;
-// The largest extinction of each of kTfBins runs of entries (bin k: entries [k * uTfBinEntries,
-// (k + 1) * uTfBinEntries], ends shared), for the sub-step count.
-const int kTfBins = 16;
-uniform float uTfBinMax[kTfBins];
-uniform int uTfBinEntries;
+// tfMaxLevels[k * uTfSize + i]: the largest extinction of entries [i, i + 2^k) (viewer/DvrTableGpu.h).
+layout(std430, binding = 14) readonly buffer TfMaxLevels { float tfMaxLevels[]; };
 uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
 
 // 1: gradient shading (RenderOptions::dvrShading, `--shading on`): each sub-step's emission times a
@@ -88,12 +85,12 @@ bool tfZeroOn(float lo, float hi) {
   return tfPrefix[last + 1] == tfPrefix[first];
 }
 
+// The largest extinction of the entries a lookup in [lo, hi] reads (TransferTable::maxExtinctionOn):
+// two overlapping power-of-two runs of the sparse table.
 float tfMaxExtinctionOn(float lo, float hi) {
-  int first = int(floor(tfPosition(lo))) / uTfBinEntries, last = min(int(ceil(tfPosition(hi))) / uTfBinEntries, kTfBins - 1);
-  float m = 0.0;
-  for (int k = 0; k < kTfBins; ++k)
-    if (k >= first && k <= last) m = max(m, uTfBinMax[k]);
-  return m;
+  int first = int(floor(tfPosition(lo))), last = int(ceil(tfPosition(hi)));
+  int k = findMSB(last - first + 1);
+  return max(tfMaxLevels[k * uTfSize + first], tfMaxLevels[k * uTfSize + last - (1 << k) + 1]);
 }
 
 // Measurement knobs (FCCVDB_SHADER_DEFINES, docs/RENDERER.md): table entries a sub-step may span, and a
@@ -108,8 +105,7 @@ float tfMaxExtinctionOn(float lo, float hi) {
 // Sub-steps for a segment of `len` world units whose values lie in [lo, hi].
 int dvrSteps(float lo, float hi, float len) {
 #if FCC_DVR_FIXED_STEPS > 0
-  // (the table's maxima still read, so that the program keeps its uniforms)
-  return (uTfBinMax[0] < -1.0 || uTfBinEntries < 0) ? FCC_DVR_FIXED_STEPS + 1 : FCC_DVR_FIXED_STEPS;
+  return FCC_DVR_FIXED_STEPS;
 #else
   float depth = tfMaxExtinctionOn(lo, hi) * len / kDvrStepDepth;
   float entries = (hi - lo) * uTfScale / float(FCC_DVR_STEP_ENTRIES);

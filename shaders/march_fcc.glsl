@@ -22,9 +22,8 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
     if (s1 <= s0) continue;
     FccFrame frame = fcc_locate(clamp(o + (0.5 * (s0 + s1)) * d, vec3(cell), vec3(cell + 1)));
     FccCubic cubic = fcc_cubic(gatherStencil(frame), frame.type);
-    FccRange range = fcc_cubic_range(cubic);
-    if (!tfZeroOn(range.lo, range.hi) && dvrSegment3(fcc_segment_bernstein(cubic, frame, o, d, s0, s1, 0.0), s0, s1, st))
-      return true;
+    // The segment's own hull (dvrSegment3) is within the piece's: no separate check of the piece.
+    if (dvrSegment3(fcc_segment_bernstein(cubic, frame, o, d, s0, s1, 0.0), s0, s1, st)) return true;
     s0 = s1;
   }
   return false;

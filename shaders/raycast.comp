@@ -139,8 +139,20 @@ int wantedLevel(ivec3 b, vec3 o) {
 }
 #endif
 
+// 1: request() reads a brick's bit before its atomic (test and test-and-set); 0: the atomic alone. The
+// same requests either way; a measurement knob (FCCVDB_SHADER_DEFINES, docs/RENDERER.md).
+#ifndef FCC_REQUEST_TEST_FIRST
+#define FCC_REQUEST_TEST_FIRST 1
+#endif
+
 void request(uint brickIndex, bool lookahead) {
   uint bit = 1u << (brickIndex & 31u);
+  // Test, then test-and-set: most rays that miss a brick find it requested already, and the atomic of
+  // each of them would queue on one word (a streaming pass's 2 M rays on a few thousand bricks). A
+  // stale read only costs the atomic, which decides.
+#if FCC_REQUEST_TEST_FIRST
+  if ((requestBits[brickIndex >> 5] & bit) != 0u) return;
+#endif
   uint old = atomicOr(requestBits[brickIndex >> 5], bit);
   if ((old & bit) != 0u) return;
   uint at = atomicAdd(requestCount, 1u);

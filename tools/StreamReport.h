@@ -12,6 +12,10 @@ namespace fcc::cli {
 // One frame: one Raycaster::step() at the frame's camera.
 struct StreamFrame {
   double ms = 0.0;              // the step's wall time (uploads, the pass, its read-back)
+  double uploadMs = 0.0;        // of that, the uploads before the pass,
+  double dispatchMs = 0.0;      // issuing the pass,
+  double passMs = 0.0;          // the wait for the pass and its results,
+  double requestMs = 0.0;       // and queueing the bricks it asked for
   int passes = 0;               // 0 or 1: a complete view runs none
   bool restarted = false, complete = false;
   uint32_t requested = 0, uploaded = 0, missing = 0;

@@ -268,6 +268,10 @@ Command addBenchStreamCommand(CLI::App& bench) {
                   const auto end = std::chrono::steady_clock::now();
                   StreamFrame f;
                   f.ms = std::chrono::duration<double, std::milli>(end - begin).count();
+                  f.uploadMs = 1e3 * s.uploadSeconds;
+                  f.dispatchMs = 1e3 * s.dispatchSeconds;
+                  f.passMs = 1e3 * s.passSeconds;
+                  f.requestMs = 1e3 * s.requestSeconds;
                   f.passes = s.dispatched ? 1 : 0;
                   f.restarted = s.restarted;
                   f.complete = s.complete;

@@ -13,20 +13,18 @@ void DvrTableGpu::upload(const TransferTable& table) {
   if (!entries_ || entryBytes > entries_->size()) {  // both made before either is replaced
     auto entries = std::make_unique<GlBuffer>(entryBytes);
     auto prefix = std::make_unique<GlBuffer>(std::size_t(table.size() + 1) * sizeof(int32_t));
+    auto maxLevels = std::make_unique<GlBuffer>(extinctionMaxLevels(table).size() * sizeof(float));
     entries_ = std::move(entries);
     prefix_ = std::move(prefix);
+    maxLevels_ = std::move(maxLevels);
   }
   entries_->write(table.entries().data(), entryBytes);
   const std::vector<int>& prefix = table.nonZeroPrefix();
   const std::vector<int32_t> prefix32(prefix.begin(), prefix.end());
   prefix_->write(prefix32.data(), prefix32.size() * sizeof(int32_t));
-  // dvr.glsl's bins: the largest extinction of each run of entries, ends shared.
+  const std::vector<float> maxLevels = extinctionMaxLevels(table);
+  maxLevels_->write(maxLevels.data(), maxLevels.size() * sizeof(float));
   size_ = table.size();
-  binEntries_ = std::max(1, (size_ - 1 + kBins - 1) / kBins);
-  std::fill(std::begin(binMax_), std::end(binMax_), 0.0f);
-  for (int k = 0; k < kBins; ++k)
-    for (int i = k * binEntries_; i <= std::min((k + 1) * binEntries_, size_ - 1); ++i)
-      binMax_[k] = std::max(binMax_[k], table.entries()[std::size_t(i)].a);
   vmin_ = float(table.vmin());
   scale_ = float((size_ - 1) / (table.vmax() - table.vmin()));
 }
@@ -36,14 +34,25 @@ void DvrTableGpu::setUniforms(const GlProgram& program, float stopTransmittance)
   glProgramUniform1f(p, program.uniformLocation("uTfMin"), vmin_);
   glProgramUniform1f(p, program.uniformLocation("uTfScale"), scale_);
   glProgramUniform1i(p, program.uniformLocation("uTfSize"), size_);
-  glProgramUniform1fv(p, program.uniformLocation("uTfBinMax"), kBins, binMax_);
-  glProgramUniform1i(p, program.uniformLocation("uTfBinEntries"), binEntries_);
   glProgramUniform1f(p, program.uniformLocation("uStopTransmittance"), stopTransmittance);
 }
 
 void DvrTableGpu::bind() const {
   entries_->bindBase(GL_SHADER_STORAGE_BUFFER, 12);
   prefix_->bindBase(GL_SHADER_STORAGE_BUFFER, 13);
+  maxLevels_->bindBase(GL_SHADER_STORAGE_BUFFER, 14);
+}
+
+std::vector<float> DvrTableGpu::extinctionMaxLevels(const TransferTable& table) {
+  const std::size_t size = std::size_t(table.size());
+  std::vector<float> levels(size);
+  for (std::size_t i = 0; i < size; ++i) levels[i] = table.entries()[i].a;
+  for (std::size_t span = 2; span <= size; span *= 2) {
+    const std::size_t below = levels.size() - size, half = span / 2;
+    for (std::size_t i = 0; i < size; ++i)
+      levels.push_back(std::max(levels[below + i], i + half < size ? levels[below + i + half] : 0.0f));
+  }
+  return levels;
 }
 
 }  // namespace fcc::render

@@ -1,10 +1,11 @@
-// A transfer table (sparse/TransferFunction.h) as shaders/dvr.glsl reads it: its entries and their
-// non-zero prefix in SSBOs 12 and 13, its range, size and the largest extinction of each of 16 runs of
-// entries as uniforms. Shared by every program that integrates emission and absorption (the
+// A transfer table (sparse/TransferFunction.h) as shaders/dvr.glsl reads it: its entries, their
+// non-zero prefix and a sparse table of their extinction maxima in SSBOs 12, 13 and 14 (the GPU's
+// TransferTable::zeroOn and maxExtinctionOn, exact and O(1)), its range and size as uniforms. Shared by every program that integrates emission and absorption (the
 // raycaster's DVR, projected tetrahedra), so they read one table the same way.
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "GlProgram.h"
 #include "sparse/TransferFunction.h"
@@ -13,20 +14,21 @@ namespace fcc::render {
 
 class DvrTableGpu {
  public:
-  static constexpr int kBins = 16;  // dvr.glsl's kTfBins
-
   explicit DvrTableGpu(const TransferTable& table);
   // The table again (a new transfer function); the buffers grow when it has more entries.
   void upload(const TransferTable& table);
   // dvr.glsl's uniforms on `program`, and the transmittance at which a ray stops.
   void setUniforms(const GlProgram& program, float stopTransmittance) const;
-  void bind() const;  // the SSBOs at bindings 12 and 13
+  void bind() const;  // the SSBOs at bindings 12, 13 and 14
+
+  // maxLevels[k * size + i] = the largest extinction of entries [i, i + 2^k) (to the table's end), for
+  // k while 2^k <= size: dvr.glsl's tfMaxExtinctionOn reads two of them.
+  static std::vector<float> extinctionMaxLevels(const TransferTable& table);
 
  private:
-  std::unique_ptr<GlBuffer> entries_, prefix_;
+  std::unique_ptr<GlBuffer> entries_, prefix_, maxLevels_;
   float vmin_ = 0.0f, scale_ = 1.0f;
-  int size_ = 0, binEntries_ = 1;
-  float binMax_[kBins] = {};
+  int size_ = 0;
 };
 
 }  // namespace fcc::render

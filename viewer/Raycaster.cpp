@@ -855,6 +855,7 @@ void Raycaster::startStep(const Camera& camera, int width, int height, double up
     loader_->recycle(std::move(loaded));
   } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < uploadSeconds);
   if (stats.uploaded) updatePageTable();
+  stats.uploadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   uploadedThisView_ += stats.uploaded;
   if (!stepComplete_ && raiseBiasIfThrashing(uploadedThisView_)) {  // coarser bricks, from the start
     thrashBias_ = autoBias_ - 1.0f;
@@ -868,7 +869,9 @@ void Raycaster::startStep(const Camera& camera, int width, int height, double up
   stepStarted_ = true;
   if (stepComplete_) return;
   stats.dispatched = true;
+  const auto dispatch = std::chrono::steady_clock::now();
   dispatchPass(frame, width, height, coveredColumns);
+  stats.dispatchSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - dispatch).count();
 }
 
 StepStats Raycaster::finishStep() {
@@ -876,7 +879,10 @@ StepStats Raycaster::finishStep() {
   stepStarted_ = false;
   StepStats stats = startedStep_;
   if (stats.dispatched) {
+    const auto wait = std::chrono::steady_clock::now();
     const PassResult pass = collectPass();
+    const auto collected = std::chrono::steady_clock::now();
+    stats.passSeconds = std::chrono::duration<double>(collected - wait).count();
     stats.requested = pass.requested;
     stats.gpuSeconds = pass.gpuSeconds;
     if (stats.requested == 0) {
@@ -885,6 +891,7 @@ StepStats Raycaster::finishStep() {
     } else {
       loader_->request(lastRequests_ = requestedBricks(stats.requested, &stats.missing));
     }
+    stats.requestSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - collected).count();
     // Slots uploaded before the pass carry the pass before's stamp: only what the rays drew counts
     // (with levels: the slots this pass drew from, wanted or stand-in, per level).
     if (options_.countBricksDrawn) {

@@ -176,6 +176,10 @@ struct StepStats {
   uint64_t bytesUploaded = 0;  // the blocks of those bricks, as staged for the GPU
   std::size_t streaming = 0;   // bricks queued or decoding on the loader thread
   double gpuSeconds = 0.0;     // the pass on the GPU alone (RenderOptions::timeGpu; else 0)
+  double uploadSeconds = 0.0;  // wall time of the step's uploads (before its pass)
+  double dispatchSeconds = 0.0; // wall time of issuing the pass (the restart's clearing included)
+  double passSeconds = 0.0;    // wall time of finishStep()'s wait for the pass and its results
+  double requestSeconds = 0.0; // wall time of turning the pass's requests into the loader's queue
   // Resident bricks the pass's rays drew, per level of detail, level 0 first
   // (RenderOptions::countBricksDrawn; else empty). One level so far.
   std::vector<uint64_t> bricksPerLevel;

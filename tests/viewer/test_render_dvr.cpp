@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "sparse/ReferenceDvr.h"
 #include "sparse/SynthFields.h"
 #include "viewer/BccBrickSource.h"
+#include "viewer/DvrTableGpu.h"
 #include "viewer/FccBrickSource.h"
 #include "viewer/ProjectedTetrahedra.h"
 
@@ -72,6 +74,36 @@ TransferTable rampTable(double lo, double hi, double unitDistance, double cut = 
   if (cut < 1e30) opacity.insert(opacity.end(), {{cut, 0.6}, {cut, 0.0}});
   const TransferFunction tf({{lo, {0.1, 0.2, 0.9}}, {0.5 * (lo + hi), {0.9, 0.5, 0.1}}, {hi, {1.0, 1.0, 0.8}}}, opacity);
   return TransferTable(tf, lo, cut < 1e30 ? cut + 0.05 : hi, 256, OpticalScale{unitDistance, 1.0});
+}
+
+// viewer/DvrTableGpu's sparse table, read as dvr.glsl's tfMaxExtinctionOn reads it (two overlapping
+// power-of-two runs), is TransferTable::maxExtinctionOn: the largest extinction of the entries that the
+// lookups in [lo, hi] read. No GL needed.
+TEST(DvrTableGpu, SparseTableMaximaAreTheTablesRangeMaxima) {
+  std::mt19937_64 rng(23);
+  for (int size : {2, 3, 7, 64, 256, 300}) {
+    // Zero runs and a step (the ramp's cut) at 256 entries, CT's plateaus at the other sizes.
+    const TransferTable table = size == 256 ? rampTable(0.2, 0.7, 1.0, 0.85)
+                                            : TransferTable(transferFunctionPreset("ct-bone").stretchedTo(0.0, 1.0), 0.0, 1.0,
+                                                    size, OpticalScale{0.5, 1.0});
+    const std::vector<float> levels = render::DvrTableGpu::extinctionMaxLevels(table);
+    std::uniform_real_distribution<double> x(-0.1, 1.1);
+    for (int r = 0; r < 2000; ++r) {
+      double lo = x(rng), hi = x(rng);
+      if (r % 3 == 0) hi = lo + 0.01 * (hi - lo);
+      if (hi < lo) std::swap(lo, hi);
+      int first, last;
+      table.entriesOn(lo, hi, first, last);
+      first = std::clamp(first, 0, size - 1);
+      last = std::clamp(last, 0, size - 1);
+      int k = 0;
+      while ((2 << k) <= last - first + 1) ++k;  // findMSB
+      ASSERT_LT(std::size_t((k + 1) * size), levels.size() + 1) << "size " << size;
+      const float gpu = std::max(levels[std::size_t(k * size + first)], levels[std::size_t(k * size + last - (1 << k) + 1)]);
+      ASSERT_EQ(double(gpu), double(float(table.maxExtinctionOn(lo, hi))))
+          << "size " << size << " on [" << lo << ", " << hi << "], entries " << first << ".." << last;
+    }
+  }
 }
 
 class RenderDvr : public GlSuite {};
