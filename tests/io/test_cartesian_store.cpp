@@ -25,6 +25,7 @@
 #include "io/CartesianBrickStore.h"
 #include "io/VdbFile.h"
 #include "sparse/Error.h"
+#include "tests/PrivateUserCache.h"
 #include "tests/tools/RunCommand.h"
 
 namespace fcc::io {
@@ -188,18 +189,13 @@ TEST(CartesianBrickStore, DamagedLeafReadsAsTheBackgroundAndIsRecordedOnce) {
   EXPECT_EQ(store.damage().count, 1u) << "each damaged leaf is recorded once";
 }
 
-// The user cache folder of one test: FCCVDB_CACHE_DIR (and FCCVDB_CACHE_MAX_MIB when given) set while
-// it lives.
+// The user cache folder of one test: FCCVDB_CACHE_DIR, and FCCVDB_CACHE_MAX_MIB (unset unless given),
+// set while it lives; then both as they were (the process's private folder, tests/PrivateUserCache.h).
 struct ScopedCache {
   test::TempDir dir;
-  explicit ScopedCache(const char* maxMiB = nullptr) {
-    ::setenv("FCCVDB_CACHE_DIR", (dir / "cache").c_str(), 1);
-    if (maxMiB) ::setenv("FCCVDB_CACHE_MAX_MIB", maxMiB, 1);
-  }
-  ~ScopedCache() {
-    ::unsetenv("FCCVDB_CACHE_DIR");
-    ::unsetenv("FCCVDB_CACHE_MAX_MIB");
-  }
+  test::ScopedEnv cacheDir{"FCCVDB_CACHE_DIR", (dir / "cache").c_str()};
+  test::ScopedEnv maxMiB;  // unset unless given
+  explicit ScopedCache(const char* maxMiBValue = nullptr) : maxMiB("FCCVDB_CACHE_MAX_MIB", maxMiBValue) {}
   std::vector<std::string> files() const {
     std::vector<std::string> names;
     std::error_code ec;
