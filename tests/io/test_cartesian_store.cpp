@@ -76,7 +76,9 @@ void expectBlocksAndRangesMatch(const std::string& path, const openvdb::FloatGri
         const bool inList = listed.count({bx, by, bz}) > 0;
         // Conservative: a brick whose block holds anything but the background is listed (the ranges are
         // made of whole leaves, so a few bricks next to data are listed too).
-        if (!allBackground) EXPECT_TRUE(inList) << "brick (" << bx << ", " << by << ", " << bz << ")";
+        if (!allBackground) {
+          EXPECT_TRUE(inList) << "brick (" << bx << ", " << by << ", " << bz << ")";
+        }
         listedBackgroundOnly += inList && allBackground;
         if (inList) {
           const auto& r = *std::find_if(ranges.begin(), ranges.end(), [&](const auto& e) { return e.brick == brick; });
