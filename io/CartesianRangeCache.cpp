@@ -43,6 +43,10 @@ T get(const std::string& in, std::size_t at) {
   return v;
 }
 
+// a * b and a + b, or the largest uint64 where they do not fit.
+uint64_t saturatingMul(uint64_t a, uint64_t b) { return b != 0 && a > UINT64_MAX / b ? UINT64_MAX : a * b; }
+uint64_t saturatingAdd(uint64_t a, uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
+
 bool before(const glm::ivec3& a, const glm::ivec3& b) {  // (z, y, x) order: computeBrickRanges's
   if (a.z != b.z) return a.z < b.z;
   if (a.y != b.y) return a.y < b.y;
@@ -71,16 +75,23 @@ std::optional<std::vector<CartesianBrickRange>> readCartesianRangeCache(const st
   std::error_code ec;
   const uintmax_t size = fs::file_size(file, ec);
   // The header, the key and the count, then the records and the checksum; at most one record a brick
-  // of the box (whose volume bounds any honest file).
+  // of the box (whose volume bounds any honest file). A legitimate sparse grid's box can span 2^28
+  // bricks an axis, whose volume overflows 64 bits: the products saturate.
   const std::size_t fixed = sizeof kMagic + 2 * sizeof(uint32_t) + sizeof(uint64_t) + sizeof(uint64_t);
-  const glm::i64vec3 extent = glm::i64vec3(boxHi) - glm::i64vec3(boxLo) + int64_t(1);
-  const uint64_t maxBricks = glm::any(glm::lessThan(extent, glm::i64vec3(1))) ? 0 : uint64_t(extent.x * extent.y * extent.z);
-  if (ec || size < fixed || size > fixed + kMaxKeyBytes + maxBricks * kRecordBytes) return std::nullopt;
+  const glm::i64vec3 extent = glm::i64vec3(boxHi) - glm::i64vec3(boxLo) + int64_t(1);  // each at most 2^32
+  const uint64_t maxBricks =
+      glm::any(glm::lessThan(extent, glm::i64vec3(1)))
+          ? 0
+          : saturatingMul(saturatingMul(uint64_t(extent.x), uint64_t(extent.y)), uint64_t(extent.z));
+  const uint64_t maxSize = saturatingAdd(fixed + kMaxKeyBytes, saturatingMul(maxBricks, kRecordBytes));
+  if (ec || size < fixed || size > maxSize) return std::nullopt;
   std::string bytes;
-  {
+  try {
     std::ifstream in(file, std::ios::binary);
     if (!in) return std::nullopt;
     bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::exception&) {  // a file too large for memory is no cache either (never a throw)
+    return std::nullopt;
   }
   if (bytes.size() != size || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) return std::nullopt;
   std::size_t at = sizeof kMagic;
@@ -93,7 +104,9 @@ std::optional<std::vector<CartesianBrickRange>> readCartesianRangeCache(const st
   at += keyBytes;
   const uint64_t count = get<uint64_t>(bytes, at);
   at += sizeof(uint64_t);
-  if (count > maxBricks || bytes.size() != at + count * kRecordBytes + sizeof(uint64_t)) return std::nullopt;
+  // The records fit before the checksum (so count * kRecordBytes cannot wrap around to the file's size).
+  const std::size_t recordBytes = bytes.size() - at - sizeof(uint64_t);
+  if (count > maxBricks || count > recordBytes / kRecordBytes || count * kRecordBytes != recordBytes) return std::nullopt;
   const std::size_t end = bytes.size() - sizeof(uint64_t);
   if (get<uint64_t>(bytes, end) != fnv1a(bytes.data(), end)) return std::nullopt;
   std::vector<CartesianBrickRange> ranges(count);
@@ -104,7 +117,8 @@ std::optional<std::vector<CartesianBrickRange>> readCartesianRangeCache(const st
     r.hi = get<float>(bytes, at + 16);
     if (glm::any(glm::lessThan(r.brick, boxLo)) || glm::any(glm::greaterThan(r.brick, boxHi))) return std::nullopt;
     if (i > 0 && !before(ranges[i - 1].brick, r.brick)) return std::nullopt;
-    if (r.lo > r.hi) return std::nullopt;
+    // lo <= hi, neither NaN: the leaves' pass never writes a NaN (its min and max pass over them).
+    if (!(r.lo <= r.hi)) return std::nullopt;
   }
   return ranges;
 }

@@ -113,6 +113,63 @@ def nifti_seeds():
     save("nifti", "bad_truncated_header.nii", nifti([3, 1, 1, 1], 2, 8, b"")[:200])
 
 
+# --- Cartesian range cache ----------------------------------------------------------------------------
+
+# The key fuzz_cartesian_range_cache.cpp reads under (the same text there).
+RANGE_KEY = (b"FCCRNG1\n/data/volume.vdb\n123456 1700000000.123456789\ndensity\n"
+             b"bricks 16, blocks from -2 of 20 points, leaf slabs 2")
+INT_MIN, INT_MAX = -2**31, 2**31 - 1
+
+
+def fnv1a(data):
+    h = 1469598103934665603
+    for b in data:
+        h = ((h ^ b) * 1099511628211) % 2**64
+    return h
+
+
+def range_cache(box_lo, box_hi, reseal, records, key=RANGE_KEY, count=None, bom=0x01020304, checksum=None):
+    """The layout bytes (box, flags) and a .ccranges file: magic, byte-order mark, key, count, records
+    (x, y, z, lo, hi), FNV-1a of everything before it (io/CartesianRangeCache.cpp)."""
+    body = b"FCCRNG1\n" + struct.pack("<II", bom, len(key)) + key
+    body += struct.pack("<Q", len(records) if count is None else count)
+    for (x, y, z, lo, hi) in records:
+        body += struct.pack("<3i2f", x, y, z, lo, hi)
+    body += struct.pack("<Q", fnv1a(body) if checksum is None else checksum)
+    return struct.pack("<6iB", *box_lo, *box_hi, 1 if reseal else 0) + body
+
+
+def cartesian_range_cache_seeds():
+    t = "cartesian_range_cache"
+    three = [(-2, -1, 0, -1.5, 0.5), (3, -1, 0, 0.0, 0.0), (0, 2, 1, -3.0, float("inf"))]
+    box = ((-2, -1, 0), (3, 2, 1))
+    save(t, "three_bricks.ccranges", range_cache(*box, False, three))
+    save(t, "three_bricks_resealed.ccranges", range_cache(*box, True, three))
+    # CartesianBrickStore's box of a grid without data: lo > hi, and only an empty list is valid.
+    save(t, "empty_box.ccranges", range_cache((INT_MAX,) * 3, (INT_MIN,) * 3, True, []))
+    save(t, "one_brick_box.ccranges", range_cache((5, 5, 5), (5, 5, 5), True, [(5, 5, 5, 1.0, 2.0)]))
+    # A sparse grid's legitimate box can span 2^28 bricks an axis (leaves near -2^31 and 2^31).
+    far = 2**27
+    save(t, "huge_box.ccranges", range_cache((-far,) * 3, (far - 1,) * 3, True,
+                                             [(-far, -far, -far, 0.0, 1.0), (far - 1, far - 1, far - 1, 2.0, 3.0)]))
+    save(t, "widest_box.ccranges", range_cache((INT_MIN,) * 3, (INT_MAX,) * 3, True, [(0, 0, 0, 0.0, 1.0)]))
+    # Slightly broken, each next to one check.
+    save(t, "bad_checksum.ccranges", range_cache(*box, False, three, checksum=12345))
+    save(t, "bad_truncated.ccranges", range_cache(*box, False, three)[:-11])
+    save(t, "bad_other_key.ccranges", range_cache(*box, True, three, key=RANGE_KEY.replace(b"density", b"densitz")))
+    save(t, "bad_key_length.ccranges", range_cache(*box, True, three, key=RANGE_KEY[:-1]))
+    save(t, "bad_byte_order.ccranges", range_cache(*box, True, three, bom=0x04030201))
+    save(t, "bad_count_huge.ccranges", range_cache(*box, True, three, count=2**62 + 3))
+    # 20 (2^62 + 3) is 60 modulo 2^64: the size of three records, once the count's product wraps.
+    save(t, "bad_count_wraps.ccranges", range_cache((INT_MIN,) * 3, (INT_MAX,) * 3, True, three, count=2**62 + 3))
+    save(t, "bad_outside_box.ccranges", range_cache((-2, -1, 0), (3, 2, 0), True, three))
+    save(t, "bad_out_of_order.ccranges", range_cache(*box, True, [three[1], three[0], three[2]]))
+    save(t, "bad_repeated_brick.ccranges", range_cache(*box, True, [three[0], three[0]]))
+    save(t, "bad_lo_above_hi.ccranges", range_cache(*box, True, [(0, 0, 0, 2.0, 1.0)]))
+    save(t, "bad_nan_range.ccranges", range_cache(*box, True, [(0, 0, 0, float("nan"), 1.0)]))
+    save(t, "bad_empty_file.ccranges", struct.pack("<6iB", *box[0], *box[1], 1))
+
+
 # --- raw -----------------------------------------------------------------------------------------------
 # fuzz_raw reads its layout from the first 9 bytes: dims (3 x uint16 LE), type (0 u8, 1 i8, 2 u16, 3 i16,
 # 4 u32, 5 i32, 6 f32, 7 f64), flags (1 big-endian, 2 a .gz name, 4 bad spacing, 16 a 2^40 header), header
@@ -142,6 +199,7 @@ def main():
     nrrd_seeds()
     nifti_seeds()
     raw_seeds()
+    cartesian_range_cache_seeds()
     if len(sys.argv) > 1:
         folder = os.path.join(HERE, "corpus", "vdb_leaf_reader")
         os.makedirs(folder, exist_ok=True)

@@ -4,7 +4,8 @@
 # Prints one line per target; at the first crash, leak, hang, sanitizer report or allocation beyond the
 # cap, prints the end of its log and exits 1, leaving the log and the input in the work folder.
 #
-#   tests/fuzz/run_fuzzers.sh BUILD_DIR SECONDS [TARGET...]    (targets: vdb_leaf_reader nrrd nifti raw)
+#   tests/fuzz/run_fuzzers.sh BUILD_DIR SECONDS [TARGET...]
+#       (targets: vdb_leaf_reader nrrd nifti raw cartesian_range_cache)
 #
 # FCC_FUZZ_SEED (default 1) seeds libFuzzer's mutations: with a fixed seed the same binary and corpus try
 # the same inputs in the same order, so a run is reproducible and CI's verdict does not depend on luck
@@ -19,7 +20,7 @@ build=$1
 seconds=$2
 shift 2
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(vdb_leaf_reader nrrd nifti raw)
+[ ${#targets[@]} -gt 0 ] || targets=(vdb_leaf_reader nrrd nifti raw cartesian_range_cache)
 seed=${FCC_FUZZ_SEED:-1}
 here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d "${TMPDIR:-/tmp}/fccvdb-fuzz.XXXXXX")

@@ -1,7 +1,8 @@
 // The Cartesian brick store (direct rendering of float grids, issue 17) against OpenVDB's own reads: every
 // point of a brick's block, and the per-brick ranges, for a level set (interior tiles, exterior background)
 // and a fog volume (interior tiles of 1); a damaged leaf read as the background; the ranges kept in the
-// user cache (io/CartesianRangeCache.h).
+// user cache (io/CartesianRangeCache.h), and that cache file's reader alone (what fuzzing found in it,
+// the fuzz corpus's verdicts).
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -18,13 +19,17 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <optional>
 #include <set>
 #include <vector>
 
 #include "LeafDamage.h"
 #include "io/CartesianBrickStore.h"
+#include "io/CartesianRangeCache.h"
 #include "io/VdbFile.h"
 #include "sparse/Error.h"
+#include "tests/PrivateUserCache.h"
 #include "tests/tools/RunCommand.h"
 
 namespace fcc::io {
@@ -75,7 +80,9 @@ void expectBlocksAndRangesMatch(const std::string& path, const openvdb::FloatGri
         const bool inList = listed.count({bx, by, bz}) > 0;
         // Conservative: a brick whose block holds anything but the background is listed (the ranges are
         // made of whole leaves, so a few bricks next to data are listed too).
-        if (!allBackground) EXPECT_TRUE(inList) << "brick (" << bx << ", " << by << ", " << bz << ")";
+        if (!allBackground) {
+          EXPECT_TRUE(inList) << "brick (" << bx << ", " << by << ", " << bz << ")";
+        }
         listedBackgroundOnly += inList && allBackground;
         if (inList) {
           const auto& r = *std::find_if(ranges.begin(), ranges.end(), [&](const auto& e) { return e.brick == brick; });
@@ -188,18 +195,13 @@ TEST(CartesianBrickStore, DamagedLeafReadsAsTheBackgroundAndIsRecordedOnce) {
   EXPECT_EQ(store.damage().count, 1u) << "each damaged leaf is recorded once";
 }
 
-// The user cache folder of one test: FCCVDB_CACHE_DIR (and FCCVDB_CACHE_MAX_MIB when given) set while
-// it lives.
+// The user cache folder of one test: FCCVDB_CACHE_DIR, and FCCVDB_CACHE_MAX_MIB (unset unless given),
+// set while it lives; then both as they were (the process's private folder, tests/PrivateUserCache.h).
 struct ScopedCache {
   test::TempDir dir;
-  explicit ScopedCache(const char* maxMiB = nullptr) {
-    ::setenv("FCCVDB_CACHE_DIR", (dir / "cache").c_str(), 1);
-    if (maxMiB) ::setenv("FCCVDB_CACHE_MAX_MIB", maxMiB, 1);
-  }
-  ~ScopedCache() {
-    ::unsetenv("FCCVDB_CACHE_DIR");
-    ::unsetenv("FCCVDB_CACHE_MAX_MIB");
-  }
+  test::ScopedEnv cacheDir{"FCCVDB_CACHE_DIR", (dir / "cache").c_str()};
+  test::ScopedEnv maxMiB;  // unset unless given
+  explicit ScopedCache(const char* maxMiBValue = nullptr) : maxMiB("FCCVDB_CACHE_MAX_MIB", maxMiBValue) {}
   std::vector<std::string> files() const {
     std::vector<std::string> names;
     std::error_code ec;
@@ -406,6 +408,118 @@ TEST(CartesianBrickStore, NoCacheDamagedFilesAndTheFolderBound) {
     ASSERT_EQ(cache.files().size(), 1u);
     EXPECT_EQ(cache.files()[0].rfind("b.vdb-", 0), 0u) << "the least recently used file was kept";
   }
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// The range cache's reader alone (io/CartesianRangeCache.h), and what fuzz_cartesian_range_cache found in it.
+
+uint64_t fnv1a(const std::string& bytes, std::size_t size) {
+  uint64_t h = 1469598103934665603ull;
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= static_cast<unsigned char>(bytes[i]);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+// The file's trailing checksum made right again after an edit.
+void reseal(std::string& bytes) {
+  const uint64_t sum = fnv1a(bytes, bytes.size() - sizeof(uint64_t));
+  std::memcpy(bytes.data() + bytes.size() - sizeof(uint64_t), &sum, sizeof sum);
+}
+
+// A box as wide as a sparse grid's can be (leaves near -2^31 and 2^31: 2^28 bricks an axis) holds more
+// bricks than 64 bits count. The reader's bound on the records multiplied the extents as int64: undefined
+// behaviour (fuzz_cartesian_range_cache, UBSan's signed overflow), which here wrapped to 0 bricks, so a
+// valid file under such a box was never read. The bound saturates now.
+TEST(CartesianRangeCache, ABoxWhoseVolumeOverflows64BitsStillReadsItsRanges) {
+  test::TempDir dir;
+  const std::string file = dir / "wide.ccranges", key = "FCCRNG1\nwide";
+  constexpr int kFar = 1 << 27;
+  const std::vector<CartesianBrickRange> ranges = {{glm::ivec3(-kFar), -1.0f, 0.5f}, {glm::ivec3(kFar - 1), 2.0f, 3.0f}};
+  writeCartesianRangeCache(file, key, ranges);
+  const int kMin = std::numeric_limits<int>::min(), kMax = std::numeric_limits<int>::max();
+  for (const auto& [lo, hi] : {std::pair(glm::ivec3(-kFar), glm::ivec3(kFar - 1)), std::pair(glm::ivec3(kMin), glm::ivec3(kMax))}) {
+    SCOPED_TRACE(hi.x);
+    const auto read = readCartesianRangeCache(file, key, lo, hi);
+    ASSERT_TRUE(read.has_value()) << "a valid file was refused";
+    ASSERT_EQ(read->size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+      EXPECT_EQ((*read)[i].brick, ranges[i].brick);
+      EXPECT_EQ((*read)[i].lo, ranges[i].lo);
+      EXPECT_EQ((*read)[i].hi, ranges[i].hi);
+    }
+  }
+}
+
+// Under a box of 2^63 - 2^42 bricks (no overflow there), a count of 2^62 + 2 records makes 20 (2^62 + 2)
+// bytes, which is 40 modulo 2^64: the two records the file holds. The size check passed, and the
+// reader asked std::vector for 2^62 records, which threw std::length_error out of a reader that promises
+// never to throw. The count is checked against the bytes there are now.
+TEST(CartesianRangeCache, ACountWhoseBytesWrapAroundIsNoCacheAndNoThrow) {
+  test::TempDir dir;
+  const std::string file = dir / "wrap.ccranges", key = "FCCRNG1\nwrap";
+  const glm::ivec3 lo(0), hi((1 << 21) - 1, (1 << 21) - 1, (1 << 21) - 2);
+  writeCartesianRangeCache(file, key, {{glm::ivec3(0, 0, 0), 0.0f, 1.0f}, {glm::ivec3(1, 0, 0), 0.0f, 2.0f}});
+  ASSERT_TRUE(readCartesianRangeCache(file, key, lo, hi).has_value());
+  std::string bytes = readAll(file);
+  const uint64_t count = (uint64_t(1) << 62) + 2;
+  std::memcpy(bytes.data() + 16 + key.size(), &count, sizeof count);
+  reseal(bytes);
+  writeAll(file, bytes);
+  std::optional<std::vector<CartesianBrickRange>> read;
+  EXPECT_NO_THROW(read = readCartesianRangeCache(file, key, lo, hi));
+  EXPECT_FALSE(read.has_value());
+}
+
+// lo <= hi is the contract, and a NaN breaks it without failing `lo > hi`: the leaves' pass never writes
+// a NaN (std::min and std::max pass over them), so a file holding one is damaged. Infinite ends are
+// ranges like any other.
+TEST(CartesianRangeCache, ANanRangeIsNoCache) {
+  test::TempDir dir;
+  const std::string file = dir / "nan.ccranges", key = "FCCRNG1\nnan";
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const glm::ivec3 lo(0), hi(3);
+  for (const auto& [a, b] : {std::pair(nan, 1.0f), std::pair(0.0f, nan), std::pair(nan, nan)}) {
+    writeCartesianRangeCache(file, key, {{glm::ivec3(0), 0.0f, 1.0f}, {glm::ivec3(1, 0, 0), a, b}});
+    EXPECT_FALSE(readCartesianRangeCache(file, key, lo, hi).has_value()) << a << " " << b;
+  }
+  writeCartesianRangeCache(file, key, {{glm::ivec3(0), -inf, inf}});
+  EXPECT_TRUE(readCartesianRangeCache(file, key, lo, hi).has_value());
+}
+
+// Every input of the fuzz target's corpus (tests/fuzz/corpus/cartesian_range_cache: the seeds
+// make_seeds.py writes, and the inputs that found a bug, regress_*), read as fuzz_cartesian_range_cache
+// reads it — 25 bytes of box and flags, then the file — in this (gcc, unsanitized) build: the valid
+// seeds are read, every bad_* and regress_* input is no cache, none throws.
+TEST(CartesianRangeCache, FuzzCorpusInputsGetTheirVerdicts) {
+  // The key of fuzz_cartesian_range_cache.cpp (and make_seeds.py).
+  const std::string key = "FCCRNG1\n/data/volume.vdb\n123456 1700000000.123456789\ndensity\n"
+                          "bricks 16, blocks from -2 of 20 points, leaf slabs 2";
+  const std::filesystem::path corpus = std::filesystem::path(FCC_SOURCE_DIR) / "tests/fuzz/corpus/cartesian_range_cache";
+  test::TempDir dir;
+  int valid = 0, refused = 0, regressions = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
+    const std::string name = entry.path().filename().string();
+    SCOPED_TRACE(name);
+    const std::string input = readAll(entry.path().string());
+    ASSERT_GE(input.size(), 25u);
+    int32_t box[6];
+    std::memcpy(box, input.data(), sizeof box);
+    std::string bytes = input.substr(25);
+    if ((input[24] & 1) && bytes.size() >= sizeof(uint64_t)) reseal(bytes);
+    const std::string file = dir / "volume.vdb-0123456789abcdef.ccranges";
+    writeAll(file, bytes);
+    std::optional<std::vector<CartesianBrickRange>> read;
+    EXPECT_NO_THROW(read = readCartesianRangeCache(file, key, glm::ivec3(box[0], box[1], box[2]), glm::ivec3(box[3], box[4], box[5])));
+    const bool bad = name.rfind("bad_", 0) == 0 || name.rfind("regress_", 0) == 0;
+    EXPECT_EQ(read.has_value(), !bad);
+    valid += !bad;
+    refused += bad;
+    regressions += name.rfind("regress_", 0) == 0;
+  }
+  EXPECT_GE(valid, 5);
+  EXPECT_GE(refused, 10);
+  EXPECT_GE(regressions, 1);
 }
 
 }  // namespace

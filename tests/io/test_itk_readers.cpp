@@ -27,6 +27,7 @@
 #include "SameVdbFiles.h"
 #include "io/VdbFile.h"
 #include "sparse/Error.h"
+#include "tests/PrivateUserCache.h"
 #include "tests/tools/RunCommand.h"
 
 namespace fcc::io {
@@ -160,7 +161,7 @@ TEST(ItkReaders, DicomFolderIsCachedAndAChangedSliceConvertsAgain) {
   std::vector<int> order(kNz);
   std::iota(order.begin(), order.end(), 0);
   writeSeries(dir / "ct", order);
-  ::setenv("FCCVDB_CACHE_DIR", (dir / "cache").c_str(), 1);
+  const test::ScopedEnv cache("FCCVDB_CACHE_DIR", (dir / "cache").c_str());
   ConvertOptions o;
   {
     const FccInput first(dir / "ct", o, true, nullptr);
@@ -174,7 +175,6 @@ TEST(ItkReaders, DicomFolderIsCachedAndAChangedSliceConvertsAgain) {
   writeSlice(slice.string(), 3, "1.2.3", "1.2.3.4");
   std::filesystem::last_write_time(slice, before + std::chrono::seconds(3));
   EXPECT_EQ(FccInput(dir / "ct", o, true, nullptr).origin(), FccInput::Origin::Converted);
-  ::unsetenv("FCCVDB_CACHE_DIR");
 }
 
 TEST(ItkReaders, MetaImageWithDetachedAndLocalData) {

@@ -207,8 +207,11 @@ TEST(Pyramid, HalfFilesStayHalf) {
     ASSERT_TRUE(other);
     ASSERT_EQ(std::memcmp(leaf->buffer().data(), other->buffer().data(), sizeof(openvdb::Vec4f) * leaf->SIZE), 0);
   }
-  for (const VdbGridEntry& g : VdbLeafReader::listGrids(path))
-    if (g.type == kFccTreeTypeName) EXPECT_TRUE(g.half) << g.name;
+  for (const VdbGridEntry& g : VdbLeafReader::listGrids(path)) {
+    if (g.type == kFccTreeTypeName) {
+      EXPECT_TRUE(g.half) << g.name;
+    }
+  }
 }
 
 // Readers that open "the first FCC grid" open level 0 even when a level comes first in the file.

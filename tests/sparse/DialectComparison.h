@@ -142,10 +142,11 @@ void expectSegmentRootsMatchCpp(const char* dialect, Evaluate&& evaluate) {
         const float f0 = f(0.0f);
         for (int k = 1; k < 200 && float(k) / 200 < cpu - 1e-3f; ++k) {
           const float fk = f(float(k) / 200);
-          if ((fk < 0.0f) != (f0 < 0.0f))
+          if ((fk < 0.0f) != (f0 < 0.0f)) {
             ASSERT_LT(std::min(std::abs(fk), std::abs(f0)), 1e-5f)
                 << info.name << " segment " << i << ": a root before " << cpu << " (f " << f0 << " at 0, " << fk << " at "
                 << float(k) / 200 << ")";
+          }
         }
       }
       // The dialects agree but where the polynomial barely touches iso (rounding decides there).

@@ -50,7 +50,9 @@ TEST(Ray, FirstRootOfRandomCubicsMatchesDenseSampling) {
     const float u = fcc_first_root_bernstein3(b);
     if (expected < 0.0) {
       // No sign change seen: at most a double root the float search may or may not report.
-      if (u >= 0.0f) EXPECT_NEAR(bernstein3(glm::dvec4(b), u), 0.0, 1e-4) << trial;
+      if (u >= 0.0f) {
+        EXPECT_NEAR(bernstein3(glm::dvec4(b), u), 0.0, 1e-4) << trial;
+      }
       continue;
     }
     ++withRoot;
@@ -128,7 +130,9 @@ TEST(Ray, SegmentBernsteinFormIsTheSplineAlongTheRay) {
       const float expected = fcc_decasteljau3(cubic, fcc_barycentric(q, frame.type)) / FCC_CUBIC_DENOM - iso;
       EXPECT_NEAR(bernstein3(glm::dvec4(b), u), expected, 2e-5) << "trial " << trial << " u " << u;
       // And inside the piece, the spline itself.
-      if (u == 0.5f) EXPECT_NEAR(bernstein3(glm::dvec4(b), u), evaluate(x, coefficientAt) - iso, 2e-5);
+      if (u == 0.5f) {
+        EXPECT_NEAR(bernstein3(glm::dvec4(b), u), evaluate(x, coefficientAt) - iso, 2e-5);
+      }
     }
   }
 }

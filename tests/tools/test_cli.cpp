@@ -102,7 +102,9 @@ TEST(Cli, SynthCartesianHoldsTheFieldAtEveryPointAndRenders) {
                           << ", the field " << expected;
         }
     EXPECT_EQ(wrong, 0) << "of " << points << " points";
-    if (std::string(c.kind) != "blobs") EXPECT_EQ(grid->activeVoxelCount(), openvdb::Index64(points));
+    if (std::string(c.kind) != "blobs") {
+      EXPECT_EQ(grid->activeVoxelCount(), openvdb::Index64(points));
+    }
     const openvdb::Vec3d lo = grid->indexToWorld(openvdb::Coord(0)),
                          hi = grid->indexToWorld(openvdb::Coord(c.dims.x - 1, c.dims.y - 1, c.dims.z - 1));
     for (int a = 0; a < 3; ++a) {

@@ -340,8 +340,12 @@ TEST(CliRender, SeveralSurfacesFlagsAndTheirMessages) {
   for (std::size_t i = 0; i < alpha.size(); ++i) {
     outerOnly += std::abs(alpha[i] - 0.75f) < 1e-6f;
     both += alpha[i] == 1.0f;
-    if (alpha[i] > 0.0f) EXPECT_TRUE(std::isfinite(depth[i])) << "Z is the first crossing's";
-    if (alpha[i] == 1.0f) EXPECT_GT(red[i], 0.0f) << "the inner surface is red";
+    if (alpha[i] > 0.0f) {
+      EXPECT_TRUE(std::isfinite(depth[i])) << "Z is the first crossing's";
+    }
+    if (alpha[i] == 1.0f) {
+      EXPECT_GT(red[i], 0.0f) << "the inner surface is red";
+    }
   }
   EXPECT_GT(outerOnly, 10);
   EXPECT_GT(both, 10);

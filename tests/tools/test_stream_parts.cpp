@@ -62,7 +62,9 @@ TEST(StreamPaths, ZoomGoesInAStraightLineFromTheStartToOneBrick) {
     if (i > 0) {
       const double scale = viewHeightAtLookat(path[i - 1]) / h;
       EXPECT_GT(scale, 1.0) << "the view narrows every frame";
-      if (i > 1) EXPECT_NEAR(scale, previousScale, 1e-9) << "by the same factor";
+      if (i > 1) {
+        EXPECT_NEAR(scale, previousScale, 1e-9) << "by the same factor";
+      }
       previousScale = scale;
     }
   }

@@ -959,7 +959,9 @@ TEST_F(ViewerSession, RecordedPathHoldsEveryFrameAndReplaysInBenchStream) {
   ASSERT_EQ(path.points.size(), shown.size());
   for (std::size_t i = 0; i < shown.size(); ++i) {
     EXPECT_EQ(path.points[i].camera.eye, shown[i].eye) << i;
-    if (i) EXPECT_GE(path.points[i].seconds, path.points[i - 1].seconds);
+    if (i) {
+      EXPECT_GE(path.points[i].seconds, path.points[i - 1].seconds);
+    }
   }
   EXPECT_NE(shown.front().eye, shown.back().eye) << "the drag moved nothing: nothing was recorded of it";
 
