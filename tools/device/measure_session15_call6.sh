@@ -21,10 +21,11 @@ PY
 }
 for round in 1 2; do
   for v in FCC_REQUEST_TEST_FIRST=1 FCC_REQUEST_TEST_FIRST=0; do
-    for p in zoom orbit; do
+    for p in ${PATHS:-zoom orbit}; do
       echo "== round $round [$v] $p"
       FCCVDB_SHADER_DEFINES=$v fccvdb bench stream b2k.vdb --path $p "${S[@]}" --json /tmp/s6.json >/dev/null 2>&1 && summ /tmp/s6.json
     done
+    [ "${TURN:-1}" = 1 ] || continue
     echo "-- [$v] full turn in 30 frames"
     FCCVDB_SHADER_DEFINES=$v fccvdb bench render b2k.vdb --layout texture-vec4 --variants skip+analytic --gpu-cache 784 \
       --host-cache 1024 --iso 0.3 --res $RES --lod-bias 0 --arc 360 --frames 30 --warmup 3 2>&1 | grep -E "texture-vec4 .*skip" | head -2
