@@ -46,6 +46,31 @@ TEST(CliRender, WritesExrWithTheContractChannelsAndPng) {
   EXPECT_EQ(dir.fileCount(), 3) << "no temporary files left behind";
 }
 
+// FCCVDB_SHADER_DEFINES (docs/RENDERER.md, a measurement knob): a knob reaches the shader (one DVR
+// sub-step a piece changes the image), an empty setting is the default image, and anything but NAME=VALUE
+// items is one line, exit 1, nothing written.
+TEST(CliRender, ShaderDefinesReachTheShaderAndBadOnesGiveOneLine) {
+  TempDir dir;
+  const std::string vdb = dir / "ml.vdb";
+  ASSERT_EQ(runFccvdb("synth marschner-lobb " + vdb + " --dims 24,24,24 --quiet").status, 0);
+  const std::string flags = " --mode dvr --tf viridis --res 40x30 --quiet --force";
+  const auto render = [&](const std::string& defines, const std::string& out) {
+    return runShell("FCCVDB_SHADER_DEFINES='" + defines + "' " + std::string(FCC_FCCVDB_EXE) + " render " + vdb + " " + out + flags);
+  };
+  const CommandResult plain = runFccvdb("render " + vdb + " " + (dir / "plain.exr") + flags);
+  if (failedForLackOfGl(plain)) GTEST_SKIP() << plain.err;
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  ASSERT_EQ(render("", dir / "empty.exr").status, 0);
+  ASSERT_EQ(render("FCC_DVR_FIXED_STEPS=1", dir / "one.exr").status, 0);
+  EXPECT_EQ(readText(dir / "plain.exr"), readText(dir / "empty.exr")) << "an empty setting changes nothing";
+  EXPECT_NE(readText(dir / "plain.exr"), readText(dir / "one.exr")) << "one sub-step a piece must change the image";
+  const CommandResult bad = render("FCC_DVR_FIXED_STEPS=1; rm -rf x", dir / "bad.exr");
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_THAT(bad.err, HasSubstr("FCCVDB_SHADER_DEFINES: ' ' is not allowed"));
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr"));
+}
+
 // A Cartesian .vdb renders as it is with each CC reconstruction; direct volume rendering writes
 // R, G, B, A and Z (depth at opacity 0.5), no normals.
 TEST(CliRender, CartesianReconstructionsAndDvrOutputs) {
