@@ -867,6 +867,173 @@ TEST_F(ViewerSession, DvrEditorSavesLoadsAndRenderReadsTheSameFunction) {
   EXPECT_EQ(tableInUse(h), edited);
 }
 
+// `view --mode dvr` of a Cartesian grid (`--reconstruction trilinear`): choosing tricubic in the panel's
+// combo goes through the same path as in isosurface mode (takeOpenRequest, view's loop over the same
+// store, the new session taking on the old one's view), and the session stays a DVR session: the mode,
+// the transfer function in use (another preset and density scale than the one it was opened with, so
+// the session's, not the dataset's) and the camera are kept; the new image converges, differs from
+// the trilinear one, and is the same volume (the pixels with alpha > 0.01 of the two images overlap by
+// most) — that of a fresh tricubic DVR session with that function and camera, bit for bit; no GL error.
+TEST_F(ViewerSession, CartesianDvrSwitchesTheReconstructionKeepingModeAndTransferFunction) {
+  TempDir dir;
+  const std::string path = dir / "wavy.vdb";
+  // The background below the data: transparent under the presets' ramps, as empty space would be.
+  test::writeCartesianFile(path, test::wavy, 1.0, openvdb::Vec3d(0.0), -2.5f);
+  render::Camera camera;
+  camera.lookat = glm::dvec3(24.0);
+  camera.eye = glm::dvec3(90.0, 70.0, 80.0);
+  // The data as `view --mode dvr` holds it (tools/cmd_view.cpp's Dataset): the store, a source of one
+  // reconstruction, and the transfer function fitted when the file was opened, which reopenDataset
+  // hands on to the source of another reconstruction and newSession gives the session.
+  struct DvrData {
+    std::shared_ptr<io::CartesianBrickStore> store;
+    std::shared_ptr<render::CartesianBrickSource> source;
+    std::optional<render::DvrTransfer> dvr;
+  };
+  const auto sourceOf = [](const io::CartesianBrickStore& store, const std::string& name) {
+    return std::make_shared<render::CartesianBrickSource>(store, findReconstruction(name));
+  };
+  const auto makeSession = [&](const DvrData& d) {
+    render::RenderOptions options;
+    options.gpuCacheBytes = SessionHarness::kLargePoolBytes;
+    return std::make_unique<render::ViewerSession>(*d.source, nullptr, options, camera, render::summarizeSource(*d.source), d.dvr);
+  };
+  SessionHarness h(SessionHarness::NoSession{}, {SessionHarness::kWidth, 600});
+  // Pixels of an image of the harness beside the panel that differ; alpha > 0.01 in an EXR's A.
+  const auto differing = [&](const std::vector<unsigned char>& a, const std::vector<unsigned char>& b) {
+    const int panel = int(std::ceil(h.session->panelWidth()));
+    int n = 0;
+    for (int y = 0; y < h.height; ++y)
+      for (int x = panel; x < h.width; ++x) {
+        const std::size_t i = (std::size_t(y) * h.width + x) * 4;
+        n += !std::equal(a.begin() + i, a.begin() + i + 4, b.begin() + i);
+      }
+    return n;
+  };
+  const auto alphaAbove = [&](const std::string& exr) {
+    int w = 0, hgt = 0;
+    const std::vector<float> a = test::readExrChannel(exr, "A", w, hgt);
+    EXPECT_EQ(w, h.width);
+    EXPECT_EQ(hgt, h.height);
+    std::vector<bool> shown(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) shown[i] = a[i] > 0.01f;
+    return shown;
+  };
+
+  auto store = std::make_shared<io::CartesianBrickStore>(path);
+  DvrData data{store, sourceOf(*store, "trilinear"), std::nullopt};
+  data.dvr.emplace(render::DvrTransfer{"grayscale", render::fitTransferFunction(transferFunctionPreset("grayscale"), *data.source),
+                                       OpticalScale{render::defaultUnitDistance(*data.source), 1.0}});
+  h.session = makeSession(data);
+  std::vector<unsigned char> trilinearImage, tricubicImage;
+  std::vector<bool> trilinearAlpha;
+  std::optional<render::DvrTransfer> keptTransfer;
+  render::Camera keptCamera;
+  std::vector<render::OpenRequest> opened;
+  int runs = 0;
+  const auto run = [&](render::ViewerSession& s) -> std::optional<render::OpenRequest> {
+    switch (runs++) {
+      case 0: {  // trilinear DVR: another function and density scale, another camera; then tricubic from the combo
+        EXPECT_TRUE(s.dvr());
+        EXPECT_EQ(s.settings().reconstruction, "trilinear");
+        s.settings().transferFunction = "ct-bone";
+        s.settings().densityScale = 0.5f;
+        s.setCamera(render::orbit(s.camera(), 60.0, -25.0));
+        EXPECT_TRUE(h.settle());
+        EXPECT_EQ(s.transfer()->spec, "ct-bone");
+        EXPECT_EQ(s.transfer()->scale.densityScale, 0.5);
+        keptTransfer = *s.transfer();
+        keptCamera = s.camera();
+        trilinearImage = h.pixels();
+        s.writeExr(dir / "trilinear.exr");
+        trilinearAlpha = alphaAbove(dir / "trilinear.exr");
+        const render::ImRectF combo = s.panelLayout().reconstructionCombo;
+        EXPECT_FALSE(combo.empty()) << "no reconstruction combo in DVR mode";
+        EXPECT_LT(combo.y1, float(h.height)) << "the combo is below the window";
+        h.click(combo.centreX(), combo.centreY());
+        h.frame();
+        render::ImRectF tricubic;
+        for (const auto& [name, rect] : s.panelLayout().reconstructionItems)
+          if (name == "tricubic") tricubic = rect;
+        EXPECT_FALSE(tricubic.empty());
+        h.click(tricubic.centreX(), tricubic.centreY());
+        return s.takeOpenRequest();
+      }
+      case 1: {  // tricubic: still DVR, with the function in use and the camera
+        EXPECT_EQ(std::string(s.source().reconstruction().name), "tricubic");
+        EXPECT_EQ(s.settings().reconstruction, "tricubic");
+        EXPECT_TRUE(s.dvr()) << "the switch fell back to isosurface mode";
+        EXPECT_NE(s.transfer(), nullptr) << "the switch lost the transfer function";
+        if (s.transfer()) {
+          EXPECT_EQ(s.transfer()->spec, "ct-bone") << "the function the session was opened with came back";
+          EXPECT_EQ(s.transfer()->scale.densityScale, 0.5);
+          // Fitted to the trilinear source's range, not fitted again to the tricubic one's.
+          const std::shared_ptr<const TransferTable> table = s.transfer()->table(), kept = keptTransfer->table();
+          EXPECT_EQ(table->vmin(), kept->vmin()) << "the function was fitted again";
+          EXPECT_EQ(table->vmax(), kept->vmax()) << "the function was fitted again";
+          EXPECT_EQ(table->entries(), kept->entries()) << "another table";
+        }
+        EXPECT_EQ(s.settings().transferFunction, "ct-bone");
+        EXPECT_EQ(s.settings().densityScale, 0.5f);
+        EXPECT_EQ(s.camera().eye, keptCamera.eye);
+        EXPECT_EQ(s.camera().lookat, keptCamera.lookat);
+        EXPECT_EQ(s.camera().up, keptCamera.up);
+        EXPECT_EQ(s.camera().fovYDegrees, keptCamera.fovYDegrees);
+        EXPECT_TRUE(h.settle()) << "the tricubic image does not converge";
+        EXPECT_TRUE(s.panelLayout().isoSlider.empty()) << "an isovalue slider in DVR mode";
+        EXPECT_FALSE(s.panelLayout().transferCombo.empty()) << "no transfer function controls";
+        tricubicImage = h.pixels();
+        return std::nullopt;
+      }
+      default:
+        ADD_FAILURE() << "run once more";
+        return std::nullopt;
+    }
+  };
+  EXPECT_NO_THROW(render::runOpeningFiles(
+      data, h.session, run, [](const std::string&) -> DvrData { throw ValueError("no other file here"); },
+      [&](const std::string& name) {  // cmd_view's reopenDataset: the same store and the opening's function
+        return DvrData{data.store, sourceOf(*data.store, name), data.dvr};
+      },
+      makeSession, [&](const render::OpenRequest& request) { opened.push_back(request); }));
+  ASSERT_EQ(runs, 2);
+  EXPECT_EQ(opened, (std::vector<render::OpenRequest>{{"", "tricubic"}}));
+  EXPECT_EQ(data.store, store);
+  EXPECT_NO_THROW(checkGl("switching the reconstruction in DVR mode"));
+
+  // Another image of the same volume: not the trilinear one, but where it shows (alpha > 0.01) mostly
+  // where the trilinear one shows.
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  const int beside = (h.width - panel) * h.height;
+  const int changed = differing(trilinearImage, tricubicImage);
+  h.session->writeExr(dir / "tricubic.exr");
+  const std::vector<bool> tricubicAlpha = alphaAbove(dir / "tricubic.exr");
+  ASSERT_EQ(tricubicAlpha.size(), trilinearAlpha.size());
+  int both = 0, trilinearShown = 0, tricubicShown = 0;
+  for (std::size_t i = 0; i < tricubicAlpha.size(); ++i) {
+    trilinearShown += trilinearAlpha[i];
+    tricubicShown += tricubicAlpha[i];
+    both += trilinearAlpha[i] && tricubicAlpha[i];
+  }
+  std::printf("tricubic changed %d of %d pixels beside the panel; alpha > 0.01: trilinear %d, tricubic %d, both %d of %zu\n",
+              changed, beside, trilinearShown, tricubicShown, both, tricubicAlpha.size());
+  EXPECT_GT(changed, beside / 100) << "tricubic must change the image";
+  EXPECT_GT(trilinearShown, int(trilinearAlpha.size()) / 20) << "the trilinear volume must show";
+  EXPECT_LT(trilinearShown, int(trilinearAlpha.size())) << "the volume covers the whole view: the overlap tells nothing";
+  EXPECT_GE(both, 0.9 * trilinearShown) << "the tricubic volume is not where the trilinear one was";
+  EXPECT_GE(both, 0.9 * tricubicShown) << "the tricubic volume is where the trilinear one was not";
+
+  // A fresh tricubic DVR session with the kept function and camera draws the same image.
+  DvrData fresh{store, sourceOf(*store, "tricubic"), keptTransfer};
+  h.session.reset();
+  h.session = makeSession(fresh);
+  h.session->setCamera(keptCamera);
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(differing(tricubicImage, h.pixels()), 0) << "the switched session is not a tricubic DVR session with the view kept";
+  EXPECT_NO_THROW(checkGl("a fresh tricubic DVR session"));
+  h.session.reset();
+}
+
 // The panel's clipping box: dragging a range cuts the image (fewer pixels show the blobs); "no
 // clipping" gives the unclipped image back, bit for bit.
 TEST_F(ViewerSession, ClippingBoxCutsTheViewAndComesBack) {
