@@ -1,10 +1,9 @@
 // The test suite never writes into the user's own cache folder ($XDG_CACHE_HOME/fccvdb or
 // ~/.cache/fccvdb, io/UserCache.h): every test executable links tests/PrivateUserCache.cpp, which
 // points FCCVDB_CACHE_DIR at a fresh folder of its own in TMPDIR before main() runs and removes it at
-// exit; PoCL's kernel cache (POCL_CACHE_DIR, else ~/.cache/pocl) goes into its subfolder pocl/ unless
-// POCL_CACHE_DIR is already set. CTest runs each test case in its own process, so each test has its
-// own cache folder, and the `fccvdb` processes a test starts inherit it. A test that wants a folder of
-// its own sets the variable with a ScopedEnv, which puts the private folder back afterwards.
+// exit. CTest runs each test case in its own process, so each test has its own cache folder, and the
+// `fccvdb` processes a test starts inherit it. A test that wants a folder of its own sets the variable
+// with a ScopedEnv, which puts the private folder back afterwards.
 #pragma once
 
 #include <cstdlib>
