@@ -3,7 +3,9 @@
 # (issue 18), and the streaming paths with each frame's upload time (issue 19, the zoom's p99). Run as
 #   ../shared/tools/device-bundle build/bin/fccvdb build/bin/fccvdb-guard ../shared/data/engine_256x256x128_uint8.raw.gz
 #   source .devbundle/env.sh && bash tools/device/measure_session15_call2.sh
-# PART=dvr|stream runs one part; SMALL=1 the same commands at toy sizes.
+# PART=dvr|stream runs one part; SMALL=1 the same commands at toy sizes. FCC_DVR_CELL_GATHER was a knob
+# of the build this call measured (a unit cell's 28 coefficients gathered once); it was slower and is
+# gone, so that define now changes nothing.
 set -u
 HERE=$(cd "$(dirname "$0")" && pwd)
 OUTDIR=${OUT:-/tmp/m15out}; mkdir -p "$OUTDIR"
