@@ -57,6 +57,9 @@ class RangeQueries {
   int nonZeroOn(int first, int last) const;
   // prefix[i] = the count of non-zero values among [0, i), size() + 1 of them.
   const std::vector<int>& nonZeroPrefix() const { return nonZeroPrefix_; }
+  // The sparse table maxOn reads: levels()[k][i] = max of the values [i, i + 2^k), size() - 2^k + 1 of
+  // them at level k.
+  const std::vector<std::vector<double>>& levels() const { return levels_; }
 
  private:
   std::vector<double> values_;
@@ -150,6 +153,8 @@ class TransferTable {
   // For a shader that answers zeroOn itself: size() + 1 counts, prefix[i] = non-zero entries among
   // [0, i); entries [first, last] are all zero iff prefix[last + 1] == prefix[first].
   const std::vector<int>& nonZeroPrefix() const { return extinctionQueries_.nonZeroPrefix(); }
+  // For a shader that answers maxExtinctionOn itself: RangeQueries::levels of the entries' extinction.
+  const std::vector<std::vector<double>>& extinctionMaxLevels() const { return extinctionQueries_.levels(); }
 
  private:
   double position(double v) const;  // in entries, clamped to [0, size - 1]

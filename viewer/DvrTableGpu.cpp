@@ -10,19 +10,19 @@ DvrTableGpu::DvrTableGpu(const TransferTable& table) { upload(table); }
 
 void DvrTableGpu::upload(const TransferTable& table) {
   const std::size_t entryBytes = std::size_t(table.size()) * sizeof(glm::vec4);
-  if (!entries_ || entryBytes > entries_->size()) {  // both made before either is replaced
+  const std::vector<float> maxLevels = extinctionMaxLevels(table);
+  if (!entries_ || entryBytes > entries_->size()) {  // all made before any is replaced
     auto entries = std::make_unique<GlBuffer>(entryBytes);
     auto prefix = std::make_unique<GlBuffer>(std::size_t(table.size() + 1) * sizeof(int32_t));
-    auto maxLevels = std::make_unique<GlBuffer>(extinctionMaxLevels(table).size() * sizeof(float));
+    auto maxLevelBuffer = std::make_unique<GlBuffer>(maxLevels.size() * sizeof(float));
     entries_ = std::move(entries);
     prefix_ = std::move(prefix);
-    maxLevels_ = std::move(maxLevels);
+    maxLevels_ = std::move(maxLevelBuffer);
   }
   entries_->write(table.entries().data(), entryBytes);
   const std::vector<int>& prefix = table.nonZeroPrefix();
   const std::vector<int32_t> prefix32(prefix.begin(), prefix.end());
   prefix_->write(prefix32.data(), prefix32.size() * sizeof(int32_t));
-  const std::vector<float> maxLevels = extinctionMaxLevels(table);
   maxLevels_->write(maxLevels.data(), maxLevels.size() * sizeof(float));
   size_ = table.size();
   vmin_ = float(table.vmin());
@@ -44,15 +44,13 @@ void DvrTableGpu::bind() const {
 }
 
 std::vector<float> DvrTableGpu::extinctionMaxLevels(const TransferTable& table) {
+  // The table's own sparse table (doubles of the float entries: exact as floats), one row a level.
   const std::size_t size = std::size_t(table.size());
-  std::vector<float> levels(size);
-  for (std::size_t i = 0; i < size; ++i) levels[i] = table.entries()[i].a;
-  for (std::size_t span = 2; span <= size; span *= 2) {
-    const std::size_t below = levels.size() - size, half = span / 2;
-    for (std::size_t i = 0; i < size; ++i)
-      levels.push_back(std::max(levels[below + i], i + half < size ? levels[below + i + half] : 0.0f));
-  }
-  return levels;
+  const std::vector<std::vector<double>>& levels = table.extinctionMaxLevels();
+  std::vector<float> flat(levels.size() * size, 0.0f);
+  for (std::size_t k = 0; k < levels.size(); ++k)
+    std::copy(levels[k].begin(), levels[k].end(), flat.begin() + std::ptrdiff_t(k * size));
+  return flat;
 }
 
 }  // namespace fcc::render

@@ -1,7 +1,8 @@
 // A transfer table (sparse/TransferFunction.h) as shaders/dvr.glsl reads it: its entries, their
 // non-zero prefix and a sparse table of their extinction maxima in SSBOs 12, 13 and 14 (the GPU's
-// TransferTable::zeroOn and maxExtinctionOn, exact and O(1)), its range and size as uniforms. Shared by every program that integrates emission and absorption (the
-// raycaster's DVR, projected tetrahedra), so they read one table the same way.
+// TransferTable::zeroOn and maxExtinctionOn, exact and O(1)), its range and size as uniforms. Shared
+// by every program that integrates emission and absorption (the raycaster's DVR, projected
+// tetrahedra), so they read one table the same way.
 #pragma once
 
 #include <memory>
@@ -21,8 +22,9 @@ class DvrTableGpu {
   void setUniforms(const GlProgram& program, float stopTransmittance) const;
   void bind() const;  // the SSBOs at bindings 12, 13 and 14
 
-  // maxLevels[k * size + i] = the largest extinction of entries [i, i + 2^k) (to the table's end), for
-  // k while 2^k <= size: dvr.glsl's tfMaxExtinctionOn reads two of them.
+  // TransferTable::extinctionMaxLevels flattened as dvr.glsl's tfMaxExtinctionOn reads it:
+  // maxLevels[k * size + i] = the largest extinction of entries [i, i + 2^k), for k while 2^k <= size
+  // (the i past size - 2^k, which no query reads, are 0).
   static std::vector<float> extinctionMaxLevels(const TransferTable& table);
 
  private:
