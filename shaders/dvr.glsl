@@ -102,12 +102,13 @@ float tfMaxExtinctionOn(float lo, float hi) {
 #define FCC_DVR_FIXED_STEPS 0
 #endif
 
-// Sub-steps for a segment of `len` world units whose values lie in [lo, hi].
-int dvrSteps(float lo, float hi, float len) {
+// Sub-steps for a segment of `len` world units whose values lie in [lo, hi], where the largest
+// extinction is sigmaMax (tfMaxExtinctionOn(lo, hi)).
+int dvrSteps(float sigmaMax, float lo, float hi, float len) {
 #if FCC_DVR_FIXED_STEPS > 0
   return FCC_DVR_FIXED_STEPS;
 #else
-  float depth = tfMaxExtinctionOn(lo, hi) * len / kDvrStepDepth;
+  float depth = sigmaMax * len / kDvrStepDepth;
   float entries = (hi - lo) * uTfScale / float(FCC_DVR_STEP_ENTRIES);
   return clamp(int(ceil(max(depth, entries))), 1, kDvrMaxSteps);
 #endif
@@ -132,8 +133,11 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
 // Returns true once the ray is opaque enough to stop.
 bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) {
   float lo = min(min(bz.x, bz.y), min(bz.z, bz.w)), hi = max(max(bz.x, bz.y), max(bz.z, bz.w));
-  if (tfZeroOn(lo, hi)) return false;
-  int n = dvrSteps(lo, hi, s1 - s0);
+  // Zero extinction on every entry the lookups read (tfZeroOn's question, on the same entries) is a
+  // largest extinction of 0: one query for both the skip and the sub-step count.
+  float sigmaMax = tfMaxExtinctionOn(lo, hi);
+  if (sigmaMax <= 0.0) return false;
+  int n = dvrSteps(sigmaMax, lo, hi, s1 - s0);
   float h = (s1 - s0) / float(n);
   for (int i = 0; i < n; ++i) {
     dvrComposite(fcc_bernstein3(bz, (float(i) + 0.5) / float(n)), s0 + float(i) * h, h, st);
@@ -149,8 +153,11 @@ bool dvrSegment9(FccBernstein9 p, float s0, float s1, inout DvrState st) {
     lo = min(lo, p.b[i]);
     hi = max(hi, p.b[i]);
   }
-  if (tfZeroOn(lo, hi)) return false;
-  int n = dvrSteps(lo, hi, s1 - s0);
+  // Zero extinction on every entry the lookups read (tfZeroOn's question, on the same entries) is a
+  // largest extinction of 0: one query for both the skip and the sub-step count.
+  float sigmaMax = tfMaxExtinctionOn(lo, hi);
+  if (sigmaMax <= 0.0) return false;
+  int n = dvrSteps(sigmaMax, lo, hi, s1 - s0);
   float h = (s1 - s0) / float(n);
   for (int i = 0; i < n; ++i) {
     dvrComposite(fcc_bernstein9_at(p, (float(i) + 0.5) / float(n)), s0 + float(i) * h, h, st);
