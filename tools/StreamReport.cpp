@@ -119,7 +119,7 @@ std::string streamJson(const StreamReport& r) {
       out += std::string(i ? ",\n    " : "\n    ") + "{\"frame\": " + std::to_string(i) + ", \"frame_ms\": " + jsonNumber(f.ms) +
              ", \"upload_ms\": " + jsonNumber(f.uploadMs) + ", \"dispatch_ms\": " + jsonNumber(f.dispatchMs) +
              ", \"pass_ms\": " + jsonNumber(f.passMs) +
-             ", \"request_ms\": " + jsonNumber(f.requestMs) +
+             ", \"request_ms\": " + jsonNumber(f.requestMs) + ", \"gpu_pass_ms\": " + jsonNumber(f.gpuPassMs) +
              ", \"passes\": " + std::to_string(f.passes) + ", \"restarted\": " + (f.restarted ? "true" : "false") +
              ", \"complete\": " + (f.complete ? "true" : "false") + ", \"bricks_requested\": " + std::to_string(f.requested) +
              ", \"bricks_uploaded\": " + std::to_string(f.uploaded) + ", \"bricks_missing\": " + std::to_string(f.missing) +

@@ -16,6 +16,7 @@ struct StreamFrame {
   double dispatchMs = 0.0;      // issuing the pass,
   double passMs = 0.0;          // the wait for the pass and its results,
   double requestMs = 0.0;       // and queueing the bricks it asked for
+  double gpuPassMs = 0.0;       // the raycasting pass on the GPU alone (a timer query around its dispatch)
   int passes = 0;               // 0 or 1: a complete view runs none
   bool restarted = false, complete = false;
   uint32_t requested = 0, uploaded = 0, missing = 0;

@@ -214,6 +214,7 @@ Command addBenchStreamCommand(CLI::App& bench) {
             // shared out of that run's --host-cache.
             data.applyLevels(flags, /*levelsByDefault=*/false, false, options);
             options.countBricksDrawn = true;
+            options.timeGpu = true;  // each pass's GPU time beside the wall times (gpu_pass_ms)
             const render::Camera start = data.camera(flags, double(width) / height);
 
             std::vector<render::Camera> cameras;
@@ -283,6 +284,7 @@ Command addBenchStreamCommand(CLI::App& bench) {
                   f.dispatchMs = 1e3 * s.dispatchSeconds;
                   f.passMs = 1e3 * s.passSeconds;
                   f.requestMs = 1e3 * s.requestSeconds;
+                  f.gpuPassMs = 1e3 * s.gpuSeconds;
                   f.passes = s.dispatched ? 1 : 0;
                   f.restarted = s.restarted;
                   f.complete = s.complete;

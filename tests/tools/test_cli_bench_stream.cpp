@@ -52,10 +52,12 @@ for r in d['runs']:
     assert len(f) == FRAMES, len(f)
     for x in f:
         for k in ['frame_ms', 'bricks_uploaded', 'bricks_missing', 'full_resolution_fraction', 'passes',
-                  'bricks_requested', 'bytes_uploaded', 'level_mix', 'gpu_hit_rate', 'gpu_bytes', 'host_bytes', 'rss_bytes']:
+                  'bricks_requested', 'bytes_uploaded', 'level_mix', 'gpu_hit_rate', 'gpu_bytes', 'host_bytes', 'rss_bytes',
+                  'upload_ms', 'dispatch_ms', 'pass_ms', 'request_ms', 'gpu_pass_ms']:
             assert k in x, k
         assert x['frame_ms'] > 0
         assert x['passes'] in (0, 1)
+        assert x['gpu_pass_ms'] >= 0 and (x['passes'] == 1 or x['gpu_pass_ms'] == 0), x
         assert x['bricks_missing'] <= x['bricks_requested'], x
         assert 0 <= x['full_resolution_fraction'] <= 1
         assert x['bytes_uploaded'] == x['bricks_uploaded'] * 16000, x  # an FCC brick's staged block: 10^3 packed voxels
