@@ -60,6 +60,10 @@ for round in 1 2; do
     echo "-- round $round [$v] ML FCC iso 0.5"; FCCVDB_SHADER_DEFINES=$v fccvdb bench render ml.vdb --iso 0.5 "${D[@]}" | fps
   done
 done
+mark "DVR layouts"
+for l in texture-vec4 texture-scalar ssbo-vec4 ssbo-scalar; do
+  echo "-- layout $l ML FCC viridis"; fccvdb bench render ml.vdb --mode dvr --tf viridis ${D[@]/auto/$l} | fps
+done
 mark "end"
 [ -n "${SMI:-}" ] && kill $SMI
 true
