@@ -28,7 +28,6 @@
 #include "sparse/Error.h"
 #include "viewer/BrickPool.h"
 #include "viewer/CameraPath.h"
-#include "viewer/GpuWarmup.h"
 #include "viewer/EglContext.h"
 
 namespace fcc::cli {
@@ -92,7 +91,6 @@ Command addBenchStreamCommand(CLI::App& bench) {
     std::string path = "orbit", gpuCaches, hostCaches, json, plots;
     int frames = kDefaultFrames;
     double frameBudgetMs = 16.7, uploadMs = 4.0;
-    double gpuWarmupMs = 1000.0;
     uint64_t seed = 1;
     int jumpEvery = 10;
     bool force = false;
@@ -125,11 +123,6 @@ Command addBenchStreamCommand(CLI::App& bench) {
       ->check(CLI::PositiveNumber);
   app->add_option("--upload-ms", args->uploadMs,
                   "Upload time per frame within step() (default: the viewer's 4 ms, or the whole frame budget if shorter)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  app->add_option("--gpu-warmup-ms", args->gpuWarmupMs,
-                  "Arithmetic on the GPU before each run's first frame, so that the path starts on a GPU whose clocks "
-                  "have ramped up (no data read, no cache touched; 0: none; a CPU renderer: none unless given)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app->add_option("--seed", args->seed, "Seed of the jumps path")->capture_default_str();
@@ -190,7 +183,6 @@ Command addBenchStreamCommand(CLI::App& bench) {
               if (!given("--res")) flags.res = kCpuRes, scaled = std::string("--res ") + kCpuRes;
               if (!given("--frames") && builtIn)
                 frames = kCpuFrames, scaled += (scaled.empty() ? "" : ", ") + std::string("--frames ") + std::to_string(kCpuFrames);
-              if (!given("--gpu-warmup-ms")) args->gpuWarmupMs = 0.0;
               if (!scaled.empty())
                 std::fprintf(stderr,
                              "fccvdb: warning: %s renders on the CPU: running %s instead of the defaults (give the flags "
@@ -243,7 +235,6 @@ Command addBenchStreamCommand(CLI::App& bench) {
             report.frames = int(cameras.size());
             report.frameBudgetMs = args->frameBudgetMs;
             report.uploadMs = args->uploadMs;
-            report.gpuWarmupMs = args->gpuWarmupMs;
             report.seed = args->seed;
             report.jumpEvery = args->jumpEvery;
             report.dataBricks = data.source().varyingBrickCount();
@@ -272,8 +263,6 @@ Command addBenchStreamCommand(CLI::App& bench) {
                 run.layout = render::brickLayoutName(*raycaster.options().layout);
                 run.slots = raycaster.slotCount();
                 run.slotBytes = raycaster.slotBytes();
-                // Last before the path: opening the run's caches above leaves the GPU idle.
-                render::warmUpGpu(args->gpuWarmupMs * 1e-3);
                 for (const render::Camera& camera : cameras) {
                   const auto begin = std::chrono::steady_clock::now();
                   const render::StepStats s = raycaster.step(camera, width, height, args->uploadMs * 1e-3);

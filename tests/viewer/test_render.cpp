@@ -6,7 +6,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -18,7 +17,6 @@
 #include "tests/tools/RunCommand.h"
 #include "viewer/Camera.h"
 #include "viewer/FccBrickSource.h"
-#include "viewer/GpuWarmup.h"
 
 namespace fcc {
 namespace {
@@ -484,21 +482,6 @@ TEST_F(Render, ClippingBoxCutsRaysAndBricks) {
   options.clipHi = glm::dvec3(0.0);  // empty
   const render::FrameImages none = renderFile(path, camera, w, h, 0.3f, options);
   for (std::size_t i = 3; i < none.rgba.size(); i += 4) ASSERT_EQ(none.rgba[i], 0.0f) << "an empty box shows nothing";
-}
-
-// The warm-up before a measurement (bench stream) runs for the time asked, at least one dispatch, and
-// leaves no program bound and no GL error; none asked is none run.
-TEST_F(Render, GpuWarmupRunsForItsTimeAndLeavesNoProgramBound) {
-  EXPECT_EQ(render::warmUpGpu(0.0), 0);
-  const auto start = std::chrono::steady_clock::now();
-  const int dispatches = render::warmUpGpu(0.05);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_GE(dispatches, 1);
-  EXPECT_GE(seconds, 0.05) << dispatches << " dispatches";
-  GLint program = -1;
-  glGetIntegerv(GL_CURRENT_PROGRAM, &program);
-  EXPECT_EQ(program, 0);
-  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
 }  // namespace
