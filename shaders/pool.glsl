@@ -95,28 +95,14 @@ float coefficientAt(ivec3 ijk) {
 }
 #endif
 
-// Written out rather than looped: constant indices keep the values in registers whatever the
+// Written out rather than looped: constant indices keep the 19 values in registers whatever the
 // compiler decides about unrolling (a dynamically indexed array may live in local memory).
-// A piece's polynomial reads 16 of its 19 stencil sites (sparse/FccSplineTables.h: type 0 never reads
-// sites 4, 9, 14, type 4 never 7, 12, 17), so the unread ones pair up: one fetch of site 7 (type 0) or
-// 4 (type 4) fills both entries, likewise 12/9 and 17/14; the entry the piece's type does not read
-// holds the other's value. 16 fetches a piece instead of 19, the same values where they are read.
 #define FCC_GATHER(i) s.v[i] = coefficientAt(fcc_stencil_site(frame, i))
-#define FCC_GATHER_PAIR(i0, i4) s.v[i0] = s.v[i4] = coefficientAt(frame.type == 0 ? fcc_stencil_site(frame, i0) : fcc_stencil_site(frame, i4))
-// FCC_GATHER_ALL_SITES (a measurement knob, docs/RENDERER.md): all 19 fetched, as before session 16.
-#ifndef FCC_GATHER_ALL_SITES
-#define FCC_GATHER_ALL_SITES 0
-#endif
 FccSamples gatherStencil(FccFrame frame) {
   FccSamples s;
-  FCC_GATHER(0); FCC_GATHER(1); FCC_GATHER(2); FCC_GATHER(3); FCC_GATHER(5); FCC_GATHER(6); FCC_GATHER(8);
-  FCC_GATHER(10); FCC_GATHER(11); FCC_GATHER(13); FCC_GATHER(15); FCC_GATHER(16); FCC_GATHER(18);
-#if FCC_GATHER_ALL_SITES
-  FCC_GATHER(4); FCC_GATHER(7); FCC_GATHER(9); FCC_GATHER(12); FCC_GATHER(14); FCC_GATHER(17);
-#else
-  FCC_GATHER_PAIR(7, 4); FCC_GATHER_PAIR(12, 9); FCC_GATHER_PAIR(17, 14);
-#endif
+  FCC_GATHER(0); FCC_GATHER(1); FCC_GATHER(2); FCC_GATHER(3); FCC_GATHER(4); FCC_GATHER(5); FCC_GATHER(6);
+  FCC_GATHER(7); FCC_GATHER(8); FCC_GATHER(9); FCC_GATHER(10); FCC_GATHER(11); FCC_GATHER(12); FCC_GATHER(13);
+  FCC_GATHER(14); FCC_GATHER(15); FCC_GATHER(16); FCC_GATHER(17); FCC_GATHER(18);
   return s;
 }
-#undef FCC_GATHER_PAIR
 #undef FCC_GATHER
