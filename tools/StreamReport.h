@@ -66,6 +66,7 @@ struct StreamReport {
   std::string device, file, path, reconstruction, mode;
   int width = 0, height = 0, frames = 0;
   double frameBudgetMs = 0.0, uploadMs = 0.0;
+  bool uploadFit = false;       // uploads fitted to what the frame budget leaves (viewer/UploadBudget.h)
   uint64_t seed = 0;
   int jumpEvery = 0;
   uint64_t dataBricks = 0;      // bricks whose values vary: what the whole dataset needs on the GPU

@@ -28,6 +28,7 @@
 #include "sparse/Error.h"
 #include "viewer/BrickPool.h"
 #include "viewer/CameraPath.h"
+#include "viewer/UploadBudget.h"
 #include "viewer/EglContext.h"
 
 namespace fcc::cli {
@@ -91,6 +92,7 @@ Command addBenchStreamCommand(CLI::App& bench) {
     std::string path = "orbit", gpuCaches, hostCaches, json, plots;
     int frames = kDefaultFrames;
     double frameBudgetMs = 16.7, uploadMs = 4.0;
+    std::string uploadFit = "on";
     uint64_t seed = 1;
     int jumpEvery = 10;
     bool force = false;
@@ -125,6 +127,11 @@ Command addBenchStreamCommand(CLI::App& bench) {
                   "Upload time per frame within step() (default: the viewer's 4 ms, or the whole frame budget if shorter)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  app->add_option("--upload-fit", args->uploadFit,
+                  "on: each frame uploads for what the frame budget leaves after the last frame's pass and requests, "
+                  "at most --upload-ms (viewer/UploadBudget.h, as the viewer does); off: --upload-ms every frame")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"on", "off"}));
   app->add_option("--seed", args->seed, "Seed of the jumps path")->capture_default_str();
   app->add_option("--jump-every", args->jumpEvery, "Frames each camera of the jumps path is held")
       ->capture_default_str()
@@ -235,6 +242,7 @@ Command addBenchStreamCommand(CLI::App& bench) {
             report.frames = int(cameras.size());
             report.frameBudgetMs = args->frameBudgetMs;
             report.uploadMs = args->uploadMs;
+            report.uploadFit = args->uploadFit == "on";
             report.seed = args->seed;
             report.jumpEvery = args->jumpEvery;
             report.dataBricks = data.source().varyingBrickCount();
@@ -263,9 +271,13 @@ Command addBenchStreamCommand(CLI::App& bench) {
                 run.layout = render::brickLayoutName(*raycaster.options().layout);
                 run.slots = raycaster.slotCount();
                 run.slotBytes = raycaster.slotBytes();
+                double lastRest = -1.0;  // the last frame's time besides its uploads (seconds; < 0: none yet)
                 for (const render::Camera& camera : cameras) {
+                  const double uploadSeconds = report.uploadFit
+                                                   ? render::uploadSecondsWithin(args->frameBudgetMs * 1e-3, lastRest, args->uploadMs * 1e-3)
+                                                   : args->uploadMs * 1e-3;
                   const auto begin = std::chrono::steady_clock::now();
-                  const render::StepStats s = raycaster.step(camera, width, height, args->uploadMs * 1e-3);
+                  const render::StepStats s = raycaster.step(camera, width, height, uploadSeconds);
                   const auto end = std::chrono::steady_clock::now();
                   StreamFrame f;
                   f.ms = std::chrono::duration<double, std::milli>(end - begin).count();
@@ -288,6 +300,7 @@ Command addBenchStreamCommand(CLI::App& bench) {
                   f.gpuResidentBytes = uint64_t(raycaster.residentCount()) * raycaster.slotBytes();
                   f.hostBytes = raycaster.hostCacheUse().bytesUsed;
                   f.rssBytes = residentSetBytes();
+                  lastRest = std::max(0.0, f.ms - f.uploadMs) * 1e-3;
                   run.frames.push_back(std::move(f));
                   progress.wasInterrupted(int(100 * ++framesDone / std::max(totalFrames, 1L)));
                   // The rest of the frame budget: the loader threads decode meanwhile, as behind a viewer.

@@ -16,6 +16,7 @@
 #include "CameraFile.h"
 #include "ImGuiDrawData.h"
 #include "OrbitControls.h"
+#include "UploadBudget.h"
 #include "OutputNames.h"
 #include "GlProgram.h"
 #include "io/ImageOutput.h"
@@ -357,6 +358,7 @@ void ViewerSession::updateStats(const StepStats& step, double imageDrawn, bool u
 }
 
 void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int bufferAge) {
+  const auto frameStart = std::chrono::steady_clock::now();
   fbWidth_ = fbWidth;
   fbHeight_ = fbHeight;
   windowHeight_ = windowHeight;
@@ -371,7 +373,9 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   // panel is built while the pass runs, and the GPU goes on to the image and the panel without
   // waiting for the CPU (on the H200, waiting first cost 0.1-0.2 ms a frame, 7-13% at 1080p). So
   // panel edits take effect from the next frame on, and the streaming line tells the last frame's.
-  raycaster_.startStep(camera_, fbWidth, fbHeight, kUploadSecondsPerFrame, covered);
+  // Uploads within what the frame budget leaves after the last frame's other work (viewer/UploadBudget.h).
+  raycaster_.startStep(camera_, fbWidth, fbHeight, uploadSecondsWithin(kFrameBudgetSeconds, lastFrameRest_, kUploadSecondsPerFrame),
+                       covered);
   drawPanel(windowHeight);
   if (settings_.showHelp) drawHelp();
   drawAxisIndicator(windowHeight);
@@ -418,6 +422,8 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
       notify(e.what());  // an unwritable directory must not end the session
     }
   }
+  // The swap (and its wait for the display) is not part of it: this is the frame's own work.
+  lastFrameRest_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart).count() - step.uploadSeconds;
 }
 
 }  // namespace fcc::render

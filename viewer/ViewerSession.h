@@ -227,7 +227,9 @@ class ViewerSession {
   // The panel's width in window coordinates (0 while hidden), where the image is covered.
   float panelWidth() const { return settings_.showPanel ? panelWidth_ : 0.0f; }
   // The upload time budget per frame (seconds), so a frame's uploads do not stall the UI.
+  // At most: less when the last frame's other work leaves less of kFrameBudgetSeconds (viewer/UploadBudget.h).
   static constexpr double kUploadSecondsPerFrame = 0.004;
+  static constexpr double kFrameBudgetSeconds = 1.0 / 60.0;  // a 60 Hz display
   static constexpr float kPanelWidth = 330.0f;  // window units, before the font scale
 
  private:
@@ -302,6 +304,7 @@ class ViewerSession {
   std::function<void(const std::string&)> report_;
   std::string notice_;
   std::chrono::steady_clock::time_point noticeUntil_;
+  double lastFrameRest_ = -1.0;  // the last frame()'s time besides its uploads, seconds (< 0: none yet)
   std::string shownStatusLine_;
   bool shownSettled_ = false;
   std::chrono::steady_clock::time_point rateWindowStart_;

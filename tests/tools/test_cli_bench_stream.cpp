@@ -38,6 +38,7 @@ import math
 d = rows
 MiB = 1024 * 1024
 assert d['frames'] == FRAMES, d['frames']
+assert d['upload_fit'] is True, d['upload_fit']  # the default, as the viewer
 assert d['res'] == [64, 48], d['res']
 assert len(d['runs']) == len(GPU) * len(HOST), len(d['runs'])
 pairs = [(r['summary']['gpu_budget_bytes'], r['summary']['host_budget_bytes']) for r in d['runs']]
@@ -184,6 +185,7 @@ TEST_F(BenchStream, BadFlagsAreOneLineNamingTheFlag) {
       {"--res 64", "--res"},
       {"--plots " + (out / "no-such-folder"), "--plots"},
       {"--upload-ms 20 --frame-budget-ms 10", "--upload-ms"},
+      {"--upload-fit maybe", "--upload-fit"},
   };
   for (const auto& c : cases) {
     const CommandResult r = runFccvdb("bench stream " + file_ + " --frames 2 --res 64x48 " + c.args);
