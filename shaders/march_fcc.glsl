@@ -11,6 +11,9 @@ float valueAt(vec3 xyz) {
 }
 
 #if FCC_MODE_DVR
+#ifndef FCC_DVR_ONE_FETCH
+#define FCC_DVR_ONE_FETCH 0
+#endif
 // Emission-absorption through unit cell `cell` between t0 and t1 (dvr.glsl), piece by piece; true
 // once the ray is opaque enough to stop.
 bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
@@ -21,7 +24,17 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
     float s1 = k == 0 ? splits.x : (k == 1 ? splits.y : (k == 2 ? splits.z : (k == 3 ? splits.w : t1)));
     if (s1 <= s0) continue;
     FccFrame frame = fcc_locate(clamp(o + (0.5 * (s0 + s1)) * d, vec3(cell), vec3(cell + 1)));
+#if FCC_DVR_ONE_FETCH
+    // Measurement knob (docs/RENDERER.md): one fetch for all 19 coefficients (wrong images: for the
+    // gather's share of the cost alone), made to differ by a uniform so that the compiler cannot fold
+    // the cubic's arithmetic away.
+    FccSamples one;
+    float c = coefficientAt(frame.origin);
+    for (int i = 0; i < 19; ++i) one.v[i] = c + float(i) * uStopTransmittance * 1e-6;
+    FccCubic cubic = fcc_cubic(one, frame.type);
+#else
     FccCubic cubic = fcc_cubic(gatherStencil(frame), frame.type);
+#endif
     // The segment's own hull (dvrSegment3) is within the piece's: no separate check of the piece.
     if (dvrSegment3(fcc_segment_bernstein(cubic, frame, o, d, s0, s1, 0.0), s0, s1, st)) return true;
     s0 = s1;
