@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <iterator>
 
 #include "AtomicOutput.h"
@@ -14,6 +15,11 @@
 
 namespace fcc::io {
 namespace {
+
+// The range of no value: the empty range's start (+inf, -inf), left as it was by values that are all NaN.
+bool isEmptyRange(float lo, float hi) {
+  return lo == std::numeric_limits<float>::infinity() && hi == -std::numeric_limits<float>::infinity();
+}
 
 namespace fs = std::filesystem;
 
@@ -118,7 +124,10 @@ std::optional<std::vector<CartesianBrickRange>> readCartesianRangeCache(const st
     if (glm::any(glm::lessThan(r.brick, boxLo)) || glm::any(glm::greaterThan(r.brick, boxHi))) return std::nullopt;
     if (i > 0 && !before(ranges[i - 1].brick, r.brick)) return std::nullopt;
     // lo <= hi, neither NaN: the leaves' pass never writes a NaN (its min and max pass over them).
-    if (!(r.lo <= r.hi)) return std::nullopt;
+    // The one exception is what that pass gives a brick whose every value is NaN, lo = +inf and
+    // hi = -inf (nothing was added to the empty range): read as written, so that such a grid's ranges
+    // are cached like any other's instead of being computed and written again on every open.
+    if (!(r.lo <= r.hi) && !isEmptyRange(r.lo, r.hi)) return std::nullopt;
   }
   return ranges;
 }

@@ -485,6 +485,49 @@ TEST(CartesianRangeCache, ANanRangeIsNoCache) {
   }
   writeCartesianRangeCache(file, key, {{glm::ivec3(0), -inf, inf}});
   EXPECT_TRUE(readCartesianRangeCache(file, key, lo, hi).has_value());
+  // The empty range (+inf, -inf) — what the leaves' pass gives a brick of NaNs alone — reads as written;
+  // any other inverted range is damage.
+  writeCartesianRangeCache(file, key, {{glm::ivec3(0), inf, -inf}});
+  const auto empty = readCartesianRangeCache(file, key, lo, hi);
+  ASSERT_TRUE(empty.has_value());
+  EXPECT_EQ(empty->at(0).lo, inf);
+  EXPECT_EQ(empty->at(0).hi, -inf);
+  for (const auto& [a, b] : {std::pair(1.0f, 0.0f), std::pair(inf, 0.0f), std::pair(0.0f, -inf), std::pair(inf, inf - inf)}) {
+    writeCartesianRangeCache(file, key, {{glm::ivec3(0), a, b}});
+    EXPECT_FALSE(readCartesianRangeCache(file, key, lo, hi).has_value()) << a << " " << b;
+  }
+}
+
+// A grid whose brick 0 holds NaNs alone: its range is the empty one, and the second open reads the
+// ranges from the cache (until session 16 the reader refused that range, so every open computed the
+// ranges from the leaves and wrote the file again).
+TEST(CartesianBrickStore, ABrickOfNansAloneIsCachedLikeAnyOther) {
+  const ScopedCache cache;
+  test::TempDir dir;
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  // Brick 0's block (sites -2 .. 17 on each axis) lies in the leaves at -8, 0, 8, 16: all NaN.
+  for (int x = -8; x <= 16; x += 8)
+    for (int y = -8; y <= 16; y += 8)
+      for (int z = -8; z <= 16; z += 8)
+        grid->tree().touchLeaf(openvdb::Coord(x, y, z))->fill(std::numeric_limits<float>::quiet_NaN());
+  grid->tree().touchLeaf(openvdb::Coord(64, 0, 0))->fill(2.0f);
+  const std::string path = writeGrid(dir, "nans", grid);
+  std::vector<Store::BrickRange> first;
+  {
+    const Store store(path, "", /*cacheRanges=*/true);
+    first = store.brickRanges();
+    EXPECT_EQ(store.rangesFrom(), Store::RangesFrom::Leaves);
+  }
+  const auto nanBrick = std::find_if(first.begin(), first.end(), [](const Store::BrickRange& r) { return r.brick == glm::ivec3(0); });
+  ASSERT_NE(nanBrick, first.end());
+  EXPECT_EQ(nanBrick->lo, std::numeric_limits<float>::infinity());
+  EXPECT_EQ(nanBrick->hi, -std::numeric_limits<float>::infinity());
+  {
+    const Store store(path, "", true);
+    expectSameRanges(store.brickRanges(), first);
+    EXPECT_EQ(store.rangesFrom(), Store::RangesFrom::Cache) << "the ranges were computed again";
+    EXPECT_EQ(store.leavesRead(), 0u);
+  }
 }
 
 // Every input of the fuzz target's corpus (tests/fuzz/corpus/cartesian_range_cache: the seeds
