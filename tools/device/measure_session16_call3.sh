@@ -50,3 +50,18 @@ for round in 1 2; do
   done
 done
 true
+# (3) FCC DVR with a cell's chord as one Hermite cubic (FCC_DVR_HERMITE_CELL, a knob: one piece
+# evaluation a cell instead of 2.5, approximate) against main, alternating.
+if [ "${SMALL:-0}" = 1 ]; then ML=40; FR=5; else ML=320; FR=300; fi
+[ -s ml.vdb ] || fccvdb synth marschner-lobb ml.vdb --dims $ML,$ML,$ML --force --quiet
+ENGINE=${FCC_DATA:-/nonexistent}/engine_256x256x128_uint8.raw.gz
+[ -s engine.vdb ] || { [ -f "$ENGINE" ] && fccvdb convert "$ENGINE" engine.vdb --dims 256,256,128 --type u8 --force --quiet; }
+D=(--variants skip+analytic --layout auto --res $RES --frames $FR --warmup 30 --json)
+fps() { grep -oE '"fps": [0-9.e+]+|fccvdb:.*' | tr '\n' ' '; echo; }
+for round in 1 2; do
+  for v in "" "FCC_DVR_HERMITE_CELL=1"; do
+    echo "-- round $round [${v:-main}] ML FCC viridis"; FCCVDB_SHADER_DEFINES=$v fccvdb bench render ml.vdb --mode dvr --tf viridis "${D[@]}" | fps
+    [ -s engine.vdb ] && { echo "-- round $round [${v:-main}] engine inferno"; FCCVDB_SHADER_DEFINES=$v fccvdb bench render engine.vdb --mode dvr --tf inferno "${D[@]}" | fps; }
+  done
+done
+true
