@@ -129,10 +129,11 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
   if (isinf(st.depthHalf) && st.transmittance <= 0.5) st.depthHalf = ta + log(2.0 * before) / e.a;
 }
 
-// The segment [s0, s1] of the ray, where the field is the cubic with Bernstein coefficients bz.
-// Returns true once the ray is opaque enough to stop.
-bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) {
-  float lo = min(min(bz.x, bz.y), min(bz.z, bz.w)), hi = max(max(bz.x, bz.y), max(bz.z, bz.w));
+// The segment [s0, s1] of the ray, where the field is within `margin` of the cubic with Bernstein
+// coefficients bz (0: is that cubic); the cubic is what the sub-steps evaluate, its hull widened by
+// the margin what the skip and the sub-step rule see. Returns true once the ray is opaque enough to stop.
+bool dvrSegment3Within(vec4 bz, float margin, float s0, float s1, inout DvrState st) {
+  float lo = min(min(bz.x, bz.y), min(bz.z, bz.w)) - margin, hi = max(max(bz.x, bz.y), max(bz.z, bz.w)) + margin;
   // Zero extinction on every entry the lookups read (tfZeroOn's question, on the same entries) is a
   // largest extinction of 0: one query for both the skip and the sub-step count.
   float sigmaMax = tfMaxExtinctionOn(lo, hi);
@@ -145,6 +146,8 @@ bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) {
   }
   return false;
 }
+
+bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) { return dvrSegment3Within(bz, 0.0, s0, s1, st); }
 
 // The same for a polynomial of degree 9 (tricubic).
 bool dvrSegment9(FccBernstein9 p, float s0, float s1, inout DvrState st) {

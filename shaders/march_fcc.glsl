@@ -14,37 +14,55 @@ float valueAt(vec3 xyz) {
 #ifndef FCC_DVR_ONE_FETCH
 #define FCC_DVR_ONE_FETCH 0
 #endif
-#ifndef FCC_DVR_HERMITE_CELL
-#define FCC_DVR_HERMITE_CELL 0
-#endif
-#if FCC_DVR_HERMITE_CELL
-// Measurement knob (docs/RENDERER.md; approximate images, no error check): a cell's chord as one cubic,
-// the Hermite interpolant of the value and slope at its ends (docs/DVR.md, "Not done yet"), the
-// entry's carried from the cell before when the ray comes straight from it: one piece evaluation a cell.
-vec3 gHermiteCarry = vec3(-1e30, 0.0, 0.0);  // (t, value, slope) at the last cell's exit
+#if defined(FCC_SLOT_THIRD)
+// A cell's chord as one cubic where that is certified close (docs/DVR.md, "One cubic a cell"): along
+// the chord the spline is C2, a cubic on each of up to five pieces whose third derivative jumps (by J_k)
+// at up to four faces, so the cubic Hermite interpolant H of the value and slope at the chord's ends
+// differs from it by at most (h^3 / 192) sum |J_k| (h the chord's length in t). A piece's third
+// derivative along the ray is 6 B(delta, delta, delta) of its BB net, delta the ray's barycentric rate:
+// at most 6 (c |d|_1)^3 T, T the largest third difference (gCellThird, slot_bounds.comp) and c = 2.5 for
+// both piece types (1 for type 0); each |J_k| is at most twice that, so
+//   |s - H| <= (h |d|_1)^3 * 2 * 4 * 6 * 2.5^3 / 192 * T = 125/192 * chord^3 * T,
+// chord the chord's index-space 1-norm. Where that is within kDvrCellCubicEntries table entries, the
+// cell is one segment (its hull widened by the bound for the skip and the sub-step rule) and one
+// evaluation at its exit (the entry's is carried from the cell before); elsewhere its pieces, exactly.
+const float kDvrCellCubicEntries = 0.5;
+float gCellThird;                     // T of the cell's packed voxel (raycast.comp's marchBrick sets it)
+vec3 gDvrCarry = vec3(-1e30, 0.0, 0.0);  // (t, value, slope) where the last cell's chord ended
 
+void dvrForgetCarry() { gDvrCarry.x = -1e30; }
+
+// The spline's value and slope (per unit t) at o + t d, from the piece of `cell` there.
 vec2 valueSlopeAt(ivec3 cell, vec3 o, vec3 d, float t) {
   FccFrame frame = fcc_locate(clamp(o + t * d, vec3(cell), vec3(cell + 1)));
   FccCubic cubic = fcc_cubic(gatherStencil(frame), frame.type);
   vec4 l = fcc_barycentric(frame.q, frame.type);
-  vec4 dl = fcc_barycentric(frame.q + vec3(frame.axis) * d, frame.type) - l;  // per unit t (affine)
+  vec4 dl = fcc_barycentric(frame.q + vec3(frame.axis) * d, frame.type) - l;  // affine: the rate per unit t
   vec4 c = fcc_decasteljau_step2(fcc_decasteljau_step3(cubic, l), l);
   return vec2(dot(l, c), 3.0 * dot(dl, c)) * (1.0 / FCC_CUBIC_DENOM);
 }
 
-bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
-  dvrBeginCell(cell, o, d);
-  vec2 a = gHermiteCarry.x == t0 ? gHermiteCarry.yz : valueSlopeAt(cell, o, d, t0);
+bool integrateCellCubic(ivec3 cell, vec3 o, vec3 d, float t0, float t1, float bound, inout DvrState st) {
+  vec2 a = gDvrCarry.x == t0 ? gDvrCarry.yz : valueSlopeAt(cell, o, d, t0);
   vec2 b = valueSlopeAt(cell, o, d, t1);
-  gHermiteCarry = vec3(t1, b);
+  gDvrCarry = vec3(t1, b);
   float h = (t1 - t0) / 3.0;
-  return dvrSegment3(vec4(a.x, a.x + h * a.y, b.x - h * b.y, b.x), t0, t1, st);
+  return dvrSegment3Within(vec4(a.x, a.x + h * a.y, b.x - h * b.y, b.x), bound, t0, t1, st);
 }
-#else
+#endif
+
 // Emission-absorption through unit cell `cell` between t0 and t1 (dvr.glsl), piece by piece; true
 // once the ray is opaque enough to stop.
 bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
   dvrBeginCell(cell, o, d);
+#if defined(FCC_SLOT_THIRD)
+  float chord = (t1 - t0) * (abs(d.x) + abs(d.y) + abs(d.z));
+  float bound = (125.0 / 192.0) * chord * chord * chord * gCellThird;
+#ifndef FCC_DVR_CELL_CUBIC_OFF
+  if (bound * uTfScale <= kDvrCellCubicEntries) return integrateCellCubic(cell, o, d, t0, t1, bound, st);
+#endif
+  dvrForgetCarry();
+#endif
   vec4 splits = fcc_cell_splits(cell, o, d, t0, t1);
   float s0 = t0;
   for (int k = 0; k < 5 && s0 < t1; ++k) {
@@ -68,7 +86,6 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   }
   return false;
 }
-#endif  // FCC_DVR_HERMITE_CELL
 
 #if FCC_DVR_SHADING
 // The box spline's gradient at xyz (the piece there: the spline is C2, so a rounding across a piece

@@ -57,6 +57,9 @@ struct RenderOptions {
   // scale applied); bricks and cells whose values it maps to zero extinction are skipped.
   std::shared_ptr<const TransferTable> transfer;
   bool dvrShading = false;  // DVR: gradient shading (shaders/dvr.glsl, FCC_DVR_SHADING; docs/DVR.md)
+  // FCC DVR: a unit cell's chord as one Hermite cubic where its error is certified within half a table
+  // entry (shaders/march_fcc.glsl; docs/DVR.md, "One cubic a cell"); false: every piece exactly.
+  bool dvrCellCubic = true;
   float terminationOpacity = 0.995f;  // DVR: a ray stops once this opaque (and asks for no brick behind)
   // The clipping box, world space: rays are cut to it and bricks outside it are never loaded. The
   // default holds everything.
@@ -377,6 +380,8 @@ class Raycaster {
   GlTexture2D resumeState_;                          // FCC_LOD: what a provisional ray's march carried
   std::unique_ptr<GpuInterval> passTimer_;
   std::unique_ptr<BrickPool> pool_;
+  bool slotThird_ = false;  // FCC DVR: slots carry a bound of their pieces' third differences (binding 15)
+  std::unique_ptr<GlBuffer> slotThirdBuffer_;
   std::unique_ptr<GlBuffer> slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;
   std::unique_ptr<GlBuffer> pageChanges_;  // (index, value) pairs for updatePageTable
   std::unique_ptr<DvrTableGpu> dvrTable_;  // DVR: the transfer table as shaders/dvr.glsl reads it
