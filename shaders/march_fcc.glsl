@@ -19,15 +19,16 @@ float valueAt(vec3 xyz) {
 // the chord the spline is C2, a cubic on each of up to five pieces whose third derivative jumps (by J_k)
 // at up to four faces, so the cubic Hermite interpolant H of the value and slope at the chord's ends
 // differs from it by at most (h^3 / 192) sum |J_k| (h the chord's length in t). A piece's third
-// derivative along the ray is 6 B(delta, delta, delta) of its BB net, delta the ray's barycentric rate:
-// at most 6 (c |d|_1)^3 T, T the largest third difference (gCellThird, slot_bounds.comp) and c = 2.5 for
-// both piece types (1 for type 0); each |J_k| is at most twice that, so
-//   |s - H| <= (h |d|_1)^3 * 2 * 4 * 6 * 2.5^3 / 192 * T = 125/192 * chord^3 * T,
+// derivative along the ray is 6 B(delta, delta, delta) of its BB net, delta the ray's barycentric rates
+// (relative to vertex 0): at most 6 |delta|_1^3 T, T the largest third difference, and |delta|_1 is at
+// most c |d|_1 (c = 1 for type 0, 1.5 for type 4). gCellThird (slot_bounds.comp) is the largest c^3 T
+// of the voxel's pieces; each |J_k| is at most twice 6 |d|_1^3 gCellThird, so
+//   |s - H| <= (h |d|_1)^3 * 2 * 4 * 6 / 192 * gCellThird = chord^3 * gCellThird / 4,
 // chord the chord's index-space 1-norm. Where that is within kDvrCellCubicEntries table entries, the
 // cell is one segment (its hull widened by the bound for the skip and the sub-step rule) and one
 // evaluation at its exit (the entry's is carried from the cell before); elsewhere its pieces, exactly.
 const float kDvrCellCubicEntries = 0.5;
-float gCellThird;                     // T of the cell's packed voxel (raycast.comp's marchBrick sets it)
+float gCellThird;                     // c^3 T of the cell's packed voxel (raycast.comp's marchBrick sets it)
 vec3 gDvrCarry = vec3(-1e30, 0.0, 0.0);  // (t, value, slope) where the last cell's chord ended
 
 void dvrForgetCarry() { gDvrCarry.x = -1e30; }
@@ -57,7 +58,7 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   dvrBeginCell(cell, o, d);
 #if defined(FCC_SLOT_THIRD)
   float chord = (t1 - t0) * (abs(d.x) + abs(d.y) + abs(d.z));
-  float bound = (125.0 / 192.0) * chord * chord * chord * gCellThird;
+  float bound = 0.25 * chord * chord * chord * gCellThird;
 #ifndef FCC_DVR_CELL_CUBIC_OFF
   if (bound * uTfScale <= kDvrCellCubicEntries) return integrateCellCubic(cell, o, d, t0, t1, bound, st);
 #endif

@@ -31,7 +31,7 @@ void markUsed(uint slot) {
 #ifdef FCC_SLOT_THIRD
 // FCC DVR (viewer/Raycaster.cpp sets FCC_SLOT_THIRD): per packed voxel, the largest third difference
 // |B(e_i - e_0, e_j - e_0, e_k - e_0)| (i <= j <= k in 1..3) of the BB nets of its 40 pieces, in values
-// (FCC_CUBIC_DENOM divided out). It bounds a piece's third derivative along a ray (shaders/march_fcc.glsl,
+// (FCC_CUBIC_DENOM divided out), each times its piece type's c^3 (below). It bounds a piece's third derivative along a ray (shaders/march_fcc.glsl,
 // docs/DVR.md): what certifies a cell's chord as one Hermite cubic.
 layout(std430, binding = 15) writeonly buffer SlotThird { float slotThird[]; };
 
@@ -56,7 +56,10 @@ float voxelThirdDifferenceMax(ivec3 v) {
     ivec3 cell = 2 * v + ivec3(c & 1, (c >> 1) & 1, c >> 2);
     for (int piece = 0; piece < 5; ++piece) {
       FccFrame frame = fcc_locate(fcc_piece_centroid(cell, piece));
-      m = max(m, thirdDifferenceMax(fcc_cubic(gatherStencil(frame), frame.type)));
+      // Times c^3, c the most a unit 1-norm of the ray's direction gives the barycentric rates the
+      // differences are taken along (type 0: 1; type 4: 1.5, at a coordinate axis): march_fcc.glsl's
+      // bound then needs only the chord's 1-norm.
+      m = max(m, thirdDifferenceMax(fcc_cubic(gatherStencil(frame), frame.type)) * (frame.type == 0 ? 1.0 : 3.375));
     }
   }
   return m;

@@ -66,6 +66,15 @@ double psnr(const render::FrameImages& image, const std::vector<DvrPixel>& refer
   return mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : 1e9;
 }
 
+// An FCC grid's coefficients for the CPU reference, read from the tree itself, not an accessor (not
+// thread-safe): the reference's rows run in parallel. `grid` outlives the function.
+SiteValue siteValuesOf(const FccGrid& grid) {
+  return [&grid](const glm::ivec3& ijk) {
+    const glm::ivec3 v = packedVoxelOfSite(ijk);
+    return grid.tree().getValue(openvdb::Coord(v.x, v.y, v.z))[channelOfSite(ijk)];
+  };
+}
+
 // A colour map with an opacity ramp over [lo, hi] (zero below lo), constant above up to `cut` and zero
 // from there: the renderer draws only bricks with data, so the background must be transparent (the
 // Cartesian test grid's is 2, above its data).
@@ -239,11 +248,7 @@ TEST_F(RenderDvr, MatchesTheCpuReferenceOnEveryLattice) {
   const TransferTable blobTable = rampTable(0.1, 1.2, 4.0);
   const render::FrameImages gpu = renderSource(source, fccCamera, w, h, dvrOptions(blobTable));
   const FccGrid::Ptr grid = io::readFccGrid(fccPath);
-  // The tree itself, not an accessor (not thread-safe): the reference's rows run in parallel.
-  const SiteValue at = [&](const glm::ivec3& ijk) {
-    const glm::ivec3 v = packedVoxelOfSite(ijk);
-    return grid->tree().getValue(openvdb::Coord(v.x, v.y, v.z))[channelOfSite(ijk)];
-  };
+  const SiteValue at = siteValuesOf(*grid);
   const std::unique_ptr<Reconstruction> boxSpline = makeReconstruction("boxspline");
   DvrOptions fccReference;
   fccReference.step = 0.02;  // world units (one index unit each here)
@@ -295,10 +300,7 @@ TEST_F(RenderDvr, CellCubicIsTakenAndAgreesWithThePiecesAndTheReference) {
     EXPECT_GE(between, kMinPsnrDb + 15.0);
 
     const FccGrid::Ptr grid = io::readFccGrid(path);
-    const SiteValue at = [&](const glm::ivec3& ijk) {
-      const glm::ivec3 v = packedVoxelOfSite(ijk);
-      return grid->tree().getValue(openvdb::Coord(v.x, v.y, v.z))[channelOfSite(ijk)];
-    };
+    const SiteValue at = siteValuesOf(*grid);
     const std::unique_ptr<Reconstruction> boxSpline = makeReconstruction("boxspline");
     DvrOptions reference;
     reference.step = 0.02 * worldPerIndex;
