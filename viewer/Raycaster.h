@@ -58,8 +58,9 @@ struct RenderOptions {
   std::shared_ptr<const TransferTable> transfer;
   bool dvrShading = false;  // DVR: gradient shading (shaders/dvr.glsl, FCC_DVR_SHADING; docs/DVR.md)
   // FCC DVR: a unit cell's chord as one Hermite cubic where its error is certified within half a table
-  // entry (shaders/march_fcc.glsl; docs/DVR.md, "One cubic a cell"); false: every piece exactly.
-  bool dvrCellCubic = true;
+  // entry (shaders/march_fcc.glsl; docs/DVR.md, "One cubic a cell"). Off by default: with today's
+  // bound too few cells are certified, and the H200 ran it slower than the pieces (session 16).
+  bool dvrCellCubic = false;
   float terminationOpacity = 0.995f;  // DVR: a ray stops once this opaque (and asks for no brick behind)
   // The clipping box, world space: rays are cut to it and bricks outside it are never loaded. The
   // default holds everything.
