@@ -31,8 +31,9 @@ void markUsed(uint slot) {
 #ifdef FCC_SLOT_THIRD
 // FCC DVR (viewer/Raycaster.cpp sets FCC_SLOT_THIRD): per packed voxel, the largest third difference
 // |B(e_i - e_0, e_j - e_0, e_k - e_0)| (i <= j <= k in 1..3) of the BB nets of its 40 pieces, in values
-// (FCC_CUBIC_DENOM divided out), each times its piece type's c^3 (below). It bounds a piece's third derivative along a ray (shaders/march_fcc.glsl,
-// docs/DVR.md): what certifies a cell's chord as one Hermite cubic.
+// (FCC_CUBIC_DENOM divided out), each times its piece type's c^3 (below). It bounds a piece's third
+// derivative along a ray (shaders/march_fcc.glsl, docs/DVR.md): what certifies a cell's chord as one
+// Hermite cubic (RenderOptions::dvrCellCubic).
 layout(std430, binding = 15) writeonly buffer SlotThird { float slotThird[]; };
 
 float thirdDifferenceMax(FccCubic c) {

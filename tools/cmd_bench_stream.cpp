@@ -28,8 +28,8 @@
 #include "sparse/Error.h"
 #include "viewer/BrickPool.h"
 #include "viewer/CameraPath.h"
-#include "viewer/UploadBudget.h"
 #include "viewer/EglContext.h"
+#include "viewer/UploadBudget.h"
 
 namespace fcc::cli {
 namespace {
