@@ -59,9 +59,7 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
 #if defined(FCC_SLOT_THIRD)
   float chord = (t1 - t0) * (abs(d.x) + abs(d.y) + abs(d.z));
   float bound = 0.25 * chord * chord * chord * gCellThird;
-#ifndef FCC_DVR_CELL_CUBIC_OFF
   if (bound * uTfScale <= kDvrCellCubicEntries) return integrateCellCubic(cell, o, d, t0, t1, bound, st);
-#endif
   dvrForgetCarry();
 #endif
   vec4 splits = fcc_cell_splits(cell, o, d, t0, t1);
