@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# (Its --gpu-warmup-ms and FCC_GATHER_ALL_SITES were reverted after this call: docs/BENCHMARKS.md, session 16.)
 # Session 16, first call: (1) the zoom's p99 on a cold GPU with and without bench stream's new GPU
 # warm-up (--gpu-warmup-ms), with the SM clocks logged (nvidia-smi, read only) and each frame's GPU pass
 # time (gpu_pass_ms); (2) FCC DVR at 1080p with the 16-fetch gather against all 19 fetches

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# (Its FCC_DVR_HERMITE_CELL knob became RenderOptions::dvrCellCubic, off by default: docs/DVR.md.)
 # Session 16, third call, on blobs 2048^3 with levels: (1) is the first run's slow start the driver
 # compiling the programs? The zoom on a fresh machine, again, then again with the driver's shader disk
 # cache off (__GL_SHADER_DISK_CACHE=0: it compiles anew every process), the cache's size logged;

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# (FCC_DVR_CELL_CUBIC_OFF was removed after the fifth call; the cubic is off by default.)
 # Session 16, fourth call: FCC DVR with the certified cell cubic (docs/DVR.md, "One cubic a cell"; the
 # default now) against every cell by its pieces (FCC_DVR_CELL_CUBIC_OFF), alternating, at 1080p on ML
 # 160^3x4 FCC and the engine CT, beside the isosurface and the Cartesian trilinear DVR of the same sample

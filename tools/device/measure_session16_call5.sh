@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# (FCC_DVR_CELL_CUBIC_OFF was removed after the fifth call; the cubic is off by default.)
 # Session 16, fifth call: the cell cubic with its bound corrected and tightened (type 4's rates at most
 # 1.5 |d|_1, not 2.5; the constant 1/4), against every cell by its pieces, alternating. Run as
 #   ../shared/tools/device-bundle build/bin/fccvdb build/bin/fccvdb-guard ../shared/data/engine_256x256x128_uint8.raw.gz
