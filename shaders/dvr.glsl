@@ -102,9 +102,12 @@ float tfMaxExtinctionOn(float lo, float hi) {
 #define FCC_DVR_FIXED_STEPS 0
 #endif
 
-// Sub-steps for a segment of `len` world units whose values lie in [lo, hi], where the largest
-// extinction is sigmaMax (tfMaxExtinctionOn(lo, hi)).
-int dvrSteps(float sigmaMax, float lo, float hi, float len) {
+// Sub-steps for a segment of `len` world units whose values lie in [lo, hi]; 0 where every entry a
+// lookup there reads has zero extinction (tfZeroOn's question, on the same entries, is a largest
+// extinction of 0): one query decides both the skip and the count.
+int dvrSteps(float lo, float hi, float len) {
+  float sigmaMax = tfMaxExtinctionOn(lo, hi);
+  if (sigmaMax <= 0.0) return 0;
 #if FCC_DVR_FIXED_STEPS > 0
   return FCC_DVR_FIXED_STEPS;
 #else
@@ -134,11 +137,8 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
 // the margin what the skip and the sub-step rule see. Returns true once the ray is opaque enough to stop.
 bool dvrSegment3Within(vec4 bz, float margin, float s0, float s1, inout DvrState st) {
   float lo = min(min(bz.x, bz.y), min(bz.z, bz.w)) - margin, hi = max(max(bz.x, bz.y), max(bz.z, bz.w)) + margin;
-  // Zero extinction on every entry the lookups read (tfZeroOn's question, on the same entries) is a
-  // largest extinction of 0: one query for both the skip and the sub-step count.
-  float sigmaMax = tfMaxExtinctionOn(lo, hi);
-  if (sigmaMax <= 0.0) return false;
-  int n = dvrSteps(sigmaMax, lo, hi, s1 - s0);
+  int n = dvrSteps(lo, hi, s1 - s0);
+  if (n == 0) return false;
   float h = (s1 - s0) / float(n);
   for (int i = 0; i < n; ++i) {
     dvrComposite(fcc_bernstein3(bz, (float(i) + 0.5) / float(n)), s0 + float(i) * h, h, st);
@@ -156,11 +156,8 @@ bool dvrSegment9(FccBernstein9 p, float s0, float s1, inout DvrState st) {
     lo = min(lo, p.b[i]);
     hi = max(hi, p.b[i]);
   }
-  // Zero extinction on every entry the lookups read (tfZeroOn's question, on the same entries) is a
-  // largest extinction of 0: one query for both the skip and the sub-step count.
-  float sigmaMax = tfMaxExtinctionOn(lo, hi);
-  if (sigmaMax <= 0.0) return false;
-  int n = dvrSteps(sigmaMax, lo, hi, s1 - s0);
+  int n = dvrSteps(lo, hi, s1 - s0);
+  if (n == 0) return false;
   float h = (s1 - s0) / float(n);
   for (int i = 0; i < n; ++i) {
     dvrComposite(fcc_bernstein9_at(p, (float(i) + 0.5) / float(n)), s0 + float(i) * h, h, st);

@@ -247,11 +247,12 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
   for (int iter = 0; iter < 64; ++iter) {
     float tExit = min(min(min(tMax.x, tMax.y), tMax.z), tb);
     ivec3 voxel = (cell - cellLo) >> 1;
-    vec2 cellBounds = slotBounds[boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
+    uint voxelEntry = boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x);
+    vec2 cellBounds = slotBounds[voxelEntry];
 #if FCC_MODE_DVR
     if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) {
 #if defined(FCC_SLOT_THIRD)
-      gCellThird = slotThird[boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
+      gCellThird = slotThird[voxelEntry];
 #endif
       if (integrateCell(cell, o, d, tCell, tExit, st)) return true;
     }
