@@ -57,10 +57,6 @@ layout(std430, binding = 4) buffer RequestBits { uint requestBits[]; };
 // Per slot: the last pass that read it (for least-recently-used eviction).
 layout(std430, binding = 5) buffer SlotUse { uint slotLastUse[]; };
 layout(std430, binding = 6) readonly buffer SlotBounds { vec2 slotBounds[]; };  // see pool.glsl
-#if FCC_MODE_DVR && defined(FCC_SLOT_THIRD)
-// FCC DVR: per packed voxel, a bound of its pieces' third differences (slot_bounds.comp, march_fcc.glsl).
-layout(std430, binding = 15) readonly buffer SlotThird { float slotThird[]; };
-#endif
 
 #if FCC_MODE_DVR || FCC_MULTI_ISO
 // Read back where a ray resumes: the colour so far, and in the normal's x the transmittance so far.
@@ -230,9 +226,6 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
 bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout int prevSign, inout Hit hit) {
 #endif
   selectSlot(slot, b);
-#if FCC_MODE_DVR && defined(FCC_SLOT_THIRD)
-  dvrForgetCarry();  // another brick may be another level's spline: its entry is evaluated anew
-#endif
   uint boundsBase = slot * uint(kSlotVoxels);
   ivec3 cellLo = b * 16, cellHi = cellLo + 15;
   float tm = 0.5 * (ta + tb);
@@ -251,9 +244,6 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     vec2 cellBounds = slotBounds[voxelEntry];
 #if FCC_MODE_DVR
     if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) {
-#if defined(FCC_SLOT_THIRD)
-      gCellThird = slotThird[voxelEntry];
-#endif
       if (integrateCell(cell, o, d, tCell, tExit, st)) return true;
     }
 #else

@@ -28,44 +28,6 @@ void markUsed(uint slot) {
   if (gl_GlobalInvocationID.x == 0u) slotLastUse[slot] = uPass;
 }
 
-#ifdef FCC_SLOT_THIRD
-// FCC DVR (viewer/Raycaster.cpp sets FCC_SLOT_THIRD): per packed voxel, the largest third difference
-// |B(e_i - e_0, e_j - e_0, e_k - e_0)| (i <= j <= k in 1..3) of the BB nets of its 40 pieces, in values
-// (FCC_CUBIC_DENOM divided out), each times its piece type's c^3 (below). It bounds a piece's third
-// derivative along a ray (shaders/march_fcc.glsl, docs/DVR.md): what certifies a cell's chord as one
-// Hermite cubic (RenderOptions::dvrCellCubic).
-layout(std430, binding = 15) writeonly buffer SlotThird { float slotThird[]; };
-
-float thirdDifferenceMax(FccCubic c) {
-  float m = 0.0;
-  for (int i = 1; i <= 3; ++i) {
-    vec4 ui = vec4(-1.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0, i == 3 ? 1.0 : 0.0);
-    FccQuadratic q = fcc_decasteljau_step3(c, ui);
-    for (int j = i; j <= 3; ++j) {
-      vec4 uj = vec4(-1.0, j == 1 ? 1.0 : 0.0, j == 2 ? 1.0 : 0.0, j == 3 ? 1.0 : 0.0);
-      vec4 l = fcc_decasteljau_step2(q, uj);
-      for (int k = j; k <= 3; ++k) m = max(m, abs((k == 1 ? l.y : (k == 2 ? l.z : l.w)) - l.x));
-    }
-  }
-  return m * (1.0 / FCC_CUBIC_DENOM);
-}
-
-// The same over the 40 pieces of packed voxel v's 8 cells.
-float voxelThirdDifferenceMax(ivec3 v) {
-  float m = 0.0;
-  for (int c = 0; c < 8; ++c) {
-    ivec3 cell = 2 * v + ivec3(c & 1, (c >> 1) & 1, c >> 2);
-    for (int piece = 0; piece < 5; ++piece) {
-      FccFrame frame = fcc_locate(fcc_piece_centroid(cell, piece));
-      // Times c^3, c the most a unit 1-norm of the ray's direction gives the barycentric rates the
-      // differences are taken along (type 0: 1; type 4: 1.5, at a coordinate axis): march_fcc.glsl's
-      // bound then needs only the chord's 1-norm.
-      m = max(m, thirdDifferenceMax(fcc_cubic(gatherStencil(frame), frame.type)) * (frame.type == 0 ? 1.0 : 3.375));
-    }
-  }
-  return m;
-}
-#endif
 
 #if FCC_RECON == FCC_RECON_TRILINEAR || FCC_RECON == FCC_RECON_TRICUBIC || FCC_RECON == FCC_RECON_TYPE6
 // A Cartesian slot (20^3 grid points, viewer/CartesianBrickSource.h): the reconstructions are convex
@@ -141,9 +103,6 @@ void main() {
     }
   }
   slotBounds[slot * uint(kSlotVoxels) + voxel] = vec2(lo, hi);
-#ifdef FCC_SLOT_THIRD
-  slotThird[slot * uint(kSlotVoxels) + voxel] = voxelThirdDifferenceMax(packedVoxel);
-#endif
 }
 #else
 void main() {
@@ -163,8 +122,5 @@ void main() {
         hi = max(hi, c);
       }
   slotBounds[slot * uint(kSlotVoxels) + voxel] = vec2(lo, hi);
-#ifdef FCC_SLOT_THIRD
-  slotThird[slot * uint(kSlotVoxels) + voxel] = voxelThirdDifferenceMax(v);
-#endif
 }
 #endif

@@ -31,6 +31,54 @@ FCC_FUNC FCC_VEC4 fcc_segment_bernstein(FccCubic cubic, FccFrame frame, FCC_VEC3
                        (lb.x * cbb.x + lb.y * cbb.y + lb.z * cbb.z + lb.w * cbb.w) * k - iso);
 }
 
+// The rate of fcc_barycentric's coordinates per unit displacement v of q (its linear part).
+FCC_FUNC FCC_VEC4 fcc_barycentric_rate(FCC_VEC3 v, int type) {
+  if (type == 0) return FCC_MAKE_VEC4(-(v.x + v.y + v.z), v.x, v.y, v.z);
+  float r3 = 0.5f * (v.x + v.y + v.z);
+  return FCC_MAKE_VEC4(v.x - r3, v.y - r3, v.z - r3, r3);
+}
+
+// fcc_segment_bernstein's coefficients (iso 0) and the cubic's slopes per unit t at the segment's
+// ends, slope0 at s0 and slope1 at s1: 3 B(a,a,r) and 3 B(b,b,r), r the barycentric rate along d, from
+// the blossoms the coefficients already need (a dot product each; no division by the segment's length,
+// so a short segment's slopes are as exact as a long one's).
+FCC_STRUCT_BEGIN(FccSegment)
+  FCC_VEC4 b;
+  float slope0;
+  float slope1;
+FCC_STRUCT_END(FccSegment)
+
+FCC_FUNC FccSegment fcc_segment_with_slopes(FccCubic cubic, FccFrame frame, FCC_VEC3 o, FCC_VEC3 d, float s0,
+                                            float s1) {
+  FCC_VEC3 axis = FCC_VEC3_FROM_IVEC3(frame.axis);
+  FCC_VEC3 qa = axis * (o + s0 * d - FCC_VEC3_FROM_IVEC3(frame.origin));
+  FCC_VEC3 qb = qa + axis * d * (s1 - s0);
+  FCC_VEC4 la = fcc_barycentric(qa, frame.type), lb = fcc_barycentric(qb, frame.type);
+  FCC_VEC4 r = fcc_barycentric_rate(axis * d, frame.type);
+  FccQuadratic ca = fcc_decasteljau_step3(cubic, la), cb = fcc_decasteljau_step3(cubic, lb);
+  FCC_VEC4 caa = fcc_decasteljau_step2(ca, la), cab = fcc_decasteljau_step2(ca, lb), cbb = fcc_decasteljau_step2(cb, lb);
+  float k = 1.0f / FCC_CUBIC_DENOM;
+  FccSegment seg;
+  seg.b = FCC_MAKE_VEC4((la.x * caa.x + la.y * caa.y + la.z * caa.z + la.w * caa.w) * k,
+                        (lb.x * caa.x + lb.y * caa.y + lb.z * caa.z + lb.w * caa.w) * k,
+                        (lb.x * cab.x + lb.y * cab.y + lb.z * cab.z + lb.w * cab.w) * k,
+                        (lb.x * cbb.x + lb.y * cbb.y + lb.z * cbb.z + lb.w * cbb.w) * k);
+  seg.slope0 = 3.0f * (r.x * caa.x + r.y * caa.y + r.z * caa.z + r.w * caa.w) * k;
+  seg.slope1 = 3.0f * (r.x * cbb.x + r.y * cbb.y + r.z * cbb.z + r.w * cbb.w) * k;
+  return seg;
+}
+
+// The central piece's segment [ta, tb] of a chord that crosses it, without its stencil (docs/DVR.md,
+// "The central piece from its neighbours"): across the central piece's faces the spline is C1 (their
+// planes hold three of the six directions; across the cube's faces, which hold two, it is C2), so
+// along the ray the central piece's cubic has the entry piece's value and slope at ta and the exit
+// piece's at tb, and a cubic is its Hermite interpolant. `entry` is the entry piece's segment ending at
+// ta, `exit` the exit piece's starting at tb (fcc_segment_with_slopes).
+FCC_FUNC FCC_VEC4 fcc_central_bernstein(FccSegment entry, FccSegment exit, float ta, float tb) {
+  float h3 = (tb - ta) * (1.0f / 3.0f);
+  return FCC_MAKE_VEC4(entry.b.w, entry.b.w + h3 * entry.slope1, exit.b.x - h3 * exit.slope0, exit.b.x);
+}
+
 // The parameters in (ta, tb) where the ray crosses the four planes that cut the unit cell at integer
 // corner `cell` into its pieces, sorted; entries past the last crossing are tb.
 FCC_FUNC FCC_VEC4 fcc_cell_splits(FCC_IVEC3 cell, FCC_VEC3 o, FCC_VEC3 d, float ta, float tb) {

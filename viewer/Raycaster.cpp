@@ -19,9 +19,6 @@ namespace {
 
 constexpr std::size_t kSlotVoxels = 512;  // per-voxel cell bounds of a slot (shaders/pool.glsl)
 constexpr std::size_t kSlotBoundsBytes = kSlotVoxels * 2 * sizeof(float);
-// FCC DVR's per-voxel bound of the pieces' third differences (shaders/slot_bounds.comp, FCC_SLOT_THIRD):
-// what certifies a cell's chord as one Hermite cubic (shaders/march_fcc.glsl, docs/DVR.md).
-constexpr std::size_t kSlotThirdBytes = kSlotVoxels * sizeof(float);
 constexpr std::size_t kUploadBatch = 256; // bricks the loader holds ready, and render()'s upload batch (4 MB)
 constexpr std::size_t kStepUploadBatch = 32;  // step()'s upload batch, checked against its time budget
 constexpr int kMaxPasses = 1 << 20;       // a frame that needs more has a bug, not a small pool
@@ -112,10 +109,8 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   for (const Residency::LevelBox& box : levelBoxes)
     bricksInBox += std::size_t(box.brickDims.x) * box.brickDims.y * box.brickDims.z;
 
-  // The GPU budget pays for a slot's data and its cell bounds (FCC DVR: and its third differences).
-  slotThird_ = options.mode == RenderMode::Dvr && source.slotBlock() == SlotBlock::FccPacked && options.dvrCellCubic;
-  const std::size_t slotExtraBytes = kSlotBoundsBytes + (slotThird_ ? kSlotThirdBytes : 0);
-  std::size_t slots = options.gpuCacheBytes / (BrickPool::slotBytes(layout) + slotExtraBytes);
+  // The GPU budget pays for a slot's data and its cell bounds.
+  std::size_t slots = options.gpuCacheBytes / (BrickPool::slotBytes(layout) + kSlotBoundsBytes);
   slots = std::min({slots, BrickPool::maxSlots(layout), bricksInBox});
   slots = std::max<std::size_t>(slots, 1);
   pool_ = std::make_unique<BrickPool>(layout, slots, source.slotBlock());
@@ -125,11 +120,12 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
                      ": valid are 1 to 1024 invocations");
   // The reconstruction the shaders evaluate (sparse/ReconDispatch.h's FCC_RECON_* ids).
   std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source.reconstruction().deviceId) + "\n";
-  if (slotThird_) defines += "#define FCC_SLOT_THIRD 1\n";
   const bool dvr = options.mode == RenderMode::Dvr;
   if (dvr && !options.transfer) throw ValueError("direct volume rendering needs a transfer function");
   const std::string modeDefines =
-      dvr ? std::string("#define FCC_MODE_DVR 1\n") + (options.dvrShading ? "#define FCC_DVR_SHADING 1\n" : "") : "";
+      dvr ? std::string("#define FCC_MODE_DVR 1\n") + (options.dvrShading ? "#define FCC_DVR_SHADING 1\n" : "") +
+                (options.dvrGatherCentral ? "#define FCC_DVR_GATHER_CENTRAL 1\n" : "")
+          : "";
   const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
                                    "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
   raycastDefines_ = defines + modeDefines + groupDefines + shaderDefinesFromEnvironment();
@@ -168,7 +164,6 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
 
   requestCapacity_ = uint32_t(std::min<std::size_t>(bricksInBox, 1 << 16));
   slotBounds_ = std::make_unique<GlBuffer>(slots * kSlotBoundsBytes);
-  if (slotThird_) slotThirdBuffer_ = std::make_unique<GlBuffer>(slots * kSlotThirdBytes);
   uploadedSlots_ = std::make_unique<GlBuffer>(kUploadBatch * sizeof(uint32_t));
   pageTable_ = std::make_unique<GlBuffer>(bricksInBox * sizeof(uint32_t));
   nodeTable_ = std::make_unique<GlBuffer>(residency_->nodeEntries().size() * sizeof(uint32_t));
@@ -247,7 +242,7 @@ void Raycaster::setTransfer(std::shared_ptr<const TransferTable> transfer) {
 Raycaster::~Raycaster() = default;
 
 std::size_t Raycaster::slotBytes() const {
-  return BrickPool::slotBytes(*options_.layout) + kSlotBoundsBytes + (slotThird_ ? kSlotThirdBytes : 0);
+  return BrickPool::slotBytes(*options_.layout) + kSlotBoundsBytes;
 }
 
 std::size_t Raycaster::poolBytes() const { return std::size_t(residency_->slotCount()) * slotBytes(); }
@@ -466,7 +461,6 @@ void Raycaster::computeSlotBounds(const std::vector<uint32_t>& slots) {
   pool_->bind();
   slotUse_->bindBase(GL_SHADER_STORAGE_BUFFER, 5);
   slotBounds_->bindBase(GL_SHADER_STORAGE_BUFFER, 6);
-  if (slotThirdBuffer_) slotThirdBuffer_->bindBase(GL_SHADER_STORAGE_BUFFER, 15);
   uploadedSlots_->bindBase(GL_SHADER_STORAGE_BUFFER, 7);
   glProgramUniform1ui(slotBoundsProgram_.id(), slotBoundsPassUniform_, pass_);
   slotBoundsProgram_.use();
@@ -641,7 +635,6 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   requestBits_->bindBase(GL_SHADER_STORAGE_BUFFER, 4);
   slotUse_->bindBase(GL_SHADER_STORAGE_BUFFER, 5);
   slotBounds_->bindBase(GL_SHADER_STORAGE_BUFFER, 6);
-  if (slotThirdBuffer_) slotThirdBuffer_->bindBase(GL_SHADER_STORAGE_BUFFER, 15);
   if (dvrTable_) dvrTable_->bind();
   // DVR rays, and compositing ones, read what they accumulated before they stopped for a brick.
   const GLenum imageAccess = options_.mode == RenderMode::Dvr || composite ? GL_READ_WRITE : GL_WRITE_ONLY;

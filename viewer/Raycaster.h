@@ -57,10 +57,10 @@ struct RenderOptions {
   // scale applied); bricks and cells whose values it maps to zero extinction are skipped.
   std::shared_ptr<const TransferTable> transfer;
   bool dvrShading = false;  // DVR: gradient shading (shaders/dvr.glsl, FCC_DVR_SHADING; docs/DVR.md)
-  // FCC DVR: a unit cell's chord as one Hermite cubic where its error is certified within half a table
-  // entry (shaders/march_fcc.glsl; docs/DVR.md, "One cubic a cell"). Off by default: with today's
-  // bound too few cells are certified, and the H200 ran it slower than the pieces (session 16).
-  bool dvrCellCubic = false;
+  // FCC DVR: gather the central piece of a unit cell like the others, instead of taking its cubic along
+  // the ray from its neighbours' (shaders/march_fcc.glsl; docs/DVR.md, "The central piece from its
+  // neighbours"). The same image up to rounding, slower: the reference the tests compare with.
+  bool dvrGatherCentral = false;
   float terminationOpacity = 0.995f;  // DVR: a ray stops once this opaque (and asks for no brick behind)
   // The clipping box, world space: rays are cut to it and bricks outside it are never loaded. The
   // default holds everything.
@@ -381,8 +381,6 @@ class Raycaster {
   GlTexture2D resumeState_;                          // FCC_LOD: what a provisional ray's march carried
   std::unique_ptr<GpuInterval> passTimer_;
   std::unique_ptr<BrickPool> pool_;
-  bool slotThird_ = false;  // FCC DVR: slots carry a bound of their pieces' third differences (binding 15)
-  std::unique_ptr<GlBuffer> slotThirdBuffer_;
   std::unique_ptr<GlBuffer> slotBounds_, uploadedSlots_, pageTable_, nodeTable_, requests_, requestBits_, slotUse_;
   std::unique_ptr<GlBuffer> pageChanges_;  // (index, value) pairs for updatePageTable
   std::unique_ptr<DvrTableGpu> dvrTable_;  // DVR: the transfer table as shaders/dvr.glsl reads it
