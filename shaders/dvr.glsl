@@ -29,8 +29,12 @@ uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
 #define FCC_DVR_SHADING 0
 #endif
 
-// At most this optical depth per sub-step, and at most this many sub-steps per piece segment.
-const float kDvrStepDepth = 0.0625;
+// At most this optical depth per sub-step (FCC_DVR_STEP_DEPTH: a measurement knob), and at most this
+// many sub-steps per piece segment.
+#ifndef FCC_DVR_STEP_DEPTH
+#define FCC_DVR_STEP_DEPTH 0.0625
+#endif
+const float kDvrStepDepth = FCC_DVR_STEP_DEPTH;
 const int kDvrMaxSteps = 64;
 
 struct DvrState {
@@ -148,6 +152,7 @@ bool dvrSegment3Within(vec4 bz, float margin, float s0, float s1, inout DvrState
 }
 
 bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) { return dvrSegment3Within(bz, 0.0, s0, s1, st); }
+
 
 // The same for a polynomial of degree 9 (tricubic).
 bool dvrSegment9(FccBernstein9 p, float s0, float s1, inout DvrState st) {

@@ -24,46 +24,44 @@ float valueAt(vec3 xyz) {
 // The piece of `cell` holding the chord's stretch [s0, s1]: its segment and the slopes at its ends.
 FccSegment pieceSegment(ivec3 cell, vec3 o, vec3 d, float s0, float s1) {
   FccFrame frame = fcc_locate(clamp(o + (0.5 * (s0 + s1)) * d, vec3(cell), vec3(cell + 1)));
-  return fcc_segment_with_slopes(fcc_cubic(gatherStencil(frame), frame.type), frame, o, d, s0, s1);
+#if FCC_DVR_ONE_FETCH
+  // Measurement knob (docs/RENDERER.md): one fetch for all 19 coefficients (wrong images: for the
+  // gather's share of the cost alone), made to differ by a uniform so that the compiler cannot fold
+  // the cubic's arithmetic away.
+  FccSamples one;
+  float c = coefficientAt(frame.origin);
+  for (int i = 0; i < 19; ++i) one.v[i] = c + float(i) * uStopTransmittance * 1e-6;
+  FccCubic cubic = fcc_cubic(one, frame.type);
+#else
+  FccCubic cubic = fcc_cubic(gatherStencil(frame), frame.type);
+#endif
+  return fcc_segment_with_slopes(cubic, frame, o, d, s0, s1);
 }
 
 // Emission-absorption through unit cell `cell` between t0 and t1 (dvr.glsl), piece by piece; true
 // once the ray is opaque enough to stop.
+//
+// A chord through the central piece (two crossings: corner, central, corner piece) takes two stencils
+// instead of three: the spline is C1 across the central piece's faces, so its cubic along the ray is
+// the Hermite interpolant of the corner pieces' values and slopes there (sparse/FccRay.h,
+// fcc_central_bernstein; docs/DVR.md), exact as gathering it would be. Its iteration gathers the exit
+// piece instead (kept for the next), so the loop has one gather and one segment, whatever the chord:
+// the rays of a warp do not run two walks one after the other (a separate branch for such chords ran
+// llvmpipe 1.6x slower than gathering every piece).
 bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
   dvrBeginCell(cell, o, d);
   vec4 splits = fcc_cell_splits(cell, o, d, t0, t1);
-#if !FCC_DVR_GATHER_CENTRAL
-  // A chord through the central piece (two crossings: corner, central, corner piece): two stencils
-  // instead of three. The spline is C1 across the central piece's faces, so its cubic along the ray is
-  // the Hermite interpolant of the corner pieces' values and slopes there (sparse/FccRay.h,
-  // fcc_central_bernstein; docs/DVR.md): exact, as gathering it would be. Each segment is then
-  // integrated as below; the exit piece is gathered only if the ray is still going.
-  if (splits.y < t1 && !(splits.z < t1)) {
-    FccSegment entry = pieceSegment(cell, o, d, t0, splits.x);
-    if (dvrSegment3(entry.b, t0, splits.x, st)) return true;
-    FccSegment exit = pieceSegment(cell, o, d, splits.y, t1);
-    if (dvrSegment3(fcc_central_bernstein(entry, exit, splits.x, splits.y), splits.x, splits.y, st)) return true;
-    return dvrSegment3(exit.b, splits.y, t1, st);
-  }
-#endif
+  bool shortcut = FCC_DVR_GATHER_CENTRAL == 0 && splits.y < t1 && !(splits.z < t1);
+  FccSegment entry, piece;
   float s0 = t0;
   for (int k = 0; k < 5 && s0 < t1; ++k) {
     float s1 = k == 0 ? splits.x : (k == 1 ? splits.y : (k == 2 ? splits.z : (k == 3 ? splits.w : t1)));
-    if (s1 <= s0) continue;
-    FccFrame frame = fcc_locate(clamp(o + (0.5 * (s0 + s1)) * d, vec3(cell), vec3(cell + 1)));
-#if FCC_DVR_ONE_FETCH
-    // Measurement knob (docs/RENDERER.md): one fetch for all 19 coefficients (wrong images: for the
-    // gather's share of the cost alone), made to differ by a uniform so that the compiler cannot fold
-    // the cubic's arithmetic away.
-    FccSamples one;
-    float c = coefficientAt(frame.origin);
-    for (int i = 0; i < 19; ++i) one.v[i] = c + float(i) * uStopTransmittance * 1e-6;
-    FccCubic cubic = fcc_cubic(one, frame.type);
-#else
-    FccCubic cubic = fcc_cubic(gatherStencil(frame), frame.type);
-#endif
+    bool central = shortcut && k == 1;  // gathers the exit piece, even where the central one is empty
+    if (s1 <= s0 && !central) continue;
+    if (!(shortcut && k == 2)) piece = pieceSegment(cell, o, d, central ? splits.y : s0, central ? t1 : s1);
+    if (k == 0) entry = piece;
     // The segment's own hull (dvrSegment3) is within the piece's: no separate check of the piece.
-    if (dvrSegment3(fcc_segment_bernstein(cubic, frame, o, d, s0, s1, 0.0), s0, s1, st)) return true;
+    if (dvrSegment3(central ? fcc_central_bernstein(entry, piece, s0, s1) : piece.b, s0, s1, st)) return true;
     s0 = s1;
   }
   return false;

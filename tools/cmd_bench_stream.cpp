@@ -272,6 +272,18 @@ Command addBenchStreamCommand(CLI::App& bench) {
                 run.slots = raycaster.slotCount();
                 run.slotBytes = raycaster.slotBytes();
                 double lastRest = -1.0;  // the last frame's time besides its uploads (seconds; < 0: none yet)
+                // Measurement knob (session 17, docs/RENDERER.md): FCCVDB_BENCH_PRIME="K,M" steps K
+                // times looking away from the data (no brick drawn or requested), then sleeps M ms,
+                // before the path: does a freshly compiled program's slow start need passes or time?
+                if (const char* prime = std::getenv("FCCVDB_BENCH_PRIME")) {
+                  int passes = 0, sleepMs = 0;
+                  if (std::sscanf(prime, "%d,%d", &passes, &sleepMs) == 2) {
+                    render::Camera away = cameras.front();
+                    away.lookat = away.eye + (away.eye - away.lookat);
+                    for (int i = 0; i < passes; ++i) raycaster.step(away, width, height, 0.0);
+                    std::this_thread::sleep_for(std::chrono::milliseconds(sleepMs));
+                  }
+                }
                 for (const render::Camera& camera : cameras) {
                   const double uploadSeconds = report.uploadFit
                                                    ? render::uploadSecondsWithin(args->frameBudgetMs * 1e-3, lastRest, args->uploadMs * 1e-3)
