@@ -154,6 +154,24 @@ bool dvrSegment3Within(vec4 bz, float margin, float s0, float s1, inout DvrState
 bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) { return dvrSegment3Within(bz, 0.0, s0, s1, st); }
 
 
+// Three consecutive cubic segments [t0, ta], [ta, tb], [tb, t1] (Bernstein coefficients b0, b1, b2;
+// empty ones allowed) as one for the sub-step rule: their union's hull and the whole length, each
+// sub-step's midpoint on the segment that holds it (march_fcc.glsl's FCC_DVR_CHORD_STEPS).
+bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1, inout DvrState st) {
+  vec4 lo4 = min(min(b0, b1), b2), hi4 = max(max(b0, b1), b2);
+  int n = dvrSteps(min(min(lo4.x, lo4.y), min(lo4.z, lo4.w)), max(max(hi4.x, hi4.y), max(hi4.z, hi4.w)), t1 - t0);
+  if (n == 0) return false;
+  float h = (t1 - t0) / float(n);
+  for (int i = 0; i < n; ++i) {
+    float ts = t0 + float(i) * h, tm = ts + 0.5 * h;
+    float v = tm < ta ? fcc_bernstein3(b0, (tm - t0) / (ta - t0))
+                      : (tm < tb ? fcc_bernstein3(b1, (tm - ta) / (tb - ta)) : fcc_bernstein3(b2, (tm - tb) / (t1 - tb)));
+    dvrComposite(v, ts, h, st);
+    if (st.transmittance <= uStopTransmittance) return true;
+  }
+  return false;
+}
+
 // The same for a polynomial of degree 9 (tricubic).
 bool dvrSegment9(FccBernstein9 p, float s0, float s1, inout DvrState st) {
   float lo = p.b[0], hi = p.b[0];

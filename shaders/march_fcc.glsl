@@ -20,6 +20,9 @@ float valueAt(vec3 xyz) {
 #ifndef FCC_DVR_GATHER_CENTRAL
 #define FCC_DVR_GATHER_CENTRAL 0
 #endif
+#ifndef FCC_DVR_CHORD_STEPS
+#define FCC_DVR_CHORD_STEPS 0
+#endif
 
 // The piece of `cell` holding the chord's stretch [s0, s1]: its segment and the slopes at its ends.
 FccSegment pieceSegment(ivec3 cell, vec3 o, vec3 d, float s0, float s1) {
@@ -51,6 +54,26 @@ FccSegment pieceSegment(ivec3 cell, vec3 o, vec3 d, float s0, float s1) {
 bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
   dvrBeginCell(cell, o, d);
   vec4 splits = fcc_cell_splits(cell, o, d, t0, t1);
+#if FCC_DVR_CHORD_STEPS
+  // Measurement knob (docs/RENDERER.md): a chord with at most two crossings as one segment for the
+  // sub-step rule (its pieces' union hull, its whole length), each sub-step's midpoint on its piece.
+  // The corner pieces [t0, ta] and [tb, t1] gathered (one crossing: ta = tb, no central stretch; none:
+  // ta = tb = t1, one piece), the central one from them.
+  if (!(splits.z < t1)) {
+    float ta = splits.x, tb = splits.y < t1 ? splits.y : ta;
+    FccSegment entry, exit;
+    for (int g = 0; g < 2; ++g) {
+      if (g == 1 && !(tb < t1)) break;
+      FccSegment seg = pieceSegment(cell, o, d, g == 0 ? t0 : tb, g == 0 ? ta : t1);
+      if (g == 0) entry = seg;
+      else exit = seg;
+    }
+    bool hasExit = tb < t1;
+    vec4 middle = hasExit ? fcc_central_bernstein(entry, exit, ta, tb) : entry.b;
+    if (!hasExit) exit.b = entry.b;
+    return dvrChord3(entry.b, middle, exit.b, t0, ta, tb, t1, st);
+  }
+#endif
   bool shortcut = FCC_DVR_GATHER_CENTRAL == 0 && splits.y < t1 && !(splits.z < t1);
   FccSegment entry, piece;
   float s0 = t0;

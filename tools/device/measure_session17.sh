@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Session 17, first call. (1) FCC DVR (issue 18) with a chord's central piece taken from its
 # neighbours (main now) against gathering it (FCC_DVR_GATHER_CENTRAL=1, session 16's walk) and against
-# sub-steps of up to 1/8 and 1/4 of optical depth (FCC_DVR_STEP_DEPTH; 1/16 in main), ML 160^3x4 FCC viridis
+# a chord sub-stepped as one segment (FCC_DVR_CHORD_STEPS=1) and against sub-steps of up to 1/8 and 1/4
+# of optical depth (FCC_DVR_STEP_DEPTH; 1/16 in main), alternating, ML 160^3x4 FCC viridis
 # and the engine CT inferno at 1080p. (2) Issue 19's first run: the zoom on blobs 2048^3 with the
 # driver's shader disk cache off (every process compiles anew, as a machine's first run does), plain
 # and primed (FCCVDB_BENCH_PRIME="K,M": K steps looking away from the data, then M ms of sleep).
@@ -19,7 +20,7 @@ ENGINE=${FCC_DATA:-/nonexistent}/engine_256x256x128_uint8.raw.gz
 D=(--variants skip+analytic --layout auto --res $RES --frames $FR --warmup 30 --json)
 fps() { grep -oE '"fps": [0-9.e+]+|fccvdb:.*' | tr '\n' ' '; echo; }
 for round in 1 2; do
-  for v in "" "FCC_DVR_GATHER_CENTRAL=1" "FCC_DVR_STEP_DEPTH=0.125" "FCC_DVR_STEP_DEPTH=0.25"; do
+  for v in "" "FCC_DVR_GATHER_CENTRAL=1" "FCC_DVR_CHORD_STEPS=1" "FCC_DVR_STEP_DEPTH=0.125" "FCC_DVR_STEP_DEPTH=0.25"; do
     echo "-- round $round [${v:-main}] ML FCC viridis"; FCCVDB_SHADER_DEFINES=$v fccvdb bench render ml.vdb --mode dvr --tf viridis "${D[@]}" | fps
     [ -s engine.vdb ] && { echo "-- round $round [${v:-main}] engine inferno"; FCCVDB_SHADER_DEFINES=$v fccvdb bench render engine.vdb --mode dvr --tf inferno "${D[@]}" | fps; }
   done
