@@ -156,7 +156,7 @@ bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) { return dvrSeg
 
 // Three consecutive cubic segments [t0, ta], [ta, tb], [tb, t1] (Bernstein coefficients b0, b1, b2;
 // empty ones allowed) as one for the sub-step rule: their union's hull and the whole length, each
-// sub-step's midpoint on the segment that holds it (march_fcc.glsl's FCC_DVR_CHORD_STEPS).
+// sub-step's midpoint on the segment that holds it (march_fcc.glsl: a unit cell's chord of the box spline).
 bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1, inout DvrState st) {
   vec4 lo4 = min(min(b0, b1), b2), hi4 = max(max(b0, b1), b2);
   int n = dvrSteps(min(min(lo4.x, lo4.y), min(lo4.z, lo4.w)), max(max(hi4.x, hi4.y), max(hi4.z, hi4.w)), t1 - t0);

@@ -14,14 +14,10 @@ float valueAt(vec3 xyz) {
 #ifndef FCC_DVR_ONE_FETCH
 #define FCC_DVR_ONE_FETCH 0
 #endif
-// 1: every piece a ray crosses is gathered, the central one too (RenderOptions::dvrGatherCentral: the
-// reference the tests compare the shortcut below with). 0: a chord that crosses the central piece
-// takes it from its neighbours.
+// 1: every piece a ray crosses is gathered, the central one too, and sub-stepped by itself
+// (RenderOptions::dvrGatherCentral: the reference the tests compare integrateCell's chord with).
 #ifndef FCC_DVR_GATHER_CENTRAL
 #define FCC_DVR_GATHER_CENTRAL 0
-#endif
-#ifndef FCC_DVR_CHORD_STEPS
-#define FCC_DVR_CHORD_STEPS 0
 #endif
 
 // The piece of `cell` holding the chord's stretch [s0, s1]: its segment and the slopes at its ends.
@@ -41,53 +37,47 @@ FccSegment pieceSegment(ivec3 cell, vec3 o, vec3 d, float s0, float s1) {
   return fcc_segment_with_slopes(cubic, frame, o, d, s0, s1);
 }
 
-// Emission-absorption through unit cell `cell` between t0 and t1 (dvr.glsl), piece by piece; true
-// once the ray is opaque enough to stop.
+// Emission-absorption through unit cell `cell` between t0 and t1 (dvr.glsl); true once the ray is
+// opaque enough to stop.
 //
-// A chord through the central piece (two crossings: corner, central, corner piece) takes two stencils
-// instead of three: the spline is C1 across the central piece's faces, so its cubic along the ray is
-// the Hermite interpolant of the corner pieces' values and slopes there (sparse/FccRay.h,
-// fcc_central_bernstein; docs/DVR.md), exact as gathering it would be. Its iteration gathers the exit
-// piece instead (kept for the next), so the loop has one gather and one segment, whatever the chord:
-// the rays of a warp do not run two walks one after the other (a separate branch for such chords ran
-// llvmpipe 1.6x slower than gathering every piece).
+// A unit cell's five pieces are four corner pieces and a central one whose faces are fcc_cell_splits'
+// planes, so a chord crosses the central piece's faces twice (corner, central, corner piece), once (it
+// starts or ends inside the central piece) or not at all. The piece at each end is gathered; the
+// central stretch between them is not: the spline is C1 across the central piece's faces, so its cubic
+// along the ray is the Hermite interpolant of the end pieces' values and slopes there (sparse/FccRay.h,
+// fcc_central_bernstein; docs/DVR.md), exact as gathering it would be. The chord is then one segment
+// for the sub-step rule (dvrChord3: its pieces' union hull, its whole length). A chord that rounding
+// lets cross a third plane (a hair from the cell's corner) is taken the same way: the stretch past the
+// extra crossing is a rounding's width. Two gathers and one sub-step loop a cell, whatever the chord,
+// so the rays of a warp run one walk.
 bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
   dvrBeginCell(cell, o, d);
   vec4 splits = fcc_cell_splits(cell, o, d, t0, t1);
-#if FCC_DVR_CHORD_STEPS
-  // Measurement knob (docs/RENDERER.md): a chord with at most two crossings as one segment for the
-  // sub-step rule (its pieces' union hull, its whole length), each sub-step's midpoint on its piece.
-  // The corner pieces [t0, ta] and [tb, t1] gathered (one crossing: ta = tb, no central stretch; none:
-  // ta = tb = t1, one piece), the central one from them.
-  if (!(splits.z < t1)) {
-    float ta = splits.x, tb = splits.y < t1 ? splits.y : ta;
-    FccSegment entry, exit;
-    for (int g = 0; g < 2; ++g) {
-      if (g == 1 && !(tb < t1)) break;
-      FccSegment seg = pieceSegment(cell, o, d, g == 0 ? t0 : tb, g == 0 ? ta : t1);
-      if (g == 0) entry = seg;
-      else exit = seg;
-    }
-    bool hasExit = tb < t1;
-    vec4 middle = hasExit ? fcc_central_bernstein(entry, exit, ta, tb) : entry.b;
-    if (!hasExit) exit.b = entry.b;
-    return dvrChord3(entry.b, middle, exit.b, t0, ta, tb, t1, st);
-  }
-#endif
-  bool shortcut = FCC_DVR_GATHER_CENTRAL == 0 && splits.y < t1 && !(splits.z < t1);
-  FccSegment entry, piece;
+#if FCC_DVR_GATHER_CENTRAL
+  // The reference (RenderOptions::dvrGatherCentral): every piece gathered and sub-stepped by itself.
   float s0 = t0;
   for (int k = 0; k < 5 && s0 < t1; ++k) {
     float s1 = k == 0 ? splits.x : (k == 1 ? splits.y : (k == 2 ? splits.z : (k == 3 ? splits.w : t1)));
-    bool central = shortcut && k == 1;  // gathers the exit piece, even where the central one is empty
-    if (s1 <= s0 && !central) continue;
-    if (!(shortcut && k == 2)) piece = pieceSegment(cell, o, d, central ? splits.y : s0, central ? t1 : s1);
-    if (k == 0) entry = piece;
-    // The segment's own hull (dvrSegment3) is within the piece's: no separate check of the piece.
-    if (dvrSegment3(central ? fcc_central_bernstein(entry, piece, s0, s1) : piece.b, s0, s1, st)) return true;
+    if (s1 <= s0) continue;
+    if (dvrSegment3(pieceSegment(cell, o, d, s0, s1).b, s0, s1, st)) return true;
     s0 = s1;
   }
   return false;
+#else
+  // ta, tb: the central stretch (one crossing: ta = tb, none; no crossing: ta = tb = t1, one piece).
+  float ta = splits.x, tb = splits.y < t1 ? splits.y : ta;
+  bool twoPieces = tb < t1;
+  FccSegment entry, exit;
+  for (int g = 0; g < 2; ++g) {  // one gather in the code: a warp's rays share it
+    if (g == 1 && !twoPieces) break;
+    FccSegment piece = pieceSegment(cell, o, d, g == 0 ? t0 : tb, g == 0 ? ta : t1);
+    if (g == 0) entry = piece;
+    else exit = piece;
+  }
+  if (!twoPieces) exit = entry;
+  vec4 central = twoPieces ? fcc_central_bernstein(entry, exit, ta, tb) : entry.b;
+  return dvrChord3(entry.b, central, exit.b, t0, ta, tb, t1, st);
+#endif
 }
 
 #if FCC_DVR_SHADING

@@ -260,6 +260,21 @@ Command addBenchStreamCommand(CLI::App& bench) {
                 options.hostCacheBytes = hostBytes;
                 data.closeLevels();
                 data.applyLevels(flags, /*levelsByDefault=*/false, /*quiet=*/true, options);
+                // Measurement knob (session 17, docs/RENDERER.md): FCCVDB_BENCH_PRIME="K,M" steps a
+                // throwaway raycaster of the same options K times at the path's first camera, then
+                // sleeps M ms, before the run: does the driver's program compiled and run there serve
+                // the run's fast from its first pass?
+                if (const char* prime = std::getenv("FCCVDB_BENCH_PRIME")) {
+                  int passes = 0, sleepMs = 0;
+                  if (std::sscanf(prime, "%d,%d", &passes, &sleepMs) == 2) {
+                    std::unique_ptr<render::Raycaster> throwaway =
+                        data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), options)
+                                        : std::make_unique<render::Raycaster>(data.source(), options);
+                    for (int i = 0; i < passes; ++i) throwaway->step(cameras.front(), width, height, args->uploadMs * 1e-3);
+                    throwaway.reset();
+                    std::this_thread::sleep_for(std::chrono::milliseconds(sleepMs));
+                  }
+                }
                 // Fresh caches a run: FCC data gets a host cache of this budget (a Cartesian grid has none).
                 std::unique_ptr<render::Raycaster> made =
                     data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), options)
@@ -272,18 +287,6 @@ Command addBenchStreamCommand(CLI::App& bench) {
                 run.slots = raycaster.slotCount();
                 run.slotBytes = raycaster.slotBytes();
                 double lastRest = -1.0;  // the last frame's time besides its uploads (seconds; < 0: none yet)
-                // Measurement knob (session 17, docs/RENDERER.md): FCCVDB_BENCH_PRIME="K,M" steps K
-                // times looking away from the data (no brick drawn or requested), then sleeps M ms,
-                // before the path: does a freshly compiled program's slow start need passes or time?
-                if (const char* prime = std::getenv("FCCVDB_BENCH_PRIME")) {
-                  int passes = 0, sleepMs = 0;
-                  if (std::sscanf(prime, "%d,%d", &passes, &sleepMs) == 2) {
-                    render::Camera away = cameras.front();
-                    away.lookat = away.eye + (away.eye - away.lookat);
-                    for (int i = 0; i < passes; ++i) raycaster.step(away, width, height, 0.0);
-                    std::this_thread::sleep_for(std::chrono::milliseconds(sleepMs));
-                  }
-                }
                 for (const render::Camera& camera : cameras) {
                   const double uploadSeconds = report.uploadFit
                                                    ? render::uploadSecondsWithin(args->frameBudgetMs * 1e-3, lastRest, args->uploadMs * 1e-3)

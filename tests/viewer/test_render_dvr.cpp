@@ -260,11 +260,13 @@ TEST_F(RenderDvr, MatchesTheCpuReferenceOnEveryLattice) {
   EXPECT_GE(db, kMinPsnrDb);
 }
 
-// FCC: a chord's central piece taken from its neighbours (the default; docs/DVR.md "The central piece
-// from its neighbours") against gathering it (RenderOptions::dvrGatherCentral): the same image up to
-// float rounding (every component within 1e-4; the shortcut is taken: some differ in their last bits),
-// and both agree with the CPU reference within the issue's bound. Marschner-Lobb 64^3 and blobs.
-TEST_F(RenderDvr, CentralPieceFromItsNeighboursIsTheGatheredOnesImage) {
+// FCC: a unit cell's chord from its two end pieces, sub-stepped as one segment (the default; docs/DVR.md
+// "A cell's chord from its end pieces"), against every piece gathered and sub-stepped by itself
+// (RenderOptions::dvrGatherCentral): the sub-steps lie elsewhere, so the images differ (the chord is
+// taken), by far less than either's error (PSNR between them at least 30 dB above the issue's bound,
+// every component within 1e-3), and both agree with the CPU reference within the bound.
+// Marschner-Lobb 64^3 and blobs. (The central piece's exactness: Ray.CentralPieceFromItsNeighbours...)
+TEST_F(RenderDvr, CellChordFromItsEndPiecesAgreesWithEveryPieceAndTheReference) {
   TempDir dir;
   const int w = 48, h = 40;
   for (const char* field : {"marschner-lobb", "blobs"}) {
@@ -285,18 +287,22 @@ TEST_F(RenderDvr, CentralPieceFromItsNeighboursIsTheGatheredOnesImage) {
     gathered.dvrGatherCentral = true;
     const render::FrameImages withShortcut = renderSource(source, camera, w, h, shortcut);
     const render::FrameImages withGathered = renderSource(source, camera, w, h, gathered);
-    constexpr double kRoundingTol = 1e-4;
+    constexpr double kComponentTol = 1e-3;
     int differing = 0;
-    double worst = 0.0;
+    double worst = 0.0, sum = 0.0;
     for (std::size_t i = 0; i < withShortcut.rgba.size(); ++i) {
       const double e = std::abs(double(withShortcut.rgba[i]) - withGathered.rgba[i]);
       differing += e != 0.0;
       worst = std::max(worst, e);
+      sum += e * e;
     }
-    std::printf("%s: %d of %zu components differ, by at most %.2e, between the central piece from its neighbours "
-                "and gathered\n", field, differing, withShortcut.rgba.size(), worst);
-    EXPECT_GT(differing, 0) << "the shortcut was never taken";
-    EXPECT_LE(worst, kRoundingTol);
+    const double mse = sum / double(withShortcut.rgba.size());
+    const double between = mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : 1e9;
+    std::printf("%s: %d of %zu components differ, by at most %.2e (PSNR %.1f dB), between the chord and every "
+                "piece\n", field, differing, withShortcut.rgba.size(), worst, between);
+    EXPECT_GT(differing, 0) << "the chord was never taken";
+    EXPECT_LE(worst, kComponentTol);
+    EXPECT_GE(between, kMinPsnrDb + 30.0);
 
     const FccGrid::Ptr grid = io::readFccGrid(path);
     const SiteValue at = siteValuesOf(*grid);
@@ -308,7 +314,7 @@ TEST_F(RenderDvr, CentralPieceFromItsNeighboursIsTheGatheredOnesImage) {
         w, h, [&](int x, int y) { return dvrRayFromWorld(indexFromWorld, camera.eye, render::pixelRay(frame, x, y, w, h), 0.0, far); },
         *boxSpline, at, nullptr, dvrMedium(table), reference);
     const double dbShortcut = psnr(withShortcut, ref), dbGathered = psnr(withGathered, ref);
-    std::printf("%s: PSNR against the CPU reference %.1f dB (from its neighbours), %.1f dB (gathered)\n", field,
+    std::printf("%s: PSNR against the CPU reference %.1f dB (the chord), %.1f dB (every piece)\n", field,
                 dbShortcut, dbGathered);
     EXPECT_GE(dbShortcut, kMinPsnrDb);
     EXPECT_GE(dbGathered, kMinPsnrDb);
