@@ -86,7 +86,7 @@ std::string streamJson(const StreamReport& r) {
                     ", \"mode\": " + jsonString(r.mode) + ", \"res\": [" + std::to_string(r.width) + ", " +
                     std::to_string(r.height) + "], \"frames\": " + std::to_string(r.frames) +
                     ", \"frame_budget_ms\": " + jsonNumber(r.frameBudgetMs) + ", \"upload_ms\": " + jsonNumber(r.uploadMs) +
-                    ", \"upload_fit\": " + (r.uploadFit ? "true" : "false") + ", \"seed\": " + u64(r.seed) + ", \"jump_every\": " + std::to_string(r.jumpEvery) +
+                    ", \"upload_fit\": " + (r.uploadFit ? "true" : "false") + ", \"primed\": " + (r.primed ? "true" : "false") + ", \"seed\": " + u64(r.seed) + ", \"jump_every\": " + std::to_string(r.jumpEvery) +
                     ", \"data_bricks\": " + u64(r.dataBricks) + ", \"data_gpu_bytes\": " + u64(r.dataGpuBytes) +
                     ",\n \"working_set\": [";
   for (std::size_t i = 0; i < r.workingSet.size(); ++i) {

@@ -67,6 +67,7 @@ struct StreamReport {
   int width = 0, height = 0, frames = 0;
   double frameBudgetMs = 0.0, uploadMs = 0.0;
   bool uploadFit = false;       // uploads fitted to what the frame budget leaves (viewer/UploadBudget.h)
+  bool primed = false;          // the programs were run and left to the driver before the runs (--prime)
   uint64_t seed = 0;
   int jumpEvery = 0;
   uint64_t dataBricks = 0;      // bricks whose values vary: what the whole dataset needs on the GPU

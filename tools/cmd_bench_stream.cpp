@@ -56,6 +56,10 @@ std::vector<std::size_t> budgetList(const std::string& text, const char* flag) {
 constexpr int kCpuFrames = 30;
 constexpr const char* kCpuRes = "160x90";
 constexpr int kDefaultFrames = 120;
+// --prime: steps of the path's first view (a dozen made the H200's driver swap in its optimized
+// programs), then time for the driver to finish (500 ms was enough there; 0 was not).
+constexpr int kPrimeSteps = 20;
+constexpr int kPrimeWaitMs = 500;
 
 // The working set of complete views: for each image size, the most bricks any of the path's first,
 // middle and last views drew in a complete frame (render(); the pool evicting meanwhile may make it a
@@ -93,6 +97,7 @@ Command addBenchStreamCommand(CLI::App& bench) {
     int frames = kDefaultFrames;
     double frameBudgetMs = 16.7, uploadMs = 4.0;
     std::string uploadFit = "on";
+    std::string prime = "auto";
     uint64_t seed = 1;
     int jumpEvery = 10;
     bool force = false;
@@ -132,6 +137,12 @@ Command addBenchStreamCommand(CLI::App& bench) {
                   "at most --upload-ms (viewer/UploadBudget.h, as the viewer does); off: --upload-ms every frame")
       ->capture_default_str()
       ->check(CLI::IsMember({"on", "off"}));
+  app->add_option("--prime", args->prime,
+                  "on: before the runs, a throwaway renderer of the same options draws the path's first view and "
+                  "the GPU driver gets time to finish optimizing the programs (its first compile runs them slower); "
+                  "auto: on, except on a CPU renderer")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   app->add_option("--seed", args->seed, "Seed of the jumps path")->capture_default_str();
   app->add_option("--jump-every", args->jumpEvery, "Frames each camera of the jumps path is held")
       ->capture_default_str()
@@ -243,6 +254,7 @@ Command addBenchStreamCommand(CLI::App& bench) {
             report.frameBudgetMs = args->frameBudgetMs;
             report.uploadMs = args->uploadMs;
             report.uploadFit = args->uploadFit == "on";
+            report.primed = args->prime == "on" || (args->prime == "auto" && !isCpuRenderer(gl.renderer()));
             report.seed = args->seed;
             report.jumpEvery = args->jumpEvery;
             report.dataBricks = data.source().varyingBrickCount();
@@ -254,27 +266,31 @@ Command addBenchStreamCommand(CLI::App& bench) {
             const std::size_t largestGpu = *std::max_element(gpuBudgets.begin(), gpuBudgets.end());
             const std::size_t largestHost = *std::max_element(hostBudgets.begin(), hostBudgets.end());
             const auto budget = std::chrono::duration<double, std::milli>(args->frameBudgetMs);
+            if (report.primed) {
+              // The NVIDIA driver runs a program it has just compiled about 5x slower until, after a
+              // dozen passes of real work, an optimized build replaces it, which it also keeps in its
+              // shader cache; a later program of the same source starts from that one
+              // (docs/BENCHMARKS.md, sessions 16 and 17). A throwaway raycaster of the same options
+              // (the same programs) steps at the path's first camera, then the driver gets time to
+              // finish, so that the runs measure streaming, not the driver's first compile. Its caches
+              // go with it: every run starts with fresh ones.
+              options.gpuCacheBytes = gpuBudgets.front();
+              options.hostCacheBytes = hostBudgets.front();
+              data.closeLevels();
+              data.applyLevels(flags, /*levelsByDefault=*/false, /*quiet=*/true, options);
+              std::unique_ptr<render::Raycaster> throwaway =
+                  data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), options)
+                                  : std::make_unique<render::Raycaster>(data.source(), options);
+              for (int i = 0; i < kPrimeSteps; ++i) throwaway->step(cameras.front(), width, height, args->uploadMs * 1e-3);
+              throwaway.reset();
+              std::this_thread::sleep_for(std::chrono::milliseconds(kPrimeWaitMs));
+            }
             for (std::size_t gpuBytes : gpuBudgets)
               for (std::size_t hostBytes : hostBudgets) {
                 options.gpuCacheBytes = gpuBytes;
                 options.hostCacheBytes = hostBytes;
                 data.closeLevels();
                 data.applyLevels(flags, /*levelsByDefault=*/false, /*quiet=*/true, options);
-                // Measurement knob (session 17, docs/RENDERER.md): FCCVDB_BENCH_PRIME="K,M" steps a
-                // throwaway raycaster of the same options K times at the path's first camera, then
-                // sleeps M ms, before the run: does the driver's program compiled and run there serve
-                // the run's fast from its first pass?
-                if (const char* prime = std::getenv("FCCVDB_BENCH_PRIME")) {
-                  int passes = 0, sleepMs = 0;
-                  if (std::sscanf(prime, "%d,%d", &passes, &sleepMs) == 2) {
-                    std::unique_ptr<render::Raycaster> throwaway =
-                        data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), options)
-                                        : std::make_unique<render::Raycaster>(data.source(), options);
-                    for (int i = 0; i < passes; ++i) throwaway->step(cameras.front(), width, height, args->uploadMs * 1e-3);
-                    throwaway.reset();
-                    std::this_thread::sleep_for(std::chrono::milliseconds(sleepMs));
-                  }
-                }
                 // Fresh caches a run: FCC data gets a host cache of this budget (a Cartesian grid has none).
                 std::unique_ptr<render::Raycaster> made =
                     data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), options)

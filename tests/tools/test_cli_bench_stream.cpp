@@ -39,6 +39,7 @@ d = rows
 MiB = 1024 * 1024
 assert d['frames'] == FRAMES, d['frames']
 assert d['upload_fit'] is True, d['upload_fit']  # the default, as the viewer
+assert d['primed'] in (True, False), d['primed']  # auto: off on llvmpipe
 assert d['res'] == [64, 48], d['res']
 assert len(d['runs']) == len(GPU) * len(HOST), len(d['runs'])
 pairs = [(r['summary']['gpu_budget_bytes'], r['summary']['host_budget_bytes']) for r in d['runs']]
@@ -146,11 +147,19 @@ TEST_F(BenchStream, ZoomAndJumpsPathsRun) {
   for (const std::string path : {"zoom", "jumps"}) {
     TempDir out;
     const std::string json = out / "p.json";
+    // --prime on: the runs follow a throwaway renderer's steps (the JSON says so); they start with
+    // fresh caches all the same (nothing resident at the first frame, which requests bricks).
     const CommandResult r = runFccvdb("bench stream " + file_ + " --path " + path + " --res 64x48 --frames 5 "
-                                      "--gpu-cache 4 --host-cache 4 --frame-budget-ms 1 --jump-every 5 --json " + json);
+                                      "--gpu-cache 4 --host-cache 4 --frame-budget-ms 1 --jump-every 5 --prime on --json " + json);
     if (failedForLackOfGl(r)) GTEST_SKIP() << r.err;
     ASSERT_EQ(r.status, 0) << path << ": " << r.err;
     EXPECT_EQ(checkJsonWithPython(out, readText(json), checksFor(5, "4", "4")), 0) << path;
+    EXPECT_EQ(checkJsonWithPython(out, readText(json),
+                                  "assert rows['primed'] is True\n"
+                                  "f = rows['runs'][0]['frames']\n"
+                                  "assert f[0]['gpu_resident_bytes'] == 0 and f[0]['bricks_requested'] > 0, f[0]\n"),
+              0)
+        << path;
     // Jumps hold each camera for 5 frames: only the first frame restarts the rays.
     if (path == "jumps")
       EXPECT_EQ(checkJsonWithPython(out, readText(json),
@@ -186,6 +195,7 @@ TEST_F(BenchStream, BadFlagsAreOneLineNamingTheFlag) {
       {"--plots " + (out / "no-such-folder"), "--plots"},
       {"--upload-ms 20 --frame-budget-ms 10", "--upload-ms"},
       {"--upload-fit maybe", "--upload-fit"},
+      {"--prime maybe", "--prime"},
   };
   for (const auto& c : cases) {
     const CommandResult r = runFccvdb("bench stream " + file_ + " --frames 2 --res 64x48 " + c.args);

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# (Its FCCVDB_BENCH_PRIME knob, in this call's meaning, became `bench stream --prime` after the second call; FCC_DVR_CHORD_STEPS became the default walk: docs/DVR.md.)
 # Session 17, first call. (1) FCC DVR (issue 18) with a chord's central piece taken from its
 # neighbours (main now) against gathering it (FCC_DVR_GATHER_CENTRAL=1, session 16's walk) and against
 # a chord sub-stepped as one segment (FCC_DVR_CHORD_STEPS=1) and against sub-steps of up to 1/8 and 1/4

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# (Its FCCVDB_BENCH_PRIME knob, in this call's meaning, became `bench stream --prime` after the second call; FCC_DVR_CHORD_STEPS became the default walk: docs/DVR.md.)
 # Session 17, second call. (1) FCC DVR (issue 18): a unit cell's chord from its two end pieces,
 # sub-stepped as one segment (main now) against every piece gathered and sub-stepped by itself
 # (FCC_DVR_GATHER_CENTRAL=1), alternating; then what the sub-step rule and the gather still cost
