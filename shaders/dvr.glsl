@@ -136,11 +136,10 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
   if (isinf(st.depthHalf) && st.transmittance <= 0.5) st.depthHalf = ta + log(2.0 * before) / e.a;
 }
 
-// The segment [s0, s1] of the ray, where the field is within `margin` of the cubic with Bernstein
-// coefficients bz (0: is that cubic); the cubic is what the sub-steps evaluate, its hull widened by
-// the margin what the skip and the sub-step rule see. Returns true once the ray is opaque enough to stop.
-bool dvrSegment3Within(vec4 bz, float margin, float s0, float s1, inout DvrState st) {
-  float lo = min(min(bz.x, bz.y), min(bz.z, bz.w)) - margin, hi = max(max(bz.x, bz.y), max(bz.z, bz.w)) + margin;
+// The segment [s0, s1] of the ray where the field is the cubic with Bernstein coefficients bz. Returns
+// true once the ray is opaque enough to stop.
+bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) {
+  float lo = min(min(bz.x, bz.y), min(bz.z, bz.w)), hi = max(max(bz.x, bz.y), max(bz.z, bz.w));
   int n = dvrSteps(lo, hi, s1 - s0);
   if (n == 0) return false;
   float h = (s1 - s0) / float(n);
@@ -150,8 +149,6 @@ bool dvrSegment3Within(vec4 bz, float margin, float s0, float s1, inout DvrState
   }
   return false;
 }
-
-bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) { return dvrSegment3Within(bz, 0.0, s0, s1, st); }
 
 
 // Three consecutive cubic segments [t0, ta], [ta, tb], [tb, t1] (Bernstein coefficients b0, b1, b2;
