@@ -77,22 +77,38 @@ TEST(Ray, FindsTheFirstOfTwoCloseRoots) {
   }
 }
 
+// A random unit cell near the origin and a ray through it: the chord [ta, tb] from face to face, through
+// a random point inside the cell.
+struct CellChord {
+  glm::ivec3 cell;
+  glm::vec3 o, d;
+  float ta, tb;
+};
+
+CellChord randomCellChord(std::mt19937& rng) {
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f), dir(-1.0f, 1.0f);
+  CellChord c;
+  c.cell = glm::ivec3(int(u01(rng) * 6) - 3, int(u01(rng) * 6) - 3, int(u01(rng) * 6) - 3);
+  const glm::vec3 inside = glm::vec3(c.cell) + glm::vec3(u01(rng), u01(rng), u01(rng));
+  c.d = glm::normalize(glm::vec3(dir(rng), dir(rng), dir(rng)));
+  c.o = inside - 5.0f * c.d;
+  c.ta = -1e30f;
+  c.tb = 1e30f;
+  for (int a = 0; a < 3; ++a) {
+    const float t0 = (float(c.cell[a]) - c.o[a]) / c.d[a], t1 = (float(c.cell[a] + 1) - c.o[a]) / c.d[a];
+    c.ta = std::max(c.ta, std::min(t0, t1));
+    c.tb = std::min(c.tb, std::max(t0, t1));
+  }
+  return c;
+}
+
 TEST(Ray, CellSplitsSeparateThePieces) {
   std::mt19937 rng(11);
-  std::uniform_real_distribution<float> u01(0.0f, 1.0f), dir(-1.0f, 1.0f);
   for (int trial = 0; trial < 2000; ++trial) {
-    const glm::ivec3 cell(int(u01(rng) * 6) - 3, int(u01(rng) * 6) - 3, int(u01(rng) * 6) - 3);
-    // A segment through the cell: from a point inside it, both ways to the cell's faces.
-    const glm::vec3 inside = glm::vec3(cell) + glm::vec3(u01(rng), u01(rng), u01(rng));
-    const glm::vec3 d = glm::normalize(glm::vec3(dir(rng), dir(rng), dir(rng)));
-    const glm::vec3 o = inside - 5.0f * d;
-    float ta = -1e30f, tb = 1e30f;
-    for (int a = 0; a < 3; ++a) {
-      const float t0 = (float(cell[a]) - o[a]) / d[a], t1 = (float(cell[a] + 1) - o[a]) / d[a];
-      ta = std::max(ta, std::min(t0, t1));
-      tb = std::min(tb, std::max(t0, t1));
-    }
-    const glm::vec4 s = fcc_cell_splits(cell, o, d, ta, tb);
+    const CellChord chord = randomCellChord(rng);
+    const glm::vec3 o = chord.o, d = chord.d;
+    const float ta = chord.ta, tb = chord.tb;
+    const glm::vec4 s = fcc_cell_splits(chord.cell, o, d, ta, tb);
     ASSERT_LE(s.x, s.y);
     ASSERT_LE(s.y, s.z);
     ASSERT_LE(s.z, s.w);
@@ -218,20 +234,13 @@ TEST(Ray, SegmentSlopesAreTheCubicsDerivativeAtItsEnds) {
 // is off by up to 0.06 on the same data: the test sees it.
 TEST(Ray, CentralPieceFromItsNeighboursIsTheSplineAlongTheRay) {
   std::mt19937 rng(17);
-  std::uniform_real_distribution<float> u01(0.0f, 1.0f), dir(-1.0f, 1.0f);
   constexpr double kValueTol = 1e-4;  // coefficients in [-1, 1]; float blossoms
   int crossing = 0;
   for (int trial = 0; trial < 4000; ++trial) {
-    const glm::ivec3 cell(int(u01(rng) * 6) - 3, int(u01(rng) * 6) - 3, int(u01(rng) * 6) - 3);
-    const glm::vec3 inside = glm::vec3(cell) + glm::vec3(u01(rng), u01(rng), u01(rng));
-    const glm::vec3 d = glm::normalize(glm::vec3(dir(rng), dir(rng), dir(rng)));
-    const glm::vec3 o = inside - 5.0f * d;
-    float t0 = -1e30f, t1 = 1e30f;
-    for (int a = 0; a < 3; ++a) {
-      const float ea = (float(cell[a]) - o[a]) / d[a], eb = (float(cell[a] + 1) - o[a]) / d[a];
-      t0 = std::max(t0, std::min(ea, eb));
-      t1 = std::min(t1, std::max(ea, eb));
-    }
+    const CellChord chord = randomCellChord(rng);
+    const glm::ivec3 cell = chord.cell;
+    const glm::vec3 o = chord.o, d = chord.d;
+    const float t0 = chord.ta, t1 = chord.tb;
     const glm::vec4 s = fcc_cell_splits(cell, o, d, t0, t1);
     ASSERT_FALSE(s.z < t1) << "a chord from face to face crosses the central piece's faces at most twice";
     if (!(s.y < t1) || s.y - s.x < 1e-3f) continue;
