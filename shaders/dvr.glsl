@@ -30,7 +30,7 @@ uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
 #endif
 
 // At most this optical depth per sub-step (FCC_DVR_STEP_DEPTH: a measurement knob), and at most this
-// many sub-steps per piece segment.
+// many sub-steps per piece segment (a box spline cell's chord of up to three pieces: three times this).
 #ifndef FCC_DVR_STEP_DEPTH
 #define FCC_DVR_STEP_DEPTH 0.0625
 #endif
@@ -106,10 +106,10 @@ float tfMaxExtinctionOn(float lo, float hi) {
 #define FCC_DVR_FIXED_STEPS 0
 #endif
 
-// Sub-steps for a segment of `len` world units whose values lie in [lo, hi]; 0 where every entry a
-// lookup there reads has zero extinction (tfZeroOn's question, on the same entries, is a largest
-// extinction of 0): one query decides both the skip and the count.
-int dvrSteps(float lo, float hi, float len) {
+// Sub-steps for a segment of `len` world units whose values lie in [lo, hi], at most `most`; 0 where
+// every entry a lookup there reads has zero extinction (tfZeroOn's question, on the same entries, is a
+// largest extinction of 0): one query decides both the skip and the count.
+int dvrSteps(float lo, float hi, float len, int most) {
   float sigmaMax = tfMaxExtinctionOn(lo, hi);
   if (sigmaMax <= 0.0) return 0;
 #if FCC_DVR_FIXED_STEPS > 0
@@ -117,7 +117,7 @@ int dvrSteps(float lo, float hi, float len) {
 #else
   float depth = sigmaMax * len / kDvrStepDepth;
   float entries = (hi - lo) * uTfScale / float(FCC_DVR_STEP_ENTRIES);
-  return clamp(int(ceil(max(depth, entries))), 1, kDvrMaxSteps);
+  return clamp(int(ceil(max(depth, entries))), 1, most);
 #endif
 }
 
@@ -140,7 +140,7 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
 // true once the ray is opaque enough to stop.
 bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) {
   float lo = min(min(bz.x, bz.y), min(bz.z, bz.w)), hi = max(max(bz.x, bz.y), max(bz.z, bz.w));
-  int n = dvrSteps(lo, hi, s1 - s0);
+  int n = dvrSteps(lo, hi, s1 - s0, kDvrMaxSteps);
   if (n == 0) return false;
   float h = (s1 - s0) / float(n);
   for (int i = 0; i < n; ++i) {
@@ -151,18 +151,23 @@ bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) {
 }
 
 
+// Where tm lies in [a, b] as a parameter in [0, 1]; 0 for an empty span (a chord an ulp long can put a
+// sub-step's midpoint on its end: no 0 / 0).
+float dvrSpanParameter(float tm, float a, float b) { return b > a ? clamp((tm - a) / (b - a), 0.0, 1.0) : 0.0; }
+
 // Three consecutive cubic segments [t0, ta], [ta, tb], [tb, t1] (Bernstein coefficients b0, b1, b2;
 // empty ones allowed) as one for the sub-step rule: their union's hull and the whole length, each
 // sub-step's midpoint on the segment that holds it (march_fcc.glsl: a unit cell's chord of the box spline).
 bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1, inout DvrState st) {
   vec4 lo4 = min(min(b0, b1), b2), hi4 = max(max(b0, b1), b2);
-  int n = dvrSteps(min(min(lo4.x, lo4.y), min(lo4.z, lo4.w)), max(max(hi4.x, hi4.y), max(hi4.z, hi4.w)), t1 - t0);
+  int n = dvrSteps(min(min(lo4.x, lo4.y), min(lo4.z, lo4.w)), max(max(hi4.x, hi4.y), max(hi4.z, hi4.w)), t1 - t0,
+                   3 * kDvrMaxSteps);
   if (n == 0) return false;
   float h = (t1 - t0) / float(n);
   for (int i = 0; i < n; ++i) {
     float ts = t0 + float(i) * h, tm = ts + 0.5 * h;
-    float v = tm < ta ? fcc_bernstein3(b0, (tm - t0) / (ta - t0))
-                      : (tm < tb ? fcc_bernstein3(b1, (tm - ta) / (tb - ta)) : fcc_bernstein3(b2, (tm - tb) / (t1 - tb)));
+    float v = tm < ta ? fcc_bernstein3(b0, dvrSpanParameter(tm, t0, ta))
+                      : (tm < tb ? fcc_bernstein3(b1, dvrSpanParameter(tm, ta, tb)) : fcc_bernstein3(b2, dvrSpanParameter(tm, tb, t1)));
     dvrComposite(v, ts, h, st);
     if (st.transmittance <= uStopTransmittance) return true;
   }
@@ -176,7 +181,7 @@ bool dvrSegment9(FccBernstein9 p, float s0, float s1, inout DvrState st) {
     lo = min(lo, p.b[i]);
     hi = max(hi, p.b[i]);
   }
-  int n = dvrSteps(lo, hi, s1 - s0);
+  int n = dvrSteps(lo, hi, s1 - s0, kDvrMaxSteps);
   if (n == 0) return false;
   float h = (s1 - s0) / float(n);
   for (int i = 0; i < n; ++i) {

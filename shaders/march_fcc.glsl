@@ -42,14 +42,14 @@ FccSegment pieceSegment(ivec3 cell, vec3 o, vec3 d, float s0, float s1) {
 //
 // A unit cell's five pieces are four corner pieces and a central one whose faces are fcc_cell_splits'
 // planes, so a chord crosses the central piece's faces twice (corner, central, corner piece), once (it
-// starts or ends inside the central piece) or not at all. The piece at each end is gathered; the
-// central stretch between them is not: the spline is C1 across the central piece's faces, so its cubic
-// along the ray is the Hermite interpolant of the end pieces' values and slopes there (sparse/FccRay.h,
-// fcc_central_bernstein; docs/DVR.md), exact as gathering it would be. The chord is then one segment
-// for the sub-step rule (dvrChord3: its pieces' union hull, its whole length). A chord that rounding
-// lets cross a third plane (a hair from the cell's corner) is taken the same way: the stretch past the
-// extra crossing is a rounding's width. Two gathers and one sub-step loop a cell, whatever the chord,
-// so the rays of a warp run one walk.
+// starts or ends inside the central piece) or not at all (fcc_chord_knots: where it leaves its first
+// piece and enters its last; extra crossings from rounding near the chord's ends not counted). The piece at each end is
+// gathered; the central stretch between them is not: the spline is C1 across the central piece's
+// faces, so its cubic along the ray is the Hermite interpolant of the end pieces' values and slopes
+// there (sparse/FccRay.h, fcc_central_bernstein; docs/DVR.md), exact as gathering it would be. The
+// chord is then one segment for the sub-step rule (dvrChord3: its pieces' union hull, its whole
+// length). Two gathers and one sub-step loop a cell, whatever the chord, so the rays of a warp run one
+// walk.
 bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
   dvrBeginCell(cell, o, d);
   vec4 splits = fcc_cell_splits(cell, o, d, t0, t1);
@@ -64,8 +64,10 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   }
   return false;
 #else
-  // ta, tb: the central stretch (one crossing: ta = tb, none; no crossing: ta = tb = t1, one piece).
-  float ta = splits.x, tb = splits.y < t1 ? splits.y : ta;
+  // ta, tb: the central stretch (one crossing: ta = tb, none; no crossing: ta = tb = t1, one piece;
+  // crossings a rounding's width from the chord's ends not counted).
+  vec2 knots = fcc_chord_knots(splits, t0, t1);
+  float ta = knots.x, tb = knots.y;
   bool twoPieces = tb < t1;
   FccSegment entry, exit;
   for (int g = 0; g < 2; ++g) {  // one gather in the code: a warp's rays share it

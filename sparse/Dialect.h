@@ -14,9 +14,11 @@
 #define FCC_FUNC inline
 #define FCC_VEC3 glm::vec3
 #define FCC_IVEC3 glm::ivec3
+#define FCC_VEC2 glm::vec2
 #define FCC_VEC4 glm::vec4
 #define FCC_MAKE_VEC3(x, y, z) glm::vec3(x, y, z)
 #define FCC_MAKE_IVEC3(x, y, z) glm::ivec3(x, y, z)
+#define FCC_MAKE_VEC2(x, y) glm::vec2(x, y)
 #define FCC_MAKE_VEC4(x, y, z, w) glm::vec4(x, y, z, w)
 #define FCC_FLOOR3(v) glm::floor(v)
 #define FCC_ABS(x) std::abs(x)
@@ -45,9 +47,11 @@
 #define FCC_FUNC
 #define FCC_VEC3 float3
 #define FCC_IVEC3 int3
+#define FCC_VEC2 float2
 #define FCC_VEC4 float4
 #define FCC_MAKE_VEC3(x, y, z) ((float3)((x), (y), (z)))
 #define FCC_MAKE_IVEC3(x, y, z) ((int3)((x), (y), (z)))
+#define FCC_MAKE_VEC2(x, y) ((float2)((x), (y)))
 #define FCC_MAKE_VEC4(x, y, z, w) ((float4)((x), (y), (z), (w)))
 #define FCC_FLOOR3(v) floor(v)
 #define FCC_ABS(x) fabs(x)
@@ -66,9 +70,11 @@
 #define FCC_FUNC
 #define FCC_VEC3 vec3
 #define FCC_IVEC3 ivec3
+#define FCC_VEC2 vec2
 #define FCC_VEC4 vec4
 #define FCC_MAKE_VEC3(x, y, z) vec3(x, y, z)
 #define FCC_MAKE_IVEC3(x, y, z) ivec3(x, y, z)
+#define FCC_MAKE_VEC2(x, y) vec2(x, y)
 #define FCC_MAKE_VEC4(x, y, z, w) vec4(x, y, z, w)
 #define FCC_FLOOR3(v) floor(v)
 #define FCC_ABS(x) abs(x)

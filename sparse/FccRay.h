@@ -69,7 +69,7 @@ FCC_FUNC FccSegment fcc_segment_with_slopes(FccCubic cubic, FccFrame frame, FCC_
 }
 
 // The central piece's segment [ta, tb] of a chord that crosses it, without its stencil (docs/DVR.md,
-// "The central piece from its neighbours"): across the central piece's faces the spline is C1 (their
+// "A cell's chord from its end pieces"): across the central piece's faces the spline is C1 (their
 // planes hold three of the six directions; across the cube's faces, which hold two, it is C2), so
 // along the ray the central piece's cubic has the entry piece's value and slope at ta and the exit
 // piece's at tb, and a cubic is its Hermite interpolant. `entry` is the entry piece's segment ending at
@@ -77,6 +77,31 @@ FCC_FUNC FccSegment fcc_segment_with_slopes(FccCubic cubic, FccFrame frame, FCC_
 FCC_FUNC FCC_VEC4 fcc_central_bernstein(FccSegment entry, FccSegment exit, float ta, float tb) {
   float h3 = (tb - ta) * (1.0f / 3.0f);
   return FCC_MAKE_VEC4(entry.b.w, entry.b.w + h3 * entry.slope1, exit.b.x - h3 * exit.slope0, exit.b.x);
+}
+
+// Where a unit cell's chord [t0, t1] leaves its first piece and enters its last, from fcc_cell_splits'
+// sorted crossings: (ta, tb), the first and the last crossing. The planes are the central piece's
+// faces, so a chord crosses two of them (ta < tb: corner, central, corner piece), one (ta = tb: it
+// starts or ends inside the central piece) or none (ta = tb = t1: one piece). Rounding adds crossings
+// where a ray enters or leaves the cell near a face diagonal (the central piece's edges): a plane the
+// ray crosses just outside the cell is found just inside, far more often the farther the ray's origin
+// (tests/sparse/test_ray.cpp). So crossings within FCC_CHORD_END_GAP of the chord's length from either
+// end are not counted: the stretch between such a crossing and the end is then taken as part of its
+// neighbour, whose cubic continues the spline's value and slope across it (C1), off by the curvature
+// jump times the stretch squared, a millionth of a cell's; and what is left is at most two crossings.
+#define FCC_CHORD_END_GAP 1e-3f
+FCC_FUNC FCC_VEC2 fcc_chord_knots(FCC_VEC4 splits, float t0, float t1) {
+  float gap = FCC_CHORD_END_GAP * (t1 - t0), lo = t0 + gap, hi = t1 - gap;
+  float first = t1, last = t1;
+  if (splits.w > lo && splits.w < hi) first = splits.w;
+  if (splits.z > lo && splits.z < hi) first = splits.z;
+  if (splits.y > lo && splits.y < hi) first = splits.y;
+  if (splits.x > lo && splits.x < hi) first = splits.x;
+  if (splits.x > lo && splits.x < hi) last = splits.x;
+  if (splits.y > lo && splits.y < hi) last = splits.y;
+  if (splits.z > lo && splits.z < hi) last = splits.z;
+  if (splits.w > lo && splits.w < hi) last = splits.w;
+  return FCC_MAKE_VEC2(first, last);
 }
 
 // The parameters in (ta, tb) where the ray crosses the four planes that cut the unit cell at integer

@@ -272,17 +272,26 @@ Command addBenchStreamCommand(CLI::App& bench) {
               // shader cache; a later program of the same source starts from that one
               // (docs/BENCHMARKS.md, sessions 16 and 17). A throwaway raycaster of the same options
               // (the same programs) steps at the path's first camera, then the driver gets time to
-              // finish, so that the runs measure streaming, not the driver's first compile. Its caches
-              // go with it: every run starts with fresh ones.
-              options.gpuCacheBytes = gpuBudgets.front();
-              options.hostCacheBytes = hostBudgets.front();
-              data.closeLevels();
-              data.applyLevels(flags, /*levelsByDefault=*/false, /*quiet=*/true, options);
-              std::unique_ptr<render::Raycaster> throwaway =
-                  data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), options)
-                                  : std::make_unique<render::Raycaster>(data.source(), options);
-              for (int i = 0; i < kPrimeSteps; ++i) throwaway->step(cameras.front(), width, height, args->uploadMs * 1e-3);
-              throwaway.reset();
+              // finish, so that the runs measure streaming, not the driver's first compile. Once per
+              // brick layout the runs use (`--layout auto` may choose another for another GPU budget:
+              // another program). Its caches go with it: every run starts with fresh ones.
+              std::vector<render::BrickLayout> primedLayouts;
+              for (std::size_t gpuBytes : gpuBudgets) {
+                const render::BrickLayout layout =
+                    options.layout ? *options.layout : render::chooseBrickLayout(data.source(), gpuBytes);
+                if (std::find(primedLayouts.begin(), primedLayouts.end(), layout) != primedLayouts.end()) continue;
+                primedLayouts.push_back(layout);
+                render::RenderOptions primeOptions = options;
+                primeOptions.layout = layout;
+                primeOptions.gpuCacheBytes = gpuBytes;
+                primeOptions.hostCacheBytes = hostBudgets.front();
+                data.closeLevels();
+                data.applyLevels(flags, /*levelsByDefault=*/false, /*quiet=*/true, primeOptions);
+                std::unique_ptr<render::Raycaster> throwaway =
+                    data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), primeOptions)
+                                    : std::make_unique<render::Raycaster>(data.source(), primeOptions);
+                for (int i = 0; i < kPrimeSteps; ++i) throwaway->step(cameras.front(), width, height, args->uploadMs * 1e-3);
+              }
               std::this_thread::sleep_for(std::chrono::milliseconds(kPrimeWaitMs));
             }
             for (std::size_t gpuBytes : gpuBudgets)

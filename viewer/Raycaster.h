@@ -57,9 +57,10 @@ struct RenderOptions {
   // scale applied); bricks and cells whose values it maps to zero extinction are skipped.
   std::shared_ptr<const TransferTable> transfer;
   bool dvrShading = false;  // DVR: gradient shading (shaders/dvr.glsl, FCC_DVR_SHADING; docs/DVR.md)
-  // FCC DVR: gather the central piece of a unit cell like the others, instead of taking its cubic along
-  // the ray from its neighbours' (shaders/march_fcc.glsl; docs/DVR.md, "The central piece from its
-  // neighbours"). The same image up to rounding, slower: the reference the tests compare with.
+  // FCC DVR: gather every piece of a unit cell's chord and sub-step each by itself, instead of the chord
+  // from its two end pieces sub-stepped as one (shaders/march_fcc.glsl; docs/DVR.md, "A cell's chord
+  // from its end pieces"). Slower; the images differ only by where the sub-steps lie: the reference the
+  // tests compare with.
   bool dvrGatherCentral = false;
   float terminationOpacity = 0.995f;  // DVR: a ray stops once this opaque (and asks for no brick behind)
   // The clipping box, world space: rays are cut to it and bricks outside it are never loaded. The

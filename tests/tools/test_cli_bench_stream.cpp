@@ -39,7 +39,7 @@ d = rows
 MiB = 1024 * 1024
 assert d['frames'] == FRAMES, d['frames']
 assert d['upload_fit'] is True, d['upload_fit']  # the default, as the viewer
-assert d['primed'] in (True, False), d['primed']  # auto: off on llvmpipe
+assert d['primed'] in (True, False), d['primed']
 assert d['res'] == [64, 48], d['res']
 assert len(d['runs']) == len(GPU) * len(HOST), len(d['runs'])
 pairs = [(r['summary']['gpu_budget_bytes'], r['summary']['host_budget_bytes']) for r in d['runs']]
@@ -101,6 +101,11 @@ TEST_F(BenchStream, JsonHoldsEveryContractKeyWithConsistentValues) {
   if (failedForLackOfGl(r)) GTEST_SKIP() << r.err;
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(checkJsonWithPython(*dir_, readText(json), checksFor(6, "1", "2")), 0) << readText(json).substr(0, 2000);
+  // --prime auto: on for a GPU, off for a CPU renderer (tools/CpuRenderer.h's names).
+  EXPECT_EQ(checkJsonWithPython(*dir_, readText(json),
+                                "cpu = any(n in rows['device'] for n in ('llvmpipe', 'softpipe', 'lavapipe', 'SwiftShader'))\n"
+                                "assert rows['primed'] == (not cpu), (rows['primed'], rows['device'])\n"),
+            0);
   EXPECT_THAT(r.out, HasSubstr("p99 ms"));  // the table on stdout
 }
 
