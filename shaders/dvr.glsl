@@ -150,7 +150,6 @@ bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) {
   return false;
 }
 
-
 // Where tm lies in [a, b] as a parameter in [0, 1]; 0 for an empty span (a chord an ulp long can put a
 // sub-step's midpoint on its end: no 0 / 0).
 float dvrSpanParameter(float tm, float a, float b) { return b > a ? clamp((tm - a) / (b - a), 0.0, 1.0) : 0.0; }
