@@ -36,6 +36,10 @@ uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
 #endif
 const float kDvrStepDepth = FCC_DVR_STEP_DEPTH;
 const int kDvrMaxSteps = 64;
+// A box spline cell's chord (dvrChord3): three pieces' worth. A measurement knob (docs/RENDERER.md).
+#ifndef FCC_DVR_CHORD_MAX_STEPS
+#define FCC_DVR_CHORD_MAX_STEPS (3 * kDvrMaxSteps)
+#endif
 
 struct DvrState {
   vec3 color;          // premultiplied, accumulated front to back
@@ -160,7 +164,7 @@ float dvrSpanParameter(float tm, float a, float b) { return b > a ? clamp((tm - 
 bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1, inout DvrState st) {
   vec4 lo4 = min(min(b0, b1), b2), hi4 = max(max(b0, b1), b2);
   int n = dvrSteps(min(min(lo4.x, lo4.y), min(lo4.z, lo4.w)), max(max(hi4.x, hi4.y), max(hi4.z, hi4.w)), t1 - t0,
-                   3 * kDvrMaxSteps);
+                   FCC_DVR_CHORD_MAX_STEPS);
   if (n == 0) return false;
   float h = (t1 - t0) / float(n);
   for (int i = 0; i < n; ++i) {

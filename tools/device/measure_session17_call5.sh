@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Session 17, fifth call: what the chord's sub-step cap costs (issue 18). The final build (192 a chord)
+# against FCC_DVR_CHORD_MAX_STEPS=64 (the second call's cap), alternating, ML 160^3x4 FCC viridis and
+# the engine CT inferno at 1080p.
+# Run as
+#   ../shared/tools/device-bundle build/bin/fccvdb build/bin/fccvdb-guard ../shared/data/engine_256x256x128_uint8.raw.gz
+#   source .devbundle/env.sh && bash tools/device/measure_session17_call5.sh        (SMALL=1: toy sizes)
+set -u
+W=${W:-/tmp/m17}; mkdir -p "$W"; cd "$W"
+if [ "${SMALL:-0}" = 1 ]; then RES=64x64; ML=40; FR=5; else RES=1920x1080; ML=320; FR=300; fi
+[ -s ml.vdb ] || fccvdb synth marschner-lobb ml.vdb --dims $ML,$ML,$ML --force --quiet
+ENGINE=${FCC_DATA:-/nonexistent}/engine_256x256x128_uint8.raw.gz
+[ -s engine.vdb ] || { [ -f "$ENGINE" ] && fccvdb convert "$ENGINE" engine.vdb --dims 256,256,128 --type u8 --force --quiet; }
+D=(--variants skip+analytic --layout auto --res $RES --frames $FR --warmup 30 --json)
+fps() { grep -oE '"fps": [0-9.e+]+|fccvdb:.*' | tr '\n' ' '; echo; }
+for round in 1 2; do
+  for v in "" "FCC_DVR_CHORD_MAX_STEPS=64"; do
+    echo "-- round $round [${v:-main}] ML FCC viridis"; FCCVDB_SHADER_DEFINES=$v fccvdb bench render ml.vdb --mode dvr --tf viridis "${D[@]}" | fps
+    [ -s engine.vdb ] && { echo "-- round $round [${v:-main}] engine inferno"; FCCVDB_SHADER_DEFINES=$v fccvdb bench render engine.vdb --mode dvr --tf inferno "${D[@]}" | fps; }
+  done
+done
+true
