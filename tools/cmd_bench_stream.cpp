@@ -266,6 +266,14 @@ Command addBenchStreamCommand(CLI::App& bench) {
             const std::size_t largestGpu = *std::max_element(gpuBudgets.begin(), gpuBudgets.end());
             const std::size_t largestHost = *std::max_element(hostBudgets.begin(), hostBudgets.end());
             const auto budget = std::chrono::duration<double, std::milli>(args->frameBudgetMs);
+            // A raycaster with fresh caches and the pyramid's levels opened anew: FCC data gets a host
+            // cache of opts' budget (a Cartesian grid has none).
+            auto freshRaycaster = [&](render::RenderOptions& opts) {
+              data.closeLevels();
+              data.applyLevels(flags, /*levelsByDefault=*/false, /*quiet=*/true, opts);
+              return data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), opts)
+                                     : std::make_unique<render::Raycaster>(data.source(), opts);
+            };
             if (report.primed) {
               // The NVIDIA driver runs a program it has just compiled about 5x slower until, after a
               // dozen passes of real work, an optimized build replaces it, which it also keeps in its
@@ -285,11 +293,7 @@ Command addBenchStreamCommand(CLI::App& bench) {
                 primeOptions.layout = layout;
                 primeOptions.gpuCacheBytes = gpuBytes;
                 primeOptions.hostCacheBytes = hostBudgets.front();
-                data.closeLevels();
-                data.applyLevels(flags, /*levelsByDefault=*/false, /*quiet=*/true, primeOptions);
-                std::unique_ptr<render::Raycaster> throwaway =
-                    data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), primeOptions)
-                                    : std::make_unique<render::Raycaster>(data.source(), primeOptions);
+                std::unique_ptr<render::Raycaster> throwaway = freshRaycaster(primeOptions);
                 for (int i = 0; i < kPrimeSteps; ++i) throwaway->step(cameras.front(), width, height, args->uploadMs * 1e-3);
               }
               std::this_thread::sleep_for(std::chrono::milliseconds(kPrimeWaitMs));
@@ -298,12 +302,7 @@ Command addBenchStreamCommand(CLI::App& bench) {
               for (std::size_t hostBytes : hostBudgets) {
                 options.gpuCacheBytes = gpuBytes;
                 options.hostCacheBytes = hostBytes;
-                data.closeLevels();
-                data.applyLevels(flags, /*levelsByDefault=*/false, /*quiet=*/true, options);
-                // Fresh caches a run: FCC data gets a host cache of this budget (a Cartesian grid has none).
-                std::unique_ptr<render::Raycaster> made =
-                    data.fccStore() ? std::make_unique<render::Raycaster>(*data.fccStore(), options)
-                                    : std::make_unique<render::Raycaster>(data.source(), options);
+                std::unique_ptr<render::Raycaster> made = freshRaycaster(options);  // fresh caches a run
                 render::Raycaster& raycaster = *made;
                 StreamRun run;
                 run.gpuBudgetBytes = gpuBytes;

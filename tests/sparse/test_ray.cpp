@@ -85,21 +85,23 @@ struct CellChord {
   float ta, tb;
 };
 
-CellChord randomCellChord(std::mt19937& rng) {
-  std::uniform_real_distribution<float> u01(0.0f, 1.0f), dir(-1.0f, 1.0f);
-  CellChord c;
-  c.cell = glm::ivec3(int(u01(rng) * 6) - 3, int(u01(rng) * 6) - 3, int(u01(rng) * 6) - 3);
-  const glm::vec3 inside = glm::vec3(c.cell) + glm::vec3(u01(rng), u01(rng), u01(rng));
-  c.d = glm::normalize(glm::vec3(dir(rng), dir(rng), dir(rng)));
-  c.o = inside - 5.0f * c.d;
-  c.ta = -1e30f;
-  c.tb = 1e30f;
+// The chord of the ray o + t d through unit cell `cell`: the slabs' entry and exit.
+CellChord cellChord(const glm::ivec3& cell, const glm::vec3& o, const glm::vec3& d) {
+  CellChord c{cell, o, d, -1e30f, 1e30f};
   for (int a = 0; a < 3; ++a) {
-    const float t0 = (float(c.cell[a]) - c.o[a]) / c.d[a], t1 = (float(c.cell[a] + 1) - c.o[a]) / c.d[a];
+    const float t0 = (float(cell[a]) - o[a]) / d[a], t1 = (float(cell[a] + 1) - o[a]) / d[a];
     c.ta = std::max(c.ta, std::min(t0, t1));
     c.tb = std::min(c.tb, std::max(t0, t1));
   }
   return c;
+}
+
+CellChord randomCellChord(std::mt19937& rng) {
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f), dir(-1.0f, 1.0f);
+  const glm::ivec3 cell(int(u01(rng) * 6) - 3, int(u01(rng) * 6) - 3, int(u01(rng) * 6) - 3);
+  const glm::vec3 inside = glm::vec3(cell) + glm::vec3(u01(rng), u01(rng), u01(rng));
+  const glm::vec3 d = glm::normalize(glm::vec3(dir(rng), dir(rng), dir(rng)));
+  return cellChord(cell, inside - 5.0f * d, d);
 }
 
 TEST(Ray, CellSplitsSeparateThePieces) {
@@ -159,6 +161,13 @@ TEST(Ray, SegmentBernsteinFormIsTheSplineAlongTheRay) {
 float hashedCoefficient(const glm::ivec3& ijk) {
   const uint32_t h = uint32_t(ijk.x * 73856093) ^ uint32_t(ijk.y * 19349663) ^ uint32_t(ijk.z * 83492791);
   return float(h % 2001u) / 1000.0f - 1.0f;
+}
+
+// The segment [sa, sb] of chord c's ray in the piece of c's cell holding it, on hashedCoefficient's
+// data (march_fcc.glsl's pieceSegment).
+FccSegment pieceSegmentOf(const CellChord& c, float sa, float sb) {
+  const FccFrame frame = fcc_locate(glm::clamp(c.o + 0.5f * (sa + sb) * c.d, glm::vec3(c.cell), glm::vec3(c.cell + 1)));
+  return fcc_segment_with_slopes(fcc_cubic(gatherSamples(frame, hashedCoefficient), frame.type), frame, c.o, c.d, sa, sb);
 }
 
 // The piece at x, its cubic, and the spline's value, slope and curvature along d there (fcc_ray_jet's
@@ -245,11 +254,7 @@ TEST(Ray, CentralPieceFromItsNeighboursIsTheSplineAlongTheRay) {
     ASSERT_FALSE(s.z < t1) << "a chord from face to face crosses the central piece's faces at most twice";
     if (!(s.y < t1) || s.y - s.x < 1e-3f) continue;
     ++crossing;
-    auto segmentOf = [&](float sa, float sb) {
-      const FccFrame frame = fcc_locate(glm::clamp(o + 0.5f * (sa + sb) * d, glm::vec3(cell), glm::vec3(cell + 1)));
-      return fcc_segment_with_slopes(fcc_cubic(gatherSamples(frame, hashedCoefficient), frame.type), frame, o, d, sa, sb);
-    };
-    const glm::dvec4 b(fcc_central_bernstein(segmentOf(t0, s.x), segmentOf(s.y, t1), s.x, s.y));
+    const glm::dvec4 b(fcc_central_bernstein(pieceSegmentOf(chord, t0, s.x), pieceSegmentOf(chord, s.y, t1), s.x, s.y));
     for (double u : {0.0, 0.25, 0.5, 0.75, 1.0}) {
       const glm::vec3 x = o + float(s.x + u * (s.y - s.x)) * d;
       const double expected = evaluate(glm::clamp(x, glm::vec3(cell), glm::vec3(cell + 1)), hashedCoefficient);
@@ -277,24 +282,16 @@ TEST(Ray, ChordKnotsIgnoreCrossingsRoundingAddsNearTheEnds) {
     const glm::ivec3 cell(2 * int(u01(rng) * 50), 2 * int(u01(rng) * 50), 2 * int(u01(rng) * 50));
     const float a = 0.05f + 0.9f * u01(rng), off = 2e-5f * (u01(rng) - 0.5f);
     const glm::vec3 entry = glm::vec3(cell) + glm::vec3(a, 1.0f - a + off, 0.0f);
-    glm::vec3 d = glm::normalize(glm::vec3(dir(rng), dir(rng), 0.05f + u01(rng)));
+    const glm::vec3 d = glm::normalize(glm::vec3(dir(rng), dir(rng), 0.05f + u01(rng)));
     const glm::vec3 o = entry - (500.0f + 1500.0f * u01(rng)) * d;
-    float t0 = -1e30f, t1 = 1e30f;
-    for (int k = 0; k < 3; ++k) {
-      const float ea = (float(cell[k]) - o[k]) / d[k], eb = (float(cell[k] + 1) - o[k]) / d[k];
-      t0 = std::max(t0, std::min(ea, eb));
-      t1 = std::min(t1, std::max(ea, eb));
-    }
+    const CellChord chord = cellChord(cell, o, d);
+    const float t0 = chord.ta, t1 = chord.tb;
     if (!(t1 - t0 > 1e-2f)) continue;
     const glm::vec4 s = fcc_cell_splits(cell, o, d, t0, t1);
     moreThanTwo += s.z < t1;
     const glm::vec2 knots = fcc_chord_knots(s, t0, t1);
-    auto segmentOf = [&](float sa, float sb) {
-      const FccFrame frame = fcc_locate(glm::clamp(o + 0.5f * (sa + sb) * d, glm::vec3(cell), glm::vec3(cell + 1)));
-      return fcc_segment_with_slopes(fcc_cubic(gatherSamples(frame, hashedCoefficient), frame.type), frame, o, d, sa, sb);
-    };
-    const FccSegment first = segmentOf(t0, knots.x);
-    const FccSegment last = knots.y < t1 ? segmentOf(knots.y, t1) : first;
+    const FccSegment first = pieceSegmentOf(chord, t0, knots.x);
+    const FccSegment last = knots.y < t1 ? pieceSegmentOf(chord, knots.y, t1) : first;
     const glm::vec4 spans[3] = {first.b, knots.y < t1 ? fcc_central_bernstein(first, last, knots.x, knots.y) : first.b,
                                 last.b};
     const float ends[4] = {t0, knots.x, knots.y, t1};
