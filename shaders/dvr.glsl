@@ -5,14 +5,16 @@
 // Along a ray the field is a known polynomial on each piece (a cubic for the box spline and trilinear,
 // degree 9 for tricubic), given here in Bernstein form on the piece's segment. Its range lies within
 // its Bernstein coefficients, so a segment whose range the table maps to zero extinction is passed
-// over exactly, and the others are cut into sub-steps by what the segment can do: at most
-// kDvrStepDepth of optical depth (from the largest extinction over its range) and about one table
-// entry of value change each (from the entries its range spans). Each sub-step takes the medium at its
-// midpoint, the polynomial evaluated there, and composites exactly (docs/DVR.md gives the error bound).
+// over exactly, and the others are cut into equal sub-steps, as many as the midpoint rule's error
+// estimate on that range asks for (dvrSteps; docs/DVR.md, "How many sub-steps"). Each sub-step takes
+// the medium at its midpoint, the polynomial evaluated there, and composites exactly.
 
 layout(std430, binding = 12) readonly buffer TfEntries { vec4 tfEntries[]; };
-// tfPrefix[i]: entries among [0, i) with non-zero extinction (TransferTable::nonZeroPrefix).
-layout(std430, binding = 13) readonly buffer TfPrefix { int tfPrefix[]; };
+// tfPrefix[i]: among entries [0, i), those with non-zero extinction (TransferTable::nonZeroPrefix), and
+// the sums of their kinks and colour steps in quanta of uTfKinkQuantum and uTfColourQuantum
+// (viewer/DvrTableGpu.h's prefixes).
+layout(std430, binding = 13) readonly buffer TfPrefix { uvec4 tfPrefix[]; };
+uniform float uTfKinkQuantum, uTfColourQuantum;
 uniform float uTfMin;          // the value of entry 0
 uniform float uTfScale;        // entries per unit of value: (size - 1) / (vmax - vmin)
 uniform int uTfSize;
@@ -29,16 +31,29 @@ uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
 #define FCC_DVR_SHADING 0
 #endif
 
-// At most this optical depth per sub-step (FCC_DVR_STEP_DEPTH: a measurement knob), and at most this
-// many sub-steps per piece segment (a box spline cell's chord of up to three pieces: three times this).
-#ifndef FCC_DVR_STEP_DEPTH
-#define FCC_DVR_STEP_DEPTH 0.0625
+// The sub-step rule's two parameters (dvrSteps), measurement knobs (docs/RENDERER.md): the error
+// estimate's bound relative to the opacity a segment adds, and the most optical depth one sub-step
+// may hold. At most kDvrMaxSteps sub-steps per piece segment (a box spline cell's chord of up to three
+// pieces: three times this).
+#ifndef FCC_DVR_TOLERANCE
+#define FCC_DVR_TOLERANCE 0.01
 #endif
+#ifndef FCC_DVR_STEP_DEPTH
+#define FCC_DVR_STEP_DEPTH 1.0
+#endif
+const float kDvrTolerance = FCC_DVR_TOLERANCE;
 const float kDvrStepDepth = FCC_DVR_STEP_DEPTH;
 const int kDvrMaxSteps = 64;
 // A box spline cell's chord (dvrChord3): three pieces' worth. A measurement knob (docs/RENDERER.md).
 #ifndef FCC_DVR_CHORD_MAX_STEPS
 #define FCC_DVR_CHORD_MAX_STEPS (3 * kDvrMaxSteps)
+#endif
+
+// 1: a measurement knob (docs/RENDERER.md): the colour channels count work instead of light, R the
+// unit cells a ray visits in resident bricks, G those it integrates, B its sub-steps (the opacity and
+// the stopping are as without it). Wrong images: for where a frame's work goes.
+#ifndef FCC_DVR_COUNT
+#define FCC_DVR_COUNT 0
 #endif
 
 struct DvrState {
@@ -90,47 +105,70 @@ vec4 tfLookup(float v) {
 // Whether every lookup in [lo, hi] has zero extinction (TransferTable::zeroOn).
 bool tfZeroOn(float lo, float hi) {
   int first = int(floor(tfPosition(lo))), last = int(ceil(tfPosition(hi)));
-  return tfPrefix[last + 1] == tfPrefix[first];
+  return tfPrefix[last + 1].x == tfPrefix[first].x;
 }
 
 // The largest extinction of the entries a lookup in [lo, hi] reads (TransferTable::maxExtinctionOn):
 // two overlapping power-of-two runs of the sparse table.
-float tfMaxExtinctionOn(float lo, float hi) {
-  int first = int(floor(tfPosition(lo))), last = int(ceil(tfPosition(hi)));
+float tfMaxExtinctionOn(int first, int last) {
   int k = findMSB(last - first + 1);
   return max(tfMaxLevels[k * uTfSize + first], tfMaxLevels[k * uTfSize + last - (1 << k) + 1]);
 }
 
-// Measurement knobs (FCCVDB_SHADER_DEFINES, docs/RENDERER.md): table entries a sub-step may span, and a
-// fixed sub-step count per segment instead of the rule (0: the rule).
-#ifndef FCC_DVR_STEP_ENTRIES
-#define FCC_DVR_STEP_ENTRIES 1.0
-#endif
+// Measurement knobs (FCCVDB_SHADER_DEFINES, docs/RENDERER.md): a fixed sub-step count per segment
+// instead of the rule (0: the rule); 1: the rule until session 17 instead (at most 1/16 of optical
+// depth and about one table entry of value change a sub-step), for comparison.
 #ifndef FCC_DVR_FIXED_STEPS
 #define FCC_DVR_FIXED_STEPS 0
+#endif
+#ifndef FCC_DVR_ENTRY_RULE
+#define FCC_DVR_ENTRY_RULE 0
 #endif
 
 // Sub-steps for a segment of `len` world units whose values lie in [lo, hi], at most `most`; 0 where
 // every entry a lookup there reads has zero extinction (tfZeroOn's question, on the same entries, is a
 // largest extinction of 0): one query decides both the skip and the count.
+//
+// The rule (docs/DVR.md, "How many sub-steps"): with n equal sub-steps the midpoint rule's error on a
+// segment of optical depth at most tau = sigma_max len, whose values span E table entries, is about
+//   K E / (8 sigma_max n^2)   (the table's kinks, slope changes summing to K per world unit, each
+//                              crossed by a sub-step spanning E / n entries), and
+//   C tau / (12 n^2)          (the colour moving by C while the light is absorbed)
+// relative to tau; their sum is held below kDvrTolerance. A medium linear in the value needs one
+// sub-step (the midpoint rule is exact for it), and no sub-step holds more than kDvrStepDepth of
+// optical depth, where the estimate (second order in the sub-step) stays true.
 int dvrSteps(float lo, float hi, float len, int most) {
-  float sigmaMax = tfMaxExtinctionOn(lo, hi);
+  int first = int(floor(tfPosition(lo))), last = int(ceil(tfPosition(hi)));
+  float sigmaMax = tfMaxExtinctionOn(first, last);
   if (sigmaMax <= 0.0) return 0;
 #if FCC_DVR_FIXED_STEPS > 0
   return FCC_DVR_FIXED_STEPS;
+#elif FCC_DVR_ENTRY_RULE
+  return clamp(int(ceil(max(sigmaMax * len * 16.0, (hi - lo) * uTfScale))), 1, most);
 #else
-  float depth = sigmaMax * len / kDvrStepDepth;
-  float entries = (hi - lo) * uTfScale / float(FCC_DVR_STEP_ENTRIES);
-  return clamp(int(ceil(max(depth, entries))), 1, most);
+  uvec4 sums = tfPrefix[last + 1] - tfPrefix[first];
+  float kinks = float(sums.y) * uTfKinkQuantum, colour = float(sums.z) * uTfColourQuantum;
+  float tau = sigmaMax * len, entries = (hi - lo) * uTfScale;
+  float n2 = (kinks * entries / (8.0 * sigmaMax) + colour * tau / 12.0) / kDvrTolerance;
+  return clamp(int(ceil(max(tau / kDvrStepDepth, sqrt(n2)))), 1, most);
 #endif
 }
+
+// 1 - exp(-x) for x >= 0 without float's cancellation at small x (GLSL has no expm1): below 1/64 its
+// series to x^3, off by at most x^4 / 24 < 3e-9 relative; above, the difference (relative rounding
+// 2^-24 / x < 1e-6). Many thin sub-steps would otherwise each lose up to 2^-24 of opacity.
+float dvrOpacity(float x) { return x < 0.015625 ? x * (1.0 - x * (0.5 - x * (1.0 / 6.0))) : 1.0 - exp(-x); }
 
 // One sub-step [ta, ta + h] at value v: composited exactly for the medium held constant.
 void dvrComposite(float v, float ta, float h, inout DvrState st) {
   vec4 e = tfLookup(v);
+#if FCC_DVR_COUNT
+  st.color.b += 1.0;
+#endif
   if (e.a <= 0.0) return;  // zero extinction emits nothing either (premultiplied entries)
-  float a = 1.0 - exp(-e.a * h);
-#if FCC_DVR_SHADING
+  float a = dvrOpacity(e.a * h);
+#if FCC_DVR_COUNT
+#elif FCC_DVR_SHADING
   st.color += st.transmittance * (e.rgb / e.a) * a * dvrShadeAt(ta + 0.5 * h);
 #else
   st.color += st.transmittance * (e.rgb / e.a) * a;

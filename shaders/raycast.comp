@@ -243,6 +243,10 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     uint voxelEntry = boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x);
     vec2 cellBounds = slotBounds[voxelEntry];
 #if FCC_MODE_DVR
+#if FCC_DVR_COUNT
+    st.color.r += 1.0;
+    if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) st.color.g += 1.0;
+#endif
     if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) {
       if (integrateCell(cell, o, d, tCell, tExit, st)) return true;
     }

@@ -242,6 +242,28 @@ TransferTable::TransferTable(const TransferFunction& tf, double vmin, double vma
     sigmas[size_t(i)] = double(entries_[size_t(i)].a);
   }
   extinctionQueries_ = RangeQueries(std::move(sigmas));
+
+  // The sub-step rule's measures: kinks from the float entries the GPU reads, colour steps from the
+  // function (its colour is defined where the extinction is 0 too).
+  const auto at = [&](int i) { return glm::dvec4(entries_[size_t(std::clamp(i, 0, size - 1))]); };
+  const auto largest = [](const glm::dvec4& v) { return std::max(std::max(v.x, v.y), std::max(v.z, v.w)); };
+  kinks_.resize(entries_.size());
+  colourSteps_.assign(entries_.size(), 0.0);
+  glm::dvec3 colour = tf.color(vmin);
+  for (int i = 0; i < size; ++i) {
+    kinks_[size_t(i)] = largest(glm::abs(at(i + 1) - 2.0 * at(i) + at(i - 1)));  // clamped: the flat extension
+    if (i + 1 == size) break;
+    const glm::dvec3 next = tf.color(i + 1 == size - 1 ? vmax : vmin + (vmax - vmin) * double(i + 1) / double(size - 1));
+    const glm::dvec3 step = glm::abs(next - colour);
+    colourSteps_[size_t(i)] = std::max(std::max(step.x, step.y), step.z);
+    colour = next;
+  }
+  kinkPrefix_.assign(entries_.size() + 1, 0.0);
+  colourPrefix_.assign(entries_.size() + 1, 0.0);
+  for (size_t i = 0; i < entries_.size(); ++i) {
+    kinkPrefix_[i + 1] = kinkPrefix_[i] + kinks_[i];
+    colourPrefix_[i + 1] = colourPrefix_[i] + colourSteps_[i];
+  }
 }
 
 double TransferTable::position(double v) const {
@@ -278,6 +300,18 @@ double TransferTable::maxExtinctionOn(double lo, double hi) const {
   int first, last;
   entriesOn(lo, hi, first, last);
   return extinctionQueries_.maxOn(first, last);
+}
+
+double TransferTable::kinkSumOn(double lo, double hi) const {
+  int first, last;
+  entriesOn(lo, hi, first, last);
+  return kinkPrefix_[size_t(last) + 1] - kinkPrefix_[size_t(first)];
+}
+
+double TransferTable::colourVariationOn(double lo, double hi) const {
+  int first, last;
+  entriesOn(lo, hi, first, last);
+  return colourPrefix_[size_t(last) + 1] - colourPrefix_[size_t(first)];
 }
 
 }  // namespace fcc

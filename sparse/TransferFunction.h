@@ -156,11 +156,27 @@ class TransferTable {
   // For a shader that answers maxExtinctionOn itself: RangeQueries::levels of the entries' extinction.
   const std::vector<std::vector<double>>& extinctionMaxLevels() const { return extinctionQueries_.levels(); }
 
+  // What the DVR sub-step rule needs of the table besides the extinction (docs/DVR.md, "How many
+  // sub-steps"), sums over the entries [first, last] the lookups in [lo, hi] read (entriesOn):
+  // - kinkSumOn: the slope changes there, each entry's the largest over the four channels of
+  //   |e[i+1] - 2 e[i] + e[i-1]| (per world unit, as the entries; at the ends the lookup is constant
+  //   outside, so |e[1] - e[0]| and |e[n-1] - e[n-2]|): 0 where the lookups are linear in v;
+  // - colourVariationOn: how far the function's colour (rgb, not premultiplied; largest channel) moves
+  //   from entry to entry, each entry's step to the next (one step past the last: an upper bound of
+  //   the lookups' colour change, whose e.rgb / e.a lies between its two entries' colours).
+  double kinkSumOn(double lo, double hi) const;
+  double colourVariationOn(double lo, double hi) const;
+  // The per-entry terms those sum (size() each), for a shader that sums them itself.
+  const std::vector<double>& kinks() const { return kinks_; }
+  const std::vector<double>& colourSteps() const { return colourSteps_; }
+
  private:
   double position(double v) const;  // in entries, clamped to [0, size - 1]
   double vmin_, vmax_;
   std::vector<glm::vec4> entries_;
   RangeQueries extinctionQueries_;
+  std::vector<double> kinks_, colourSteps_;
+  std::vector<double> kinkPrefix_, colourPrefix_;  // size() + 1 sums of the first i terms
 };
 
 }  // namespace fcc

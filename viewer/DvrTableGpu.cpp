@@ -1,7 +1,9 @@
 #include "DvrTableGpu.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace fcc::render {
@@ -13,16 +15,17 @@ void DvrTableGpu::upload(const TransferTable& table) {
   const std::vector<float> maxLevels = extinctionMaxLevels(table);
   if (!entries_ || entryBytes > entries_->size()) {  // all made before any is replaced
     auto entries = std::make_unique<GlBuffer>(entryBytes);
-    auto prefix = std::make_unique<GlBuffer>(std::size_t(table.size() + 1) * sizeof(int32_t));
+    auto prefix = std::make_unique<GlBuffer>(std::size_t(table.size() + 1) * sizeof(glm::uvec4));
     auto maxLevelBuffer = std::make_unique<GlBuffer>(maxLevels.size() * sizeof(float));
     entries_ = std::move(entries);
     prefix_ = std::move(prefix);
     maxLevels_ = std::move(maxLevelBuffer);
   }
   entries_->write(table.entries().data(), entryBytes);
-  const std::vector<int>& prefix = table.nonZeroPrefix();
-  const std::vector<int32_t> prefix32(prefix.begin(), prefix.end());
-  prefix_->write(prefix32.data(), prefix32.size() * sizeof(int32_t));
+  const Prefixes sums = prefixes(table);
+  prefix_->write(sums.sums.data(), sums.sums.size() * sizeof(glm::uvec4));
+  kinkQuantum_ = sums.kinkQuantum;
+  colourQuantum_ = sums.colourQuantum;
   maxLevels_->write(maxLevels.data(), maxLevels.size() * sizeof(float));
   size_ = table.size();
   vmin_ = float(table.vmin());
@@ -35,6 +38,10 @@ void DvrTableGpu::setUniforms(const GlProgram& program, float stopTransmittance)
   glProgramUniform1f(p, program.uniformLocation("uTfScale"), scale_);
   glProgramUniform1i(p, program.uniformLocation("uTfSize"), size_);
   glProgramUniform1f(p, program.uniformLocation("uStopTransmittance"), stopTransmittance);
+  // Only the sub-step rule reads these: a shader built with a fixed count (FCC_DVR_FIXED_STEPS, a
+  // measurement knob) has them inactive, and GL ignores location -1.
+  glProgramUniform1f(p, glGetUniformLocation(p, "uTfKinkQuantum"), kinkQuantum_);
+  glProgramUniform1f(p, glGetUniformLocation(p, "uTfColourQuantum"), colourQuantum_);
 }
 
 void DvrTableGpu::bind() const {
@@ -51,6 +58,38 @@ std::vector<float> DvrTableGpu::extinctionMaxLevels(const TransferTable& table) 
   for (std::size_t k = 0; k < levels.size(); ++k)
     std::copy(levels[k].begin(), levels[k].end(), flat.begin() + std::ptrdiff_t(k * size));
   return flat;
+}
+
+namespace {
+
+// Whole quanta of 2^-30 of the terms' sum, each rounded up (their sum stays below 2^31); the quantum.
+float quantize(const std::vector<double>& terms, std::vector<uint32_t>& quanta) {
+  double total = 0.0;
+  for (double t : terms) total += t;
+  const double quantum = total > 0.0 ? total / double(1u << 30) : 1.0;
+  quanta.resize(terms.size());
+  for (std::size_t i = 0; i < terms.size(); ++i) quanta[i] = uint32_t(std::ceil(terms[i] / quantum));
+  // The float the shader multiplies by, rounded up so that a sum times it is not below the terms'.
+  return std::nextafter(float(quantum), std::numeric_limits<float>::infinity());
+}
+
+}  // namespace
+
+DvrTableGpu::Prefixes DvrTableGpu::prefixes(const TransferTable& table) {
+  Prefixes p;
+  std::vector<uint32_t> kinks, colours;
+  p.kinkQuantum = quantize(table.kinks(), kinks);
+  p.colourQuantum = quantize(table.colourSteps(), colours);
+  const std::vector<int>& nonZero = table.nonZeroPrefix();
+  p.sums.assign(nonZero.size(), glm::uvec4(0u));
+  for (std::size_t i = 0; i < nonZero.size(); ++i) {
+    p.sums[i].x = uint32_t(nonZero[i]);
+    if (i > 0) {
+      p.sums[i].y = p.sums[i - 1].y + kinks[i - 1];
+      p.sums[i].z = p.sums[i - 1].z + colours[i - 1];
+    }
+  }
+  return p;
 }
 
 }  // namespace fcc::render

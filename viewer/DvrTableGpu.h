@@ -1,6 +1,7 @@
 // A transfer table (sparse/TransferFunction.h) as shaders/dvr.glsl reads it: its entries, their
-// non-zero prefix and a sparse table of their extinction maxima in SSBOs 12, 13 and 14 (the GPU's
-// TransferTable::zeroOn and maxExtinctionOn, exact and O(1)), its range and size as uniforms. Shared
+// prefix sums (non-zero count, kinks, colour steps) and a sparse table of their extinction maxima in
+// SSBOs 12, 13 and 14 (the GPU's TransferTable::zeroOn and maxExtinctionOn, exact, kinkSumOn and
+// colourVariationOn, bounds: all O(1)), its range and size as uniforms. Shared
 // by every program that integrates emission and absorption (the raycaster's DVR, projected
 // tetrahedra), so they read one table the same way.
 #pragma once
@@ -27,9 +28,19 @@ class DvrTableGpu {
   // (the i past size - 2^k, which no query reads, are 0).
   static std::vector<float> extinctionMaxLevels(const TransferTable& table);
 
+  // The prefix sums dvr.glsl's tfPrefix holds, size + 1 of them: (non-zero entries, kinks, colour
+  // steps, 0) among entries [0, i). The sums are in whole quanta (returned), each term rounded up, so
+  // (prefix[last + 1] - prefix[first]) * quantum is exact in unsigned arithmetic, at least the table's
+  // own sum and at most (last - first + 1) quanta more; a quantum is 2^-30 of the table's whole sum.
+  struct Prefixes {
+    std::vector<glm::uvec4> sums;
+    float kinkQuantum = 0.0f, colourQuantum = 0.0f;
+  };
+  static Prefixes prefixes(const TransferTable& table);
+
  private:
   std::unique_ptr<GlBuffer> entries_, prefix_, maxLevels_;
-  float vmin_ = 0.0f, scale_ = 1.0f;
+  float vmin_ = 0.0f, scale_ = 1.0f, kinkQuantum_ = 0.0f, colourQuantum_ = 0.0f;
   int size_ = 0;
 };
 

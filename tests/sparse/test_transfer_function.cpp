@@ -241,6 +241,46 @@ TEST(TransferTable, EntriesAreTheEvaluationAndLookupsInterpolateThem) {
   EXPECT_THROW(TransferTable(tf, 0.0, 1.0, 16, OpticalScale{0.0, 1.0}), ValueError);
 }
 
+// What the DVR sub-step rule (shaders/dvr.glsl's dvrSteps) takes from the table, checked as properties
+// of the lookups it stands for over [lo, hi]: the lookup at the midpoint of two values there is off
+// the straight line between their lookups by at most the kinks' sum times a quarter of their distance
+// in entries (so exactly on it where the sum is 0: the lookups are linear there), and the colours (rgb,
+// not premultiplied) of two lookups there differ by at most the colour variation.
+TEST(TransferTable, KinksAndColourStepsBoundTheLookups) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int linear = 0, kinked = 0;
+  for (int f = 0; f < 24; ++f) {
+    const TransferFunction tf = f < 20 ? randomFunction(rng, 3 + f)
+                                       : transferFunctionPreset(transferFunctionPresetNames()[size_t(f - 20)]).stretchedTo(-3.0, 5.0);
+    const TransferTable table(tf, -3.0, 5.0, 32 + 11 * f, {0.5, 1.0});
+    const double entryWidth = 8.0 / (table.size() - 1);
+    for (int r = 0; r < 400; ++r) {
+      double lo = -3.5 + 9.0 * unit(rng), hi = lo + (r % 2 ? 0.05 : 2.0) * unit(rng);
+      const double kink = table.kinkSumOn(lo, hi), colourVariation = table.colourVariationOn(lo, hi);
+      const double v1 = lo + (hi - lo) * unit(rng), v2 = lo + (hi - lo) * unit(rng);
+      const glm::dvec4 a(table.lookup(v1)), b(table.lookup(v2)), mid(table.lookup(0.5 * (v1 + v2)));
+      const double spanEntries = std::abs(v2 - v1) / entryWidth;
+      const glm::dvec4 off = glm::abs(mid - 0.5 * (a + b));
+      const double rounding = 1e-5 * (1.0 + std::max(std::max(a.w, b.w), mid.w));
+      const double bound = kink * spanEntries / 4.0 + rounding;
+      for (int c = 0; c < 4; ++c)
+        ASSERT_LE(off[c], bound) << "function " << f << ", channel " << c << ", v " << v1 << ", " << v2 << " in [" << lo
+                                 << ", " << hi << "]: kinks " << kink;
+      (kink == 0.0 ? linear : kinked)++;
+      if (a.w > 0.0 && b.w > 0.0) {
+        const glm::dvec3 colourStepOff = glm::abs(glm::dvec3(b) / b.w - glm::dvec3(a) / a.w);
+        const double most = colourVariation + 1e-5;
+        for (int c = 0; c < 3; ++c)
+          ASSERT_LE(colourStepOff[c], most) << "function " << f << ", v " << v1 << ", " << v2 << ": colour variation "
+                                            << colourVariation;
+      }
+    }
+  }
+  EXPECT_GT(linear, 50);  // both cases met (random functions have flat and straight runs)
+  EXPECT_GT(kinked, 1000);
+}
+
 TEST(TransferTable, RangeQueriesAgreeWithBruteForceOverLookups) {
   std::mt19937_64 rng(19);
   std::uniform_real_distribution<double> x(-5.0, 7.0);
