@@ -124,6 +124,9 @@ float tfMaxExtinctionOn(int first, int last) {
 #ifndef FCC_DVR_ENTRY_RULE
 #define FCC_DVR_ENTRY_RULE 0
 #endif
+#ifndef FCC_DVR_SELECT_PIECE
+#define FCC_DVR_SELECT_PIECE 0
+#endif
 
 // Sub-steps for a segment of `len` world units whose values lie in [lo, hi], at most `most`; 0 where
 // every entry a lookup there reads has zero extinction (tfZeroOn's question, on the same entries, is a
@@ -207,8 +210,16 @@ bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1
   float h = (t1 - t0) / float(n);
   for (int i = 0; i < n; ++i) {
     float ts = t0 + float(i) * h, tm = ts + 0.5 * h;
+#if FCC_DVR_SELECT_PIECE
+    // The piece's coefficients and span chosen first, then one evaluation (a measurement knob).
+    bool first = tm < ta, second = tm < tb;
+    vec4 b = first ? b0 : (second ? b1 : b2);
+    float sa = first ? t0 : (second ? ta : tb), sb = first ? ta : (second ? tb : t1);
+    float v = fcc_bernstein3(b, dvrSpanParameter(tm, sa, sb));
+#else
     float v = tm < ta ? fcc_bernstein3(b0, dvrSpanParameter(tm, t0, ta))
                       : (tm < tb ? fcc_bernstein3(b1, dvrSpanParameter(tm, ta, tb)) : fcc_bernstein3(b2, dvrSpanParameter(tm, tb, t1)));
+#endif
     dvrComposite(v, ts, h, st);
     if (st.transmittance <= uStopTransmittance) return true;
   }

@@ -18,6 +18,9 @@
 #define FCC_RECON FCC_RECON_BOXSPLINE
 #endif
 // 1: direct volume rendering (dvr.glsl) instead of the isosurface.
+#ifndef FCC_DVR_WALK_ONLY
+#define FCC_DVR_WALK_ONLY 0
+#endif
 #ifndef FCC_MODE_DVR
 #define FCC_MODE_DVR 0
 #endif
@@ -248,7 +251,13 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) st.color.g += 1.0;
 #endif
     if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) {
+#if FCC_DVR_WALK_ONLY
+      // A measurement knob (docs/RENDERER.md): the walk without the cells' integration (wrong images).
+      st.transmittance *= 1.0 - 1e-3 * (tExit - tCell) * cellBounds.y;
+      if (st.transmittance <= uStopTransmittance) return true;
+#else
       if (integrateCell(cell, o, d, tCell, tExit, st)) return true;
+#endif
     }
 #else
     if (tExit > tCell && uSkipEmpty != 0 && !(cellBounds.x <= uIso && uIso <= cellBounds.y)) {
