@@ -21,6 +21,9 @@
 #ifndef FCC_DVR_WALK_ONLY
 #define FCC_DVR_WALK_ONLY 0
 #endif
+#ifndef FCC_DVR_FIND_THEN_INTEGRATE
+#define FCC_DVR_FIND_THEN_INTEGRATE 0
+#endif
 #ifndef FCC_MODE_DVR
 #define FCC_MODE_DVR 0
 #endif
@@ -240,6 +243,50 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
   vec3 tMax = (nextBoundary - o) * invD;
   vec3 tDelta = abs(invD);
   float tCell = ta;
+#if FCC_MODE_DVR && FCC_DVR_FIND_THEN_INTEGRATE
+  // Two phases a round: walk (cheap) to the next cell the transfer function does not map to zero, then
+  // integrate it (dear), so that the rays of a warp integrate together rather than each waiting while
+  // the others integrate the cells it skips (a measurement knob: docs/RENDERER.md).
+  bool done = false;
+  for (int round = 0; round < 64 && !done; ++round) {
+    bool have = false;
+    ivec3 found;
+    float foundT0 = 0.0, foundT1 = 0.0;
+    for (int iter = 0; iter < 64; ++iter) {
+      float tExit = min(min(min(tMax.x, tMax.y), tMax.z), tb);
+      ivec3 voxel = (cell - cellLo) >> 1;
+      vec2 cellBounds = slotBounds[boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
+      if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) {
+        have = true;
+        found = cell;
+        foundT0 = tCell;
+        foundT1 = tExit;
+      }
+      if (tExit >= tb) {
+        done = true;
+        break;
+      }
+      tCell = max(tCell, tExit);
+      if (tMax.x <= tMax.y && tMax.x <= tMax.z) {
+        cell.x += stepDir.x;
+        tMax.x += tDelta.x;
+      } else if (tMax.y <= tMax.z) {
+        cell.y += stepDir.y;
+        tMax.y += tDelta.y;
+      } else {
+        cell.z += stepDir.z;
+        tMax.z += tDelta.z;
+      }
+      if (any(lessThan(cell, cellLo)) || any(greaterThan(cell, cellHi))) {
+        done = true;
+        break;
+      }
+      if (have) break;
+    }
+    if (have && integrateCell(found, o, d, foundT0, foundT1, st)) return true;
+  }
+  return false;
+#endif
   for (int iter = 0; iter < 64; ++iter) {
     float tExit = min(min(min(tMax.x, tMax.y), tMax.z), tb);
     ivec3 voxel = (cell - cellLo) >> 1;
