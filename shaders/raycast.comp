@@ -41,6 +41,16 @@
 #ifndef FCC_LOD
 #define FCC_LOD 0
 #endif
+// 1: DVR's brick walk and cell walk in one loop (main; without levels of detail), a measurement knob
+// (docs/RENDERER.md). Needs FCC_DVR_FIND_THEN_INTEGRATE's rounds.
+#ifndef FCC_DVR_FLAT_WALK
+#define FCC_DVR_FLAT_WALK 0
+#endif
+#if FCC_MODE_DVR && FCC_DVR_FIND_THEN_INTEGRATE && FCC_DVR_FLAT_WALK && !FCC_LOD
+#define FCC_DVR_FLAT 1
+#else
+#define FCC_DVR_FLAT 0
+#endif
 
 // The work group: pixels per group in x and y (RenderOptions::workGroup defines them).
 #ifndef FCC_GROUP_X
@@ -224,6 +234,84 @@ vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick) {
 #include "surfaces.glsl"
 #endif
 
+#if FCC_MODE_DVR
+// DVR's walk through the unit cells of one resident brick, a round at a time (dvrRound): each round
+// first steps (cheaply: the DDA and the cell's slot bounds) to the next cell the transfer function does
+// not map to zero, then integrates it (dear), so that the rays of a warp integrate together rather
+// than each waiting while the others integrate the cells it skips (FCC_DVR_FIND_THEN_INTEGRATE).
+struct DvrCellWalk {
+  ivec3 cell, cellLo, cellHi, stepDir;
+  vec3 tMax, tDelta;
+  float tCell, tb;
+  uint boundsBase;
+  bool done;
+};
+
+// The walk of brick b (resident in `slot`) between ta and tb; selects the slot for coefficientAt.
+DvrCellWalk dvrBeginBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb) {
+  selectSlot(slot, b);
+  DvrCellWalk w;
+  w.boundsBase = slot * uint(kSlotVoxels);
+  w.cellLo = b * 16;
+  w.cellHi = w.cellLo + 15;
+  // The starting cell: where the ray is just past ta (clamped: rounding may put it a hair outside).
+  vec3 pStart = o + min(ta + 1e-4 * (tb - ta), 0.5 * (ta + tb)) * d;
+  w.cell = clamp(ivec3(floor(pStart)), w.cellLo, w.cellHi);
+  w.stepDir = ivec3(sign(d));
+  w.tMax = (vec3(w.cell) + vec3(greaterThan(d, vec3(0.0))) - o) * invD;
+  w.tDelta = abs(invD);
+  w.tCell = ta;
+  w.tb = tb;
+  w.done = false;
+  return w;
+}
+
+// One round of the walk; true once the ray is opaque enough to stop. w.done once the brick is crossed.
+bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
+  bool have = false;
+  ivec3 found;
+  float foundT0 = 0.0, foundT1 = 0.0;
+  for (int iter = 0; iter < 64; ++iter) {
+    float tExit = min(min(min(w.tMax.x, w.tMax.y), w.tMax.z), w.tb);
+    ivec3 voxel = (w.cell - w.cellLo) >> 1;
+    vec2 cellBounds = slotBounds[w.boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
+    bool integrate = tExit > w.tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y));
+#if FCC_DVR_COUNT
+    st.color.r += 1.0;
+    if (integrate) st.color.g += 1.0;
+#endif
+    if (integrate) {
+      have = true;
+      found = w.cell;
+      foundT0 = w.tCell;
+      foundT1 = tExit;
+    }
+    if (tExit >= w.tb) {
+      w.done = true;
+      break;
+    }
+    // Never backwards: a start cell clamped into the brick can have a face behind the ray.
+    w.tCell = max(w.tCell, tExit);
+    if (w.tMax.x <= w.tMax.y && w.tMax.x <= w.tMax.z) {
+      w.cell.x += w.stepDir.x;
+      w.tMax.x += w.tDelta.x;
+    } else if (w.tMax.y <= w.tMax.z) {
+      w.cell.y += w.stepDir.y;
+      w.tMax.y += w.tDelta.y;
+    } else {
+      w.cell.z += w.stepDir.z;
+      w.tMax.z += w.tDelta.z;
+    }
+    if (any(lessThan(w.cell, w.cellLo)) || any(greaterThan(w.cell, w.cellHi))) {
+      w.done = true;
+      break;
+    }
+    if (have) break;
+  }
+  return have && integrateCell(found, o, d, foundT0, foundT1, st);
+}
+#endif
+
 // The first hit in the resident brick b between ta and tb, walking its unit cells (those whose slot
 // bounds exclude the isovalue are passed over). prevSign: the sign of s - iso where the ray reaches
 // ta (-1 negative, +1 not, 0 unknown), updated to where it leaves. For DVR: the emission and
@@ -233,6 +321,12 @@ vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick) {
 bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout DvrState st) {
 #else
 bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout int prevSign, inout Hit hit) {
+#endif
+#if FCC_MODE_DVR && FCC_DVR_FIND_THEN_INTEGRATE
+  DvrCellWalk walk = dvrBeginBrick(b, slot, o, d, invD, ta, tb);
+  for (int round = 0; round < 64 && !walk.done; ++round)
+    if (dvrRound(walk, o, d, st)) return true;
+  return false;
 #endif
   selectSlot(slot, b);
   uint boundsBase = slot * uint(kSlotVoxels);
@@ -246,54 +340,6 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
   vec3 tMax = (nextBoundary - o) * invD;
   vec3 tDelta = abs(invD);
   float tCell = ta;
-#if FCC_MODE_DVR && FCC_DVR_FIND_THEN_INTEGRATE
-  // Two phases a round: walk (cheap) to the next cell the transfer function does not map to zero, then
-  // integrate it (dear), so that the rays of a warp integrate together rather than each waiting while
-  // the others integrate the cells it skips.
-  bool done = false;
-  for (int round = 0; round < 64 && !done; ++round) {
-    bool have = false;
-    ivec3 found;
-    float foundT0 = 0.0, foundT1 = 0.0;
-    for (int iter = 0; iter < 64; ++iter) {
-      float tExit = min(min(min(tMax.x, tMax.y), tMax.z), tb);
-      ivec3 voxel = (cell - cellLo) >> 1;
-      vec2 cellBounds = slotBounds[boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
-#if FCC_DVR_COUNT
-      st.color.r += 1.0;
-      if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) st.color.g += 1.0;
-#endif
-      if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) {
-        have = true;
-        found = cell;
-        foundT0 = tCell;
-        foundT1 = tExit;
-      }
-      if (tExit >= tb) {
-        done = true;
-        break;
-      }
-      tCell = max(tCell, tExit);
-      if (tMax.x <= tMax.y && tMax.x <= tMax.z) {
-        cell.x += stepDir.x;
-        tMax.x += tDelta.x;
-      } else if (tMax.y <= tMax.z) {
-        cell.y += stepDir.y;
-        tMax.y += tDelta.y;
-      } else {
-        cell.z += stepDir.z;
-        tMax.z += tDelta.z;
-      }
-      if (any(lessThan(cell, cellLo)) || any(greaterThan(cell, cellHi))) {
-        done = true;
-        break;
-      }
-      if (have) break;
-    }
-    if (have && integrateCell(found, o, d, foundT0, foundT1, st)) return true;
-  }
-  return false;
-#endif
   for (int iter = 0; iter < 64; ++iter) {
     float tExit = min(min(min(tMax.x, tMax.y), tMax.z), tb);
     ivec3 voxel = (cell - cellLo) >> 1;
@@ -564,7 +610,29 @@ void main() {
 #else
   // Brick DDA (re-seeded after every node skip).
   int guard = 0;
+#if FCC_DVR_FLAT
+  // DVR walks bricks and cells in this one loop: an iteration is a round of the resident brick's cell
+  // walk (dvrRound) or a step to the next brick, so a ray that finishes its brick does not wait for
+  // the warp's others to finish theirs (FCC_DVR_FLAT_WALK, docs/RENDERER.md).
+  bool inBrick = false;
+  DvrCellWalk walk;
+  float tWalkEnd = 0.0;
+  int rounds = 0;
+#endif
   while (t < tEnd && guard < 4096) {
+#if FCC_DVR_FLAT
+    if (inBrick) {
+      if (dvrRound(walk, o, d, st)) {
+        found = true;  // opaque enough: nothing behind is integrated or requested
+        break;
+      }
+      if (walk.done || ++rounds >= 64) {
+        inBrick = false;
+        t = tWalkEnd > t ? tWalkEnd : t + 1e-5 * abs(t) + 1e-6;
+      }
+      continue;
+    }
+#endif
     ++guard;
     vec3 p = o + t * d;
     ivec3 b = clamp(ivec3(floor(p / kBrickSites)), uBrickMin, uBrickMin + uBrickDims - 1);
@@ -610,6 +678,12 @@ void main() {
         found = true;  // opaque enough: nothing behind is composited or requested
         break;
       }
+#elif FCC_DVR_FLAT
+      walk = dvrBeginBrick(b, entry, o, d, invD, t, tExitBrick);
+      inBrick = true;
+      rounds = 0;
+      tWalkEnd = tExitBrick;
+      continue;
 #elif FCC_MODE_DVR
       if (marchBrick(b, entry, o, d, invD, t, tExitBrick, st)) {
         found = true;  // opaque enough: nothing behind is integrated or requested
