@@ -56,10 +56,6 @@ const int kDvrMaxSteps = 64;
 #define FCC_DVR_COUNT 0
 #endif
 
-// Set by an integrateCell that evaluated only the first of a chord's two pieces (march_fcc.glsl, under
-// FCC_DVR_PIECE_ROUNDS): it wants the same cell again, for the second; never by the other lattices'.
-bool gDvrPending = false;
-
 struct DvrState {
   vec3 color;          // premultiplied, accumulated front to back
   float transmittance;

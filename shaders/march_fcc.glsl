@@ -19,16 +19,6 @@ float valueAt(vec3 xyz) {
 #ifndef FCC_DVR_GATHER_CENTRAL
 #define FCC_DVR_GATHER_CENTRAL 0
 #endif
-// 1: a chord with two end pieces takes two calls of integrateCell, one piece each (gDvrPending between
-// them, the entry piece kept in gDvrEntry), so that every call evaluates one piece and the rays of a
-// warp do not all wait for the second piece of some (half the chords have one piece). 0: both in one
-// call. A measurement knob (docs/RENDERER.md).
-#ifndef FCC_DVR_PIECE_ROUNDS
-#define FCC_DVR_PIECE_ROUNDS 0
-#endif
-#if FCC_DVR_PIECE_ROUNDS
-FccSegment gDvrEntry;
-#endif
 
 // The piece of `cell` holding the chord's stretch [s0, s1]: its segment and the slopes at its ends.
 FccSegment pieceSegment(ivec3 cell, vec3 o, vec3 d, float s0, float s1) {
@@ -79,20 +69,6 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   vec2 knots = fcc_chord_knots(splits, t0, t1);
   float ta = knots.x, tb = knots.y;
   bool twoPieces = tb < t1;
-#if FCC_DVR_PIECE_ROUNDS
-  // One piece a call: the entry piece (and no integration yet) or the chord's last piece.
-  bool second = gDvrPending;
-  FccSegment piece = pieceSegment(cell, o, d, twoPieces && second ? tb : t0, twoPieces && !second ? ta : t1);
-  if (twoPieces && !second) {
-    gDvrEntry = piece;
-    gDvrPending = true;
-    return false;
-  }
-  gDvrPending = false;
-  FccSegment entry = twoPieces ? gDvrEntry : piece;
-  vec4 central = twoPieces ? fcc_central_bernstein(entry, piece, ta, tb) : piece.b;
-  return dvrChord3(entry.b, central, piece.b, t0, ta, tb, t1, st);
-#else
   FccSegment entry, exit;
   for (int g = 0; g < 2; ++g) {  // one gather in the code: a warp's rays share it
     if (g == 1 && !twoPieces) break;
@@ -103,7 +79,6 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   if (!twoPieces) exit = entry;
   vec4 central = twoPieces ? fcc_central_bernstein(entry, exit, ta, tb) : entry.b;
   return dvrChord3(entry.b, central, exit.b, t0, ta, tb, t1, st);
-#endif
 #endif
 }
 

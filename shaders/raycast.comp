@@ -247,10 +247,6 @@ struct DvrCellWalk {
   float tCell, tb;
   uint boundsBase;
   bool done;
-  // A cell whose integration wants another round (gDvrPending), and its chord.
-  bool pending;
-  ivec3 pendingCell;
-  float pendingT0, pendingT1;
 };
 
 // The walk of brick b (resident in `slot`) between ta and tb; selects the slot for coefficientAt.
@@ -269,17 +265,15 @@ DvrCellWalk dvrBeginBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float t
   w.tCell = ta;
   w.tb = tb;
   w.done = false;
-  w.pending = false;
   return w;
 }
 
-// One round of the walk; true once the ray is opaque enough to stop. w.done once the brick is crossed
-// and no cell of it wants another round.
+// One round of the walk; true once the ray is opaque enough to stop. w.done once the brick is crossed.
 bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
-  bool have = w.pending;
-  ivec3 found = w.pendingCell;
-  float foundT0 = w.pendingT0, foundT1 = w.pendingT1;
-  for (int iter = 0; iter < 64 && !w.pending && !w.done; ++iter) {
+  bool have = false;
+  ivec3 found;
+  float foundT0 = 0.0, foundT1 = 0.0;
+  for (int iter = 0; iter < 64; ++iter) {
     float tExit = min(min(min(w.tMax.x, w.tMax.y), w.tMax.z), w.tb);
     ivec3 voxel = (w.cell - w.cellLo) >> 1;
     vec2 cellBounds = slotBounds[w.boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
@@ -316,16 +310,8 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
     }
     if (have) break;
   }
-  bool stop = have && integrateCell(found, o, d, foundT0, foundT1, st);
-  w.pending = have && gDvrPending;
-  w.pendingCell = found;
-  w.pendingT0 = foundT0;
-  w.pendingT1 = foundT1;
-  return stop;
+  return have && integrateCell(found, o, d, foundT0, foundT1, st);
 }
-
-// Whether the walk has nothing left: the brick crossed and no cell wanting another round.
-bool dvrWalkDone(DvrCellWalk w) { return w.done && !w.pending; }
 #endif
 
 // The first hit in the resident brick b between ta and tb, walking its unit cells (those whose slot
@@ -340,7 +326,7 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
 #endif
 #if FCC_MODE_DVR && FCC_DVR_FIND_THEN_INTEGRATE
   DvrCellWalk walk = dvrBeginBrick(b, slot, o, d, invD, ta, tb);
-  for (int round = 0; round < 128 && !dvrWalkDone(walk); ++round)
+  for (int round = 0; round < 64 && !walk.done; ++round)
     if (dvrRound(walk, o, d, st)) return true;
   return false;
 #endif
@@ -373,7 +359,6 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
       if (st.transmittance <= uStopTransmittance) return true;
 #else
       if (integrateCell(cell, o, d, tCell, tExit, st)) return true;
-      if (gDvrPending && integrateCell(cell, o, d, tCell, tExit, st)) return true;  // its second piece
 #endif
     }
 #else
@@ -643,7 +628,7 @@ void main() {
         found = true;  // opaque enough: nothing behind is integrated or requested
         break;
       }
-      if (dvrWalkDone(walk) || ++rounds >= 128) {
+      if (walk.done || ++rounds >= 64) {
         inBrick = false;
         t = tWalkEnd > t ? tWalkEnd : t + 1e-5 * abs(t) + 1e-6;
       }
