@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Session 18, sixth call: one piece a round (FCC_DVR_PIECE_ROUNDS, docs/RENDERER.md): a two-piece chord
 # takes two rounds, against the default (both pieces in one round), alternating; ML 160^3x4 FCC viridis and
-# the engine CT inferno at 1080p.
+# the engine CT inferno at 1080p. (The knob was measured slower and removed afterwards: this script
+# runs as recorded only on that commit, 599538e.)
 # Run as
 #   ../shared/tools/device-bundle build/bin/fccvdb build/bin/fccvdb-guard ../shared/data/engine_256x256x128_uint8.raw.gz
 #   source .devbundle/env.sh && bash tools/device/measure_session18_call6.sh        (SMALL=1: toy sizes)
