@@ -18,17 +18,19 @@
 #define FCC_RECON FCC_RECON_BOXSPLINE
 #endif
 // 1: direct volume rendering (dvr.glsl) instead of the isosurface.
-#ifndef FCC_DVR_WALK_ONLY
-#define FCC_DVR_WALK_ONLY 0
+#ifndef FCC_MODE_DVR
+#define FCC_MODE_DVR 0
 #endif
 // DVR's cell walk in a brick: 1, each round finds the next cell the transfer function does not map to
-// zero, then integrates it (marchBrick); 0, the isosurface's walk, integrating where it finds (a
+// zero, then integrates it (dvrRound); 0, the isosurface's walk, integrating where it finds (a
 // measurement knob, docs/RENDERER.md: the H200 ran ML 8% faster with 1, the engine CT the same).
 #ifndef FCC_DVR_FIND_THEN_INTEGRATE
 #define FCC_DVR_FIND_THEN_INTEGRATE 1
 #endif
-#ifndef FCC_MODE_DVR
-#define FCC_MODE_DVR 0
+// 1: the DVR walk without the cells' integration (a stand-in absorption instead; wrong images): the
+// walk's own cost, a measurement knob (docs/RENDERER.md).
+#ifndef FCC_DVR_WALK_ONLY
+#define FCC_DVR_WALK_ONLY 0
 #endif
 // 1: several isosurfaces (or a translucent one), composited front to back (surfaces.glsl).
 #ifndef FCC_MULTI_ISO
@@ -310,7 +312,12 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
     }
     if (have) break;
   }
+#if FCC_DVR_WALK_ONLY
+  st.transmittance *= have ? 1.0 - 1e-3 * (foundT1 - foundT0) : 1.0;
+  return st.transmittance <= uStopTransmittance;
+#else
   return have && integrateCell(found, o, d, foundT0, foundT1, st);
+#endif
 }
 #endif
 
@@ -354,8 +361,7 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
 #endif
     if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) {
 #if FCC_DVR_WALK_ONLY
-      // A measurement knob (docs/RENDERER.md): the walk without the cells' integration (wrong images).
-      st.transmittance *= 1.0 - 1e-3 * (tExit - tCell) * cellBounds.y;
+      st.transmittance *= 1.0 - 1e-3 * (tExit - tCell);
       if (st.transmittance <= uStopTransmittance) return true;
 #else
       if (integrateCell(cell, o, d, tCell, tExit, st)) return true;

@@ -449,6 +449,77 @@ TEST_F(RenderDvr, SkippingAndSmallCachesChangeNothing) {
   EXPECT_GT(visible, w * h / 10);
 }
 
+// The DVR walk's schedules (docs/DVR.md, "The walk in rounds": a round finds a cell, then integrates
+// it; bricks and rounds in one loop) change when a ray does its work, not what it computes: the images
+// of every schedule are the same bit for bit, with a pool that holds every brick and with one that
+// must evict (several passes, rays resuming).
+TEST_F(RenderDvr, WalkSchedulesGiveTheSameImage) {
+  TempDir dir;
+  const std::string path = test::writeSmallBlobs(dir);
+  const render::Camera camera = test::smallBlobsCamera();
+  const int w = 48, h = 48;
+  const io::BrickStore store(path);
+  const render::RenderOptions options = dvrOptions(rampTable(0.2, 1.0, 2.0));
+  render::RenderOptions small = options;
+  small.gpuCacheBytes = small.hostCacheBytes = test::kSmallPoolBytes;
+  const render::RenderOptions* const pools[] = {&options, &small};
+  for (const render::RenderOptions* o : pools) {
+    const std::size_t hostBytes = o == &small ? test::kSmallPoolBytes : std::size_t(64) << 20;
+    const render::FrameImages main = renderSource(render::FccBrickSource(store, hostBytes), camera, w, h, *o);
+    for (const char* schedule : {"FCC_DVR_FLAT_WALK=0", "FCC_DVR_FIND_THEN_INTEGRATE=0"}) {
+      const test::ScopedEnv defines("FCCVDB_SHADER_DEFINES", schedule);
+      const render::FrameImages other = renderSource(render::FccBrickSource(store, hostBytes), camera, w, h, *o);
+      ASSERT_EQ(main.rgba, other.rgba) << schedule << (o == &small ? ", small pool" : "");
+      ASSERT_EQ(main.normalDepth, other.normalDepth) << schedule << (o == &small ? ", small pool" : "");
+    }
+  }
+}
+
+// The sub-step rule (shaders/dvr.glsl's dvrSteps) counted through the FCC_DVR_COUNT knob (colour =
+// cells visited, cells integrated, sub-steps): a medium that is linear in the value along every chord
+// (constant colour, extinction linear in the value: the table has no kinks) takes one sub-step a
+// chord, as the midpoint rule is exact for it, whatever the data; a step in the opacity (one kink
+// each side of it) takes more where chords cross it.
+TEST_F(RenderDvr, SubStepsFollowTheTransferFunctionsKinks) {
+  TempDir dir;
+  const std::string path = test::writeSmallBlobs(dir);
+  const render::Camera camera = test::smallBlobsCamera();
+  const int w = 48, h = 48;
+  const io::BrickStore store(path);
+  const render::FccBrickSource source(store, std::size_t(64) << 20);
+  // The table spans more than the field's range, BB-coefficients included (the prefiltered blobs dip
+  // below 0): past its ends a lookup is constant, a kink the rule rightly counts.
+  const double vmin = -1.0, vmax = 3.0, unit = 2.0;
+  const glm::dvec3 colour(0.8, 0.6, 0.3);
+  // Extinction sigma(v) = (0.05 + 0.1 (v - vmin)) / unit at every entry, so the entries are linear in
+  // v (and a chord holds well under one optical depth: the rule's depth criterion stays out of it).
+  std::vector<OpacityPoint> linear;
+  for (int i = 0; i < 256; ++i) {
+    const double v = vmin + (vmax - vmin) * i / 255.0;
+    linear.push_back({v, 1.0 - std::exp(-(0.05 + 0.1 * (v - vmin)))});
+  }
+  const TransferFunction straight({{vmin, colour}}, linear);
+  const TransferFunction stepped({{vmin, colour}}, {{vmin, 0.05}, {0.5, 0.05}, {0.5, 0.6}, {vmax, 0.6}});
+  const test::ScopedEnv count("FCCVDB_SHADER_DEFINES", "FCC_DVR_COUNT=1");
+  double steps[2] = {0.0, 0.0}, cells[2] = {0.0, 0.0};
+  for (int f = 0; f < 2; ++f) {
+    const TransferTable table(f == 0 ? straight : stepped, vmin, vmax, 256, OpticalScale{unit, 1.0});
+    ASSERT_EQ(f == 0, table.kinkSumOn(vmin + 0.05, vmax - 0.05) < 1e-5) << "the table's kinks";
+    const render::FrameImages img = renderSource(source, camera, w, h, dvrOptions(table));
+    for (int i = 0; i < w * h; ++i) {
+      const float integrated = img.rgba[4 * i + 1], subSteps = img.rgba[4 * i + 2];
+      if (f == 0) {
+        ASSERT_EQ(subSteps, integrated) << "pixel " << i << ": a linear medium, one sub-step a chord";
+      }
+      cells[f] += integrated;
+      steps[f] += subSteps;
+    }
+  }
+  std::printf("sub-steps per integrated cell: %.3f (linear medium), %.3f (a step)\n", steps[0] / cells[0], steps[1] / cells[1]);
+  EXPECT_GT(cells[0], 1000.0);
+  EXPECT_GT(steps[1], 1.05 * cells[1]) << "the step must cost sub-steps where chords cross it";
+}
+
 // Another transfer function on a live renderer (the viewer's editor) gives the image a new renderer
 // with it gives, bit for bit; one whose zero entries did not move (other colours, other non-zero
 // opacities) uploads the table alone: no recomputation of the bricks needed.
