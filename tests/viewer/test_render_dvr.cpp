@@ -116,6 +116,36 @@ TEST(DvrTableGpu, SparseTableMaximaAreTheTablesRangeMaxima) {
   }
 }
 
+// viewer/DvrTableGpu's prefix sums, read as dvr.glsl's dvrSteps reads them (two entries' difference
+// times the quantum), bound TransferTable::kinkSumOn and colourVariationOn from above by at most one
+// quantum an entry, and keep the non-zero count exact. No GL needed.
+TEST(DvrTableGpu, QuantizedPrefixSumsBoundTheTablesSums) {
+  std::mt19937_64 rng(31);
+  for (int size : {2, 3, 64, 256, 300}) {
+    const TransferTable table = size == 256 ? rampTable(0.2, 0.7, 1.0, 0.85)
+                                            : TransferTable(transferFunctionPreset(size == 64 ? "viridis" : "ct-bone").stretchedTo(0.0, 1.0),
+                                                            0.0, 1.0, size, OpticalScale{0.5, 1.0});
+    const render::DvrTableGpu::Prefixes p = render::DvrTableGpu::prefixes(table);
+    ASSERT_EQ(p.sums.size(), std::size_t(size + 1));
+    std::uniform_real_distribution<double> x(-0.1, 1.1);
+    for (int r = 0; r < 2000; ++r) {
+      double lo = x(rng), hi = x(rng);
+      if (hi < lo) std::swap(lo, hi);
+      int first, last;
+      table.entriesOn(lo, hi, first, last);
+      const glm::uvec4 sum = p.sums[std::size_t(last) + 1] - p.sums[std::size_t(first)];
+      ASSERT_EQ(table.nonZeroPrefix()[std::size_t(last) + 1] - table.nonZeroPrefix()[std::size_t(first)], int(sum.x));
+      const double count = double(last - first + 1);
+      const double kinks = table.kinkSumOn(lo, hi), colour = table.colourVariationOn(lo, hi);
+      const double gpuKinks = double(sum.y) * p.kinkQuantum, gpuColour = double(sum.z) * p.colourQuantum;
+      ASSERT_GE(gpuKinks, kinks) << "size " << size << " on [" << lo << ", " << hi << "]";
+      ASSERT_LE(gpuKinks, kinks + count * p.kinkQuantum * (1.0 + 1e-6) + 1e-6 * kinks) << "size " << size;
+      ASSERT_GE(gpuColour, colour) << "size " << size << " on [" << lo << ", " << hi << "]";
+      ASSERT_LE(gpuColour, colour + count * p.colourQuantum * (1.0 + 1e-6) + 1e-6 * colour) << "size " << size;
+    }
+  }
+}
+
 class RenderDvr : public GlSuite {};
 
 // The sphere field f = |x - c|^2 / R^2 (quadratic: the prefiltered box spline reproduces it) with a
