@@ -18,8 +18,9 @@ uniform float uTfKinkQuantum, uTfColourQuantum;
 uniform float uTfMin;          // the value of entry 0
 uniform float uTfScale;        // entries per unit of value: (size - 1) / (vmax - vmin)
 uniform int uTfSize;
-// tfMaxLevels[k * uTfSize + i]: the largest extinction of entries [i, i + 2^k) (viewer/DvrTableGpu.h).
-layout(std430, binding = 14) readonly buffer TfMaxLevels { float tfMaxLevels[]; };
+// tfLevels[k * uTfSize + i]: the largest and the smallest extinction of entries [i, i + 2^k)
+// (viewer/DvrTableGpu.h).
+layout(std430, binding = 14) readonly buffer TfLevels { vec2 tfLevels[]; };
 uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
 
 // 1: gradient shading (RenderOptions::dvrShading, `--shading on`): each sub-step's emission times a
@@ -108,11 +109,13 @@ bool tfZeroOn(float lo, float hi) {
   return tfPrefix[last + 1].x == tfPrefix[first].x;
 }
 
-// The largest extinction of the entries a lookup in [lo, hi] reads (TransferTable::maxExtinctionOn):
-// two overlapping power-of-two runs of the sparse table.
-float tfMaxExtinctionOn(int first, int last) {
+// The largest and the smallest extinction of the entries first..last, those a lookup in [lo, hi]
+// reads (TransferTable::maxExtinctionOn, minExtinctionOn): two overlapping power-of-two runs of the
+// sparse table.
+vec2 tfExtinctionOn(int first, int last) {
   int k = findMSB(last - first + 1);
-  return max(tfMaxLevels[k * uTfSize + first], tfMaxLevels[k * uTfSize + last - (1 << k) + 1]);
+  vec2 a = tfLevels[k * uTfSize + first], b = tfLevels[k * uTfSize + last - (1 << k) + 1];
+  return vec2(max(a.x, b.x), min(a.y, b.y));
 }
 
 // Measurement knobs (FCCVDB_SHADER_DEFINES, docs/RENDERER.md): a fixed sub-step count per segment
@@ -124,42 +127,62 @@ float tfMaxExtinctionOn(int first, int last) {
 #ifndef FCC_DVR_ENTRY_RULE
 #define FCC_DVR_ENTRY_RULE 0
 #endif
+// 0: the rule without its term for the value curving along the segment (a measurement knob).
+#ifndef FCC_DVR_BEND_TERM
+#define FCC_DVR_BEND_TERM 1
+#endif
 #ifndef FCC_DVR_SELECT_PIECE
 #define FCC_DVR_SELECT_PIECE 0
 #endif
 
 // Sub-steps for a segment of `len` world units whose values lie in [lo, hi], at most `most`; 0 where
 // every entry a lookup there reads has zero extinction (tfZeroOn's question, on the same entries, is a
-// largest extinction of 0): one query decides both the skip and the count.
+// largest extinction of 0): one query decides both the skip and the count. `bend`: the largest
+// second difference of the segment's Bernstein coefficients (how far its value curves).
 //
 // The rule (docs/DVR.md, "How many sub-steps"): with n equal sub-steps the midpoint rule's error on a
 // segment of optical depth at most tau = sigma_max len, whose values span E table entries, is about
-//   K E / (8 sigma_max n^2)   (the table's kinks, slope changes summing to K per world unit, each
-//                              crossed by a sub-step spanning E / n entries), and
-//   C tau / (12 n^2)          (the colour moving by C while the light is absorbed)
-// relative to tau; their sum is held below kDvrTolerance. A medium linear in the value needs one
-// sub-step (the midpoint rule is exact for it), and no sub-step holds more than kDvrStepDepth of
+//   K E / (8 sigma_max n^2)   (the table's kinks inside [lo, hi], slope changes summing to K per world
+//                              unit, each crossed by a sub-step spanning E / n entries),
+//   C tau / (12 n^2)          (the colour moving by C while the light is absorbed), and
+//   q (dsigma / sigma_max + C) / (4 n^2)   (the value curving along the segment: a sub-step's midpoint
+//                              value is off its mean by up to bend / (4 n^2), q = bend / (hi - lo);
+//                              dsigma the extinction's range there)
+// relative to tau; their sum is held below kDvrTolerance. A medium linear along the segment needs
+// one sub-step (the midpoint rule is exact for it), and no sub-step holds more than kDvrStepDepth of
 // optical depth, where the estimate (second order in the sub-step) stays true.
-int dvrSteps(float lo, float hi, float len, int most) {
+int dvrSteps(float lo, float hi, float len, int most, float bend) {
   int first = int(floor(tfPosition(lo))), last = int(ceil(tfPosition(hi)));
-  float sigmaMax = tfMaxExtinctionOn(first, last);
-  if (sigmaMax <= 0.0) return 0;
+  vec2 sigma = tfExtinctionOn(first, last);
+  if (sigma.x <= 0.0) return 0;
 #if FCC_DVR_FIXED_STEPS > 0
   return FCC_DVR_FIXED_STEPS;
 #elif FCC_DVR_ENTRY_RULE
-  return clamp(int(ceil(max(sigmaMax * len * 16.0, (hi - lo) * uTfScale))), 1, most);
+  return clamp(int(ceil(max(sigma.x * len * 16.0, (hi - lo) * uTfScale))), 1, most);
 #else
-  uvec4 sums = tfPrefix[last + 1] - tfPrefix[first];
-  float kinks = float(sums.y) * uTfKinkQuantum, colour = float(sums.z) * uTfColourQuantum;
-  float tau = sigmaMax * len, entries = (hi - lo) * uTfScale;
-  float n2 = (kinks * entries / (8.0 * sigmaMax) + colour * tau / 12.0) / kDvrTolerance;
-  return clamp(int(ceil(max(tau / kDvrStepDepth, sqrt(n2)))), 1, most);
+  // The kinks crossed: entries strictly inside [lo, hi] (positions not clamped: past the table's ends
+  // the lookup is constant, a kink at the end entry); the colour over the pairs first..last.
+  float pl = clamp((lo - uTfMin) * uTfScale, -1.0, float(uTfSize)), ph = clamp((hi - uTfMin) * uTfScale, -1.0, float(uTfSize));
+  int kinkFirst = max(int(floor(pl)) + 1, 0), kinkLast = min(int(ceil(ph)) - 1, uTfSize - 1);
+  float kinks = kinkLast >= kinkFirst ? float(tfPrefix[kinkLast + 1].y - tfPrefix[kinkFirst].y) * uTfKinkQuantum : 0.0;
+  float colour = float(tfPrefix[last].z - tfPrefix[first].z) * uTfColourQuantum;
+  float tau = sigma.x * len, entries = (hi - lo) * uTfScale;
+  float q = hi > lo ? float(FCC_DVR_BEND_TERM) * bend / (hi - lo) : 0.0;
+  float n2 = (kinks * entries / (8.0 * sigma.x) + colour * tau / 12.0 + 0.25 * q * ((sigma.x - sigma.y) / sigma.x + colour)) /
+             kDvrTolerance;
+  // In float first: a huge (or NaN) count becomes `most`, not an undefined int.
+  float n = ceil(max(tau / kDvrStepDepth, sqrt(n2)));
+  return n < float(most) ? max(int(n), 1) : most;
 #endif
 }
 
+// The largest second difference of Bernstein coefficients b (dvrSteps' `bend`).
+float dvrBend(vec4 b) { return max(abs(b.x - 2.0 * b.y + b.z), abs(b.y - 2.0 * b.z + b.w)); }
+
 // 1 - exp(-x) for x >= 0 without float's cancellation at small x (GLSL has no expm1): below 1/64 its
-// series to x^3, off by at most x^4 / 24 < 3e-9 relative; above, the difference (relative rounding
-// 2^-24 / x < 1e-6). Many thin sub-steps would otherwise each lose up to 2^-24 of opacity.
+// series to x^3 (relative error at most x^3 / 24 < 1.6e-7); above, the difference (relative rounding
+// at most about 2^-24 / x < 3.8e-6). Many thin sub-steps would otherwise each lose up to 2^-24 of
+// opacity.
 float dvrOpacity(float x) { return x < 0.015625 ? x * (1.0 - x * (0.5 - x * (1.0 / 6.0))) : 1.0 - exp(-x); }
 
 // One sub-step [ta, ta + h] at value v: composited exactly for the medium held constant.
@@ -177,7 +200,7 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
   st.color += st.transmittance * (e.rgb / e.a) * a;
 #endif
   float before = st.transmittance;
-  st.transmittance *= 1.0 - a;
+  st.transmittance -= st.transmittance * a;  // not T (1 - a): 1 - a would round a thin sub-step's a
   if (isinf(st.depthHalf) && st.transmittance <= 0.5) st.depthHalf = ta + log(2.0 * before) / e.a;
 }
 
@@ -185,7 +208,7 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
 // true once the ray is opaque enough to stop.
 bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) {
   float lo = min(min(bz.x, bz.y), min(bz.z, bz.w)), hi = max(max(bz.x, bz.y), max(bz.z, bz.w));
-  int n = dvrSteps(lo, hi, s1 - s0, kDvrMaxSteps);
+  int n = dvrSteps(lo, hi, s1 - s0, kDvrMaxSteps, dvrBend(bz));
   if (n == 0) return false;
   float h = (s1 - s0) / float(n);
   for (int i = 0; i < n; ++i) {
@@ -205,7 +228,7 @@ float dvrSpanParameter(float tm, float a, float b) { return b > a ? clamp((tm - 
 bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1, inout DvrState st) {
   vec4 lo4 = min(min(b0, b1), b2), hi4 = max(max(b0, b1), b2);
   int n = dvrSteps(min(min(lo4.x, lo4.y), min(lo4.z, lo4.w)), max(max(hi4.x, hi4.y), max(hi4.z, hi4.w)), t1 - t0,
-                   FCC_DVR_CHORD_MAX_STEPS);
+                   FCC_DVR_CHORD_MAX_STEPS, max(max(dvrBend(b0), dvrBend(b1)), dvrBend(b2)));
   if (n == 0) return false;
   float h = (t1 - t0) / float(n);
   for (int i = 0; i < n; ++i) {
@@ -228,12 +251,16 @@ bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1
 
 // The same for a polynomial of degree 9 (tricubic).
 bool dvrSegment9(FccBernstein9 p, float s0, float s1, inout DvrState st) {
-  float lo = p.b[0], hi = p.b[0];
+  float lo = p.b[0], hi = p.b[0], bend = 0.0;
   for (int i = 1; i <= p.n; ++i) {
     lo = min(lo, p.b[i]);
     hi = max(hi, p.b[i]);
+    if (i >= 2) bend = max(bend, abs(p.b[i] - 2.0 * p.b[i - 1] + p.b[i - 2]));
   }
-  int n = dvrSteps(lo, hi, s1 - s0, kDvrMaxSteps);
+  // A degree-p polynomial's second derivative is p (p - 1) times its Bernstein second differences', a
+  // cubic's 6: scaled to the cubic's measure.
+  bend *= float(p.n * (p.n - 1)) / 6.0;
+  int n = dvrSteps(lo, hi, s1 - s0, kDvrMaxSteps, bend);
   if (n == 0) return false;
   float h = (s1 - s0) / float(n);
   for (int i = 0; i < n; ++i) {

@@ -333,10 +333,10 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
 #endif
 #if FCC_MODE_DVR && FCC_DVR_FIND_THEN_INTEGRATE
   DvrCellWalk walk = dvrBeginBrick(b, slot, o, d, invD, ta, tb);
-  for (int round = 0; round < 64 && !walk.done; ++round)
+  for (int r = 0; r < 64 && !walk.done; ++r)
     if (dvrRound(walk, o, d, st)) return true;
   return false;
-#endif
+#else
   selectSlot(slot, b);
   uint boundsBase = slot * uint(kSlotVoxels);
   ivec3 cellLo = b * 16, cellHi = cellLo + 15;
@@ -429,6 +429,7 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     if (any(lessThan(cell, cellLo)) || any(greaterThan(cell, cellHi))) break;
   }
   return false;
+#endif
 }
 
 void main() {

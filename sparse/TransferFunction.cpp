@@ -241,7 +241,10 @@ TransferTable::TransferTable(const TransferFunction& tf, double vmin, double vma
     entries_[size_t(i)] = glm::vec4(glm::vec3(emission), float(sigma));
     sigmas[size_t(i)] = double(entries_[size_t(i)].a);
   }
+  std::vector<double> negated(sigmas.size());
+  for (size_t i = 0; i < sigmas.size(); ++i) negated[i] = -sigmas[i];
   extinctionQueries_ = RangeQueries(std::move(sigmas));
+  negatedExtinctionQueries_ = RangeQueries(std::move(negated));
 
   // The sub-step rule's measures: kinks from the float entries the GPU reads, colour steps from the
   // function (its colour is defined where the extinction is 0 too).
@@ -302,16 +305,36 @@ double TransferTable::maxExtinctionOn(double lo, double hi) const {
   return extinctionQueries_.maxOn(first, last);
 }
 
-double TransferTable::kinkSumOn(double lo, double hi) const {
+double TransferTable::minExtinctionOn(double lo, double hi) const {
   int first, last;
   entriesOn(lo, hi, first, last);
-  return kinkPrefix_[size_t(last) + 1] - kinkPrefix_[size_t(first)];
+  return -negatedExtinctionQueries_.maxOn(first, last);
+}
+
+void TransferTable::kinkEntriesOn(double lo, double hi, int& first, int& last) const {
+  if (std::isnan(lo) || std::isnan(hi)) {  // nothing known: every entry
+    first = 0;
+    last = size() - 1;
+    return;
+  }
+  if (hi < lo) std::swap(lo, hi);
+  const double scale = double(size() - 1) / (vmax_ - vmin_);
+  // Unclamped positions, kept within a step of the table so that the integers below stay small.
+  const double pl = std::clamp((lo - vmin_) * scale, -1.0, double(size())), ph = std::clamp((hi - vmin_) * scale, -1.0, double(size()));
+  first = std::max(int(std::floor(pl)) + 1, 0);
+  last = std::min(int(std::ceil(ph)) - 1, size() - 1);
+}
+
+double TransferTable::kinkSumOn(double lo, double hi) const {
+  int first, last;
+  kinkEntriesOn(lo, hi, first, last);
+  return last < first ? 0.0 : kinkPrefix_[size_t(last) + 1] - kinkPrefix_[size_t(first)];
 }
 
 double TransferTable::colourVariationOn(double lo, double hi) const {
   int first, last;
   entriesOn(lo, hi, first, last);
-  return colourPrefix_[size_t(last) + 1] - colourPrefix_[size_t(first)];
+  return colourPrefix_[size_t(last)] - colourPrefix_[size_t(first)];
 }
 
 }  // namespace fcc

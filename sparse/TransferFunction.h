@@ -156,25 +156,34 @@ class TransferTable {
   // For a shader that answers maxExtinctionOn itself: RangeQueries::levels of the entries' extinction.
   const std::vector<std::vector<double>>& extinctionMaxLevels() const { return extinctionQueries_.levels(); }
 
-  // What the DVR sub-step rule needs of the table besides the extinction (docs/DVR.md, "How many
-  // sub-steps"), sums over the entries [first, last] the lookups in [lo, hi] read (entriesOn):
-  // - kinkSumOn: the slope changes there, each entry's the largest over the four channels of
-  //   |e[i+1] - 2 e[i] + e[i-1]| (per world unit, as the entries; at the ends the lookup is constant
-  //   outside, so |e[1] - e[0]| and |e[n-1] - e[n-2]|): 0 where the lookups are linear in v;
+  // What the DVR sub-step rule needs of the table besides the largest extinction (docs/DVR.md, "How
+  // many sub-steps"), over the lookups in [lo, hi]:
+  // - minExtinctionOn: the smallest extinction of the entries they read (a lower bound), O(1);
+  // - kinkSumOn: the slope changes they cross, at the entries strictly inside [lo, hi] (positions in
+  //   entries, not clamped), each entry's the largest over the four channels of |e[i+1] - 2 e[i] +
+  //   e[i-1]| (per world unit, as the entries; past the ends the lookup is constant, so the end
+  //   entries' are |e[1] - e[0]| and |e[n-1] - e[n-2]|, crossed where [lo, hi] reaches past them): 0
+  //   where the lookups are linear in v;
   // - colourVariationOn: how far the function's colour (rgb, not premultiplied; largest channel) moves
-  //   from entry to entry, each entry's step to the next (one step past the last: an upper bound of
-  //   the lookups' colour change, whose e.rgb / e.a lies between its two entries' colours).
+  //   from entry to entry over the pairs the lookups interpolate (entriesOn's first to last): an upper
+  //   bound of the lookups' colour change, whose e.rgb / e.a lies between its two entries' colours.
+  double minExtinctionOn(double lo, double hi) const;
   double kinkSumOn(double lo, double hi) const;
   double colourVariationOn(double lo, double hi) const;
-  // The per-entry terms those sum (size() each), for a shader that sums them itself.
+  // The entries strictly inside [lo, hi] (kinkSumOn's), as first..last (last < first: none).
+  void kinkEntriesOn(double lo, double hi, int& first, int& last) const;
+  // The per-entry terms those sum (size() each; colourSteps()[i] is the step from entry i to i + 1),
+  // for a shader that sums them itself.
   const std::vector<double>& kinks() const { return kinks_; }
   const std::vector<double>& colourSteps() const { return colourSteps_; }
+  // RangeQueries::levels of the entries' negated extinction (minExtinctionOn's sparse table).
+  const std::vector<std::vector<double>>& negatedExtinctionMaxLevels() const { return negatedExtinctionQueries_.levels(); }
 
  private:
   double position(double v) const;  // in entries, clamped to [0, size - 1]
   double vmin_, vmax_;
   std::vector<glm::vec4> entries_;
-  RangeQueries extinctionQueries_;
+  RangeQueries extinctionQueries_, negatedExtinctionQueries_;
   std::vector<double> kinks_, colourSteps_;
   std::vector<double> kinkPrefix_, colourPrefix_;  // size() + 1 sums of the first i terms
 };

@@ -12,11 +12,11 @@ DvrTableGpu::DvrTableGpu(const TransferTable& table) { upload(table); }
 
 void DvrTableGpu::upload(const TransferTable& table) {
   const std::size_t entryBytes = std::size_t(table.size()) * sizeof(glm::vec4);
-  const std::vector<float> maxLevels = extinctionMaxLevels(table);
+  const std::vector<glm::vec2> maxLevels = extinctionLevels(table);
   if (!entries_ || entryBytes > entries_->size()) {  // all made before any is replaced
     auto entries = std::make_unique<GlBuffer>(entryBytes);
     auto prefix = std::make_unique<GlBuffer>(std::size_t(table.size() + 1) * sizeof(glm::uvec4));
-    auto maxLevelBuffer = std::make_unique<GlBuffer>(maxLevels.size() * sizeof(float));
+    auto maxLevelBuffer = std::make_unique<GlBuffer>(maxLevels.size() * sizeof(glm::vec2));
     entries_ = std::move(entries);
     prefix_ = std::move(prefix);
     maxLevels_ = std::move(maxLevelBuffer);
@@ -26,7 +26,7 @@ void DvrTableGpu::upload(const TransferTable& table) {
   prefix_->write(sums.sums.data(), sums.sums.size() * sizeof(glm::uvec4));
   kinkQuantum_ = sums.kinkQuantum;
   colourQuantum_ = sums.colourQuantum;
-  maxLevels_->write(maxLevels.data(), maxLevels.size() * sizeof(float));
+  maxLevels_->write(maxLevels.data(), maxLevels.size() * sizeof(glm::vec2));
   size_ = table.size();
   vmin_ = float(table.vmin());
   scale_ = float((size_ - 1) / (table.vmax() - table.vmin()));
@@ -50,13 +50,14 @@ void DvrTableGpu::bind() const {
   maxLevels_->bindBase(GL_SHADER_STORAGE_BUFFER, 14);
 }
 
-std::vector<float> DvrTableGpu::extinctionMaxLevels(const TransferTable& table) {
-  // The table's own sparse table (doubles of the float entries: exact as floats), one row a level.
+std::vector<glm::vec2> DvrTableGpu::extinctionLevels(const TransferTable& table) {
+  // The table's own sparse tables (doubles of the float entries: exact as floats), one row a level.
   const std::size_t size = std::size_t(table.size());
-  const std::vector<std::vector<double>>& levels = table.extinctionMaxLevels();
-  std::vector<float> flat(levels.size() * size, 0.0f);
-  for (std::size_t k = 0; k < levels.size(); ++k)
-    std::copy(levels[k].begin(), levels[k].end(), flat.begin() + std::ptrdiff_t(k * size));
+  const std::vector<std::vector<double>>& maxima = table.extinctionMaxLevels();
+  const std::vector<std::vector<double>>& negatedMinima = table.negatedExtinctionMaxLevels();
+  std::vector<glm::vec2> flat(maxima.size() * size, glm::vec2(0.0f));
+  for (std::size_t k = 0; k < maxima.size(); ++k)
+    for (std::size_t i = 0; i < maxima[k].size(); ++i) flat[k * size + i] = glm::vec2(float(maxima[k][i]), float(-negatedMinima[k][i]));
   return flat;
 }
 
@@ -69,7 +70,8 @@ float quantize(const std::vector<double>& terms, std::vector<uint32_t>& quanta) 
   const double quantum = total > 0.0 ? total / double(1u << 30) : 1.0;
   quanta.resize(terms.size());
   for (std::size_t i = 0; i < terms.size(); ++i) quanta[i] = uint32_t(std::ceil(terms[i] / quantum));
-  // The float the shader multiplies by, rounded up so that a sum times it is not below the terms'.
+  // The float the shader multiplies by, rounded up (a sum times it is then not below the terms' but
+  // for the float rounding of the product).
   return std::nextafter(float(quantum), std::numeric_limits<float>::infinity());
 }
 

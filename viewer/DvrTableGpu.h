@@ -1,7 +1,7 @@
 // A transfer table (sparse/TransferFunction.h) as shaders/dvr.glsl reads it: its entries, their
-// prefix sums (non-zero count, kinks, colour steps) and a sparse table of their extinction maxima in
-// SSBOs 12, 13 and 14 (the GPU's TransferTable::zeroOn and maxExtinctionOn, exact, kinkSumOn and
-// colourVariationOn, bounds: all O(1)), its range and size as uniforms. Shared
+// prefix sums (non-zero count, kinks, colour steps) and a sparse table of their extinction's maxima and
+// minima in SSBOs 12, 13 and 14 (the GPU's TransferTable::zeroOn, maxExtinctionOn and minExtinctionOn,
+// exact, kinkSumOn and colourVariationOn, bounds: all O(1)), its range and size as uniforms. Shared
 // by every program that integrates emission and absorption (the raycaster's DVR, projected
 // tetrahedra), so they read one table the same way.
 #pragma once
@@ -23,15 +23,16 @@ class DvrTableGpu {
   void setUniforms(const GlProgram& program, float stopTransmittance) const;
   void bind() const;  // the SSBOs at bindings 12, 13 and 14
 
-  // TransferTable::extinctionMaxLevels flattened as dvr.glsl's tfMaxExtinctionOn reads it:
-  // maxLevels[k * size + i] = the largest extinction of entries [i, i + 2^k), for k while 2^k <= size
-  // (the i past size - 2^k, which no query reads, are 0).
-  static std::vector<float> extinctionMaxLevels(const TransferTable& table);
+  // TransferTable's extinction sparse tables flattened as dvr.glsl's tfExtinctionOn reads them:
+  // levels[k * size + i] = (the largest, the smallest extinction of entries [i, i + 2^k)), for k while
+  // 2^k <= size (the i past size - 2^k, which no query reads, are 0).
+  static std::vector<glm::vec2> extinctionLevels(const TransferTable& table);
 
   // The prefix sums dvr.glsl's tfPrefix holds, size + 1 of them: (non-zero entries, kinks, colour
   // steps, 0) among entries [0, i). The sums are in whole quanta (returned), each term rounded up, so
-  // (prefix[last + 1] - prefix[first]) * quantum is exact in unsigned arithmetic, at least the table's
-  // own sum and at most (last - first + 1) quanta more; a quantum is 2^-30 of the table's whole sum.
+  // a difference of two is exact in unsigned arithmetic and times its quantum at least the table's own
+  // sum (within float rounding where the shader multiplies) and at most a quantum a term more; a
+  // quantum is 2^-30 of the table's whole sum.
   struct Prefixes {
     std::vector<glm::uvec4> sums;
     float kinkQuantum = 0.0f, colourQuantum = 0.0f;

@@ -305,6 +305,9 @@ TEST(TransferTable, RangeQueriesAgreeWithBruteForceOverLookups) {
       double entries = 0.0;
       for (int i = first; i <= last; ++i) entries = std::max(entries, double(table.entries()[size_t(i)].a));
       ASSERT_EQ(table.maxExtinctionOn(lo, hi), entries);
+      double smallest = 1e300;
+      for (int i = first; i <= last; ++i) smallest = std::min(smallest, double(table.entries()[size_t(i)].a));
+      ASSERT_EQ(table.minExtinctionOn(lo, hi), smallest);
       const std::vector<int>& prefix = table.nonZeroPrefix();
       ASSERT_EQ(prefix[size_t(last) + 1] == prefix[size_t(first)], table.zeroOn(lo, hi));
       ASSERT_GE(table.maxExtinctionOn(lo, hi), brute * (1.0 - 1e-6));  // float interpolation rounds
