@@ -234,11 +234,13 @@ TransferTable::TransferTable(const TransferFunction& tf, double vmin, double vma
   validateOpticalScale(scale);
   entries_.resize(size_t(size));
   std::vector<double> sigmas(static_cast<size_t>(size));
+  // The function's colour at each entry: defined where the extinction is 0 too (the colour steps below).
+  std::vector<glm::dvec3> colours(static_cast<size_t>(size));
   for (int i = 0; i < size; ++i) {
     const double v = i == size - 1 ? vmax : vmin + (vmax - vmin) * double(i) / double(size - 1);
     const double sigma = extinctionFromOpacity(tf.opacity(v), scale);
-    const glm::dvec3 emission = sigma * tf.color(v);
-    entries_[size_t(i)] = glm::vec4(glm::vec3(emission), float(sigma));
+    colours[size_t(i)] = tf.color(v);
+    entries_[size_t(i)] = glm::vec4(glm::vec3(sigma * colours[size_t(i)]), float(sigma));
     sigmas[size_t(i)] = double(entries_[size_t(i)].a);
   }
   std::vector<double> negated(sigmas.size());
@@ -247,19 +249,16 @@ TransferTable::TransferTable(const TransferFunction& tf, double vmin, double vma
   negatedExtinctionQueries_ = RangeQueries(std::move(negated));
 
   // The sub-step rule's measures: kinks from the float entries the GPU reads, colour steps from the
-  // function (its colour is defined where the extinction is 0 too).
+  // function's colours.
   const auto at = [&](int i) { return glm::dvec4(entries_[size_t(std::clamp(i, 0, size - 1))]); };
   const auto largest = [](const glm::dvec4& v) { return std::max(std::max(v.x, v.y), std::max(v.z, v.w)); };
   kinks_.resize(entries_.size());
   colourSteps_.assign(entries_.size(), 0.0);
-  glm::dvec3 colour = tf.color(vmin);
   for (int i = 0; i < size; ++i) {
     kinks_[size_t(i)] = largest(glm::abs(at(i + 1) - 2.0 * at(i) + at(i - 1)));  // clamped: the flat extension
     if (i + 1 == size) break;
-    const glm::dvec3 next = tf.color(i + 1 == size - 1 ? vmax : vmin + (vmax - vmin) * double(i + 1) / double(size - 1));
-    const glm::dvec3 step = glm::abs(next - colour);
+    const glm::dvec3 step = glm::abs(colours[size_t(i) + 1] - colours[size_t(i)]);
     colourSteps_[size_t(i)] = std::max(std::max(step.x, step.y), step.z);
-    colour = next;
   }
   kinkPrefix_.assign(entries_.size() + 1, 0.0);
   colourPrefix_.assign(entries_.size() + 1, 0.0);
