@@ -21,9 +21,10 @@
 #ifndef FCC_MODE_DVR
 #define FCC_MODE_DVR 0
 #endif
-// DVR's cell walk in a brick: 1, each round finds the next cell the transfer function does not map to
-// zero, then integrates it (dvrRound); 0, the isosurface's walk, integrating where it finds (a
-// measurement knob, docs/RENDERER.md: the H200 ran ML 8% faster with 1, the engine CT the same).
+// DVR's cell walk in a brick (dvrRound): 1, a round steps through cells to the next one the transfer
+// function does not map to zero, then integrates it; 0, a round takes one cell, integrated if it is
+// not zero, as the isosurface's walk does (a measurement knob, docs/RENDERER.md: the H200 ran ML 8%
+// faster with 1, the engine CT the same).
 #ifndef FCC_DVR_FIND_THEN_INTEGRATE
 #define FCC_DVR_FIND_THEN_INTEGRATE 1
 #endif
@@ -43,14 +44,14 @@
 #ifndef FCC_LOD
 #define FCC_LOD 0
 #endif
-// 1: DVR's brick walk and cell walk in one loop (main, without levels of detail; it needs
-// FCC_DVR_FIND_THEN_INTEGRATE's rounds): a ray that finishes its brick takes its next brick while the
-// warp's others still walk theirs. 0: a loop of bricks, each walked to its end (marchBrick). A
-// measurement knob (docs/RENDERER.md): the H200 ran ML 17 % and the engine CT 12 % faster with 1.
+// 1: DVR's brick walk and cell walk in one loop (main, without levels of detail): a ray that finishes
+// its brick takes its next brick while the warp's others still walk theirs. 0: a loop of bricks, each
+// walked to its end (marchBrick). A measurement knob (docs/RENDERER.md): the H200 ran ML 17 % and the
+// engine CT 12 % faster with 1.
 #ifndef FCC_DVR_FLAT_WALK
 #define FCC_DVR_FLAT_WALK 1
 #endif
-#if FCC_MODE_DVR && FCC_DVR_FIND_THEN_INTEGRATE && FCC_DVR_FLAT_WALK && !FCC_LOD
+#if FCC_MODE_DVR && FCC_DVR_FLAT_WALK && !FCC_LOD
 #define FCC_DVR_FLAT 1
 #else
 #define FCC_DVR_FLAT 0
@@ -242,7 +243,9 @@ vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick) {
 // DVR's walk through the unit cells of one resident brick, a round at a time (dvrRound): each round
 // first steps (cheaply: the DDA and the cell's slot bounds) to the next cell the transfer function does
 // not map to zero, then integrates it (dear), so that the rays of a warp integrate together rather
-// than each waiting while the others integrate the cells it skips (FCC_DVR_FIND_THEN_INTEGRATE).
+// than each waiting while the others integrate the cells it skips (FCC_DVR_FIND_THEN_INTEGRATE; with 0
+// a round takes one cell).
+const int kDvrFindCells = FCC_DVR_FIND_THEN_INTEGRATE != 0 ? 64 : 1;
 struct DvrCellWalk {
   ivec3 cell, cellLo, cellHi, stepDir;
   vec3 tMax, tDelta;
@@ -275,7 +278,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
   bool have = false;
   ivec3 found;
   float foundT0 = 0.0, foundT1 = 0.0;
-  for (int iter = 0; iter < 64; ++iter) {
+  for (int iter = 0; iter < kDvrFindCells; ++iter) {
     float tExit = min(min(min(w.tMax.x, w.tMax.y), w.tMax.z), w.tb);
     ivec3 voxel = (w.cell - w.cellLo) >> 1;
     vec2 cellBounds = slotBounds[w.boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
@@ -324,19 +327,17 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
 // The first hit in the resident brick b between ta and tb, walking its unit cells (those whose slot
 // bounds exclude the isovalue are passed over). prevSign: the sign of s - iso where the ray reaches
 // ta (-1 negative, +1 not, 0 unknown), updated to where it leaves. For DVR: the emission and
-// absorption of the cells whose bounds the transfer function does not map to zero; true once the ray
-// is opaque enough to stop (st: what the ray has accumulated).
+// absorption of the cells whose bounds the transfer function does not map to zero, in rounds
+// (dvrRound); true once the ray is opaque enough to stop (st: what the ray has accumulated).
 #if FCC_MODE_DVR
 bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout DvrState st) {
-#else
-bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout int prevSign, inout Hit hit) {
-#endif
-#if FCC_MODE_DVR && FCC_DVR_FIND_THEN_INTEGRATE
   DvrCellWalk walk = dvrBeginBrick(b, slot, o, d, invD, ta, tb);
   for (int r = 0; r < 64 && !walk.done; ++r)
     if (dvrRound(walk, o, d, st)) return true;
   return false;
+}
 #else
+bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout int prevSign, inout Hit hit) {
   selectSlot(slot, b);
   uint boundsBase = slot * uint(kSlotVoxels);
   ivec3 cellLo = b * 16, cellHi = cellLo + 15;
@@ -354,20 +355,6 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     ivec3 voxel = (cell - cellLo) >> 1;
     uint voxelEntry = boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x);
     vec2 cellBounds = slotBounds[voxelEntry];
-#if FCC_MODE_DVR
-#if FCC_DVR_COUNT
-    st.color.r += 1.0;
-    if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) st.color.g += 1.0;
-#endif
-    if (tExit > tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y))) {
-#if FCC_DVR_WALK_ONLY
-      st.transmittance *= 1.0 - 1e-3 * (tExit - tCell);
-      if (st.transmittance <= uStopTransmittance) return true;
-#else
-      if (integrateCell(cell, o, d, tCell, tExit, st)) return true;
-#endif
-    }
-#else
     if (tExit > tCell && uSkipEmpty != 0 && !(cellBounds.x <= uIso && uIso <= cellBounds.y)) {
       prevSign = cellBounds.x > uIso ? 1 : -1;
     } else if (tExit > tCell) {
@@ -412,7 +399,6 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
       if (hitInCell(b, cell, o, d, tCell, tExit, prevSign, hit)) return true;
 #endif
     }
-#endif
     if (tExit >= tb) break;
     // Never backwards: a start cell clamped into the brick can have a face behind the ray.
     tCell = max(tCell, tExit);
@@ -429,8 +415,8 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     if (any(lessThan(cell, cellLo)) || any(greaterThan(cell, cellHi))) break;
   }
   return false;
-#endif
 }
+#endif
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(uColumnOffset, 0);
