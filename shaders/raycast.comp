@@ -246,6 +246,9 @@ vec3 finiteDifferenceGradient(vec3 xyz, ivec3 brick) {
 // than each waiting while the others integrate the cells it skips (FCC_DVR_FIND_THEN_INTEGRATE; with 0
 // a round takes one cell).
 const int kDvrFindCells = FCC_DVR_FIND_THEN_INTEGRATE != 0 ? 64 : 1;
+// The most rounds a brick takes: a ray crosses at most 46 of its cells, and a cell takes a second round
+// where its entry piece is gathered first (march_fcc.glsl), at most every other cell.
+const int kDvrBrickRounds = 96;
 struct DvrCellWalk {
   ivec3 cell, cellLo, cellHi, stepDir;
   vec3 tMax, tDelta;
@@ -270,6 +273,9 @@ DvrCellWalk dvrBeginBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float t
   w.tCell = ta;
   w.tb = tb;
   w.done = false;
+  // Nothing carries into a brick: its cells are integrated the same whatever was resident before it
+  // (the image does not depend on the cache), and the face jumps' sites stay inside the slot.
+  gDvrCarry.state = kDvrCarryNone;
   return w;
 }
 
@@ -278,7 +284,14 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
   bool have = false;
   ivec3 found;
   float foundT0 = 0.0, foundT1 = 0.0;
-  for (int iter = 0; iter < kDvrFindCells; ++iter) {
+  int foundAxis = 0;
+  if (gDvrCarry.state == kDvrCarryEntry) {  // the cell whose entry piece the last round gathered
+    have = true;
+    found = gDvrCarry.cell;
+    foundT0 = gDvrCarry.t;
+    foundT1 = gDvrCarry.t1;
+    foundAxis = gDvrCarry.axis;
+  } else for (int iter = 0; iter < kDvrFindCells; ++iter) {
     float tExit = min(min(min(w.tMax.x, w.tMax.y), w.tMax.z), w.tb);
     ivec3 voxel = (w.cell - w.cellLo) >> 1;
     vec2 cellBounds = slotBounds[w.boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
@@ -287,11 +300,14 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
     st.color.r += 1.0;
     if (integrate) st.color.g += 1.0;
 #endif
+    // The axis the walk steps along next: the face the ray leaves the cell through.
+    int axis = w.tMax.x <= w.tMax.y && w.tMax.x <= w.tMax.z ? 0 : (w.tMax.y <= w.tMax.z ? 1 : 2);
     if (integrate) {
       have = true;
       found = w.cell;
       foundT0 = w.tCell;
       foundT1 = tExit;
+      foundAxis = axis;
     }
     if (tExit >= w.tb) {
       w.done = true;
@@ -299,10 +315,10 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
     }
     // Never backwards: a start cell clamped into the brick can have a face behind the ray.
     w.tCell = max(w.tCell, tExit);
-    if (w.tMax.x <= w.tMax.y && w.tMax.x <= w.tMax.z) {
+    if (axis == 0) {
       w.cell.x += w.stepDir.x;
       w.tMax.x += w.tDelta.x;
-    } else if (w.tMax.y <= w.tMax.z) {
+    } else if (axis == 1) {
       w.cell.y += w.stepDir.y;
       w.tMax.y += w.tDelta.y;
     } else {
@@ -319,6 +335,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
   st.transmittance *= have ? 1.0 - 1e-3 * (foundT1 - foundT0) : 1.0;
   return st.transmittance <= uStopTransmittance;
 #else
+  gDvrExitAxis = foundAxis;
   return have && integrateCell(found, o, d, foundT0, foundT1, st);
 #endif
 }
@@ -332,7 +349,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
 #if FCC_MODE_DVR
 bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout DvrState st) {
   DvrCellWalk walk = dvrBeginBrick(b, slot, o, d, invD, ta, tb);
-  for (int r = 0; r < 64 && !walk.done; ++r)
+  for (int r = 0; r < kDvrBrickRounds && (!walk.done || gDvrCarry.state == kDvrCarryEntry); ++r)
     if (dvrRound(walk, o, d, st)) return true;
   return false;
 }
@@ -621,7 +638,7 @@ void main() {
         found = true;  // opaque enough: nothing behind is integrated or requested
         break;
       }
-      if (walk.done || ++rounds >= 64) {
+      if ((walk.done && gDvrCarry.state != kDvrCarryEntry) || ++rounds >= kDvrBrickRounds) {
         inBrick = false;
         t = tWalkEnd > t ? tWalkEnd : t + 1e-5 * abs(t) + 1e-6;
       }

@@ -10,6 +10,7 @@
 
 #include "FccSpline.h"
 #include "FccRay.h"
+#include "FccChord.h"
 
 namespace fcc::spline {
 
