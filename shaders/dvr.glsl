@@ -87,22 +87,23 @@ float dvrShadeAt(float t) {
 #endif
 
 // What one integrateCell hands the next in the walk of a brick (march_fcc.glsl's chain of pieces; the
-// other lattices leave it at kDvrCarryNone). kDvrCarryExit: the last cell's exit piece along the ray
-// (Taylor form about t, its exit face's parameter), for `cell`, the next cell, whose entry piece it
-// becomes across the face normal to `axis` with FCC site `site` on its triangle. kDvrCarryEntry: the
-// entry piece of `cell` itself (about t, the cell's start), gathered by a round that did not integrate
-// it; the walk's next round integrates that cell, [t, t1], leaving through the face normal to `axis`.
+// other lattices leave it at kDvrCarryNone). kDvrCarryExit: the entry piece of `cell`, the next cell,
+// along the ray (Taylor form about t, the face between them): the last cell's exit piece with the jump
+// across that face. kDvrCarryEntry: the entry piece of `cell` itself (about t, the cell's start),
+// gathered by a round that did not integrate the cell; the walk's next round integrates it, [t, t1],
+// leaving through the face normal to `axis`.
 const int kDvrCarryNone = 0, kDvrCarryExit = 1, kDvrCarryEntry = 2;
 struct DvrCarry {
   vec4 taylor;
   float t, t1;
-  ivec3 cell, site;
+  ivec3 cell;
   int axis, state;
 };
-DvrCarry gDvrCarry = DvrCarry(vec4(0.0), 0.0, 0.0, ivec3(0), ivec3(0), 0, kDvrCarryNone);
-// Set by raycast.comp's dvrRound for integrateCell: the axis of the face through which the ray leaves
-// the cell (the walk's next step).
+DvrCarry gDvrCarry = DvrCarry(vec4(0.0), 0.0, 0.0, ivec3(0), 0, kDvrCarryNone);
+// Set by raycast.comp's walk for integrateCell: the axis of the face through which the ray leaves the
+// cell (the walk's next step), and the first unit cell of the brick walked.
 int gDvrExitAxis = 0;
+ivec3 gDvrBrickCellLo = ivec3(0);
 
 // Called by integrateCell before its segments: what dvrShadeAt needs (nothing without shading).
 void dvrBeginCell(ivec3 cell, vec3 o, vec3 d) {

@@ -90,26 +90,20 @@ bool integrateCellPieces(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout D
 #define FCC_DVR_CHAIN 1
 #endif
 
+#ifndef FCC_DVR_CHAIN_PROBE
+#define FCC_DVR_CHAIN_PROBE 0
+#endif
 #if FCC_DVR_CHAIN && !FCC_DVR_GATHER_CENTRAL
-// The face jump's weighted sum of coefficients (FccChord.h): 15 sites around FCC site e on a face
-// normal to `axis`, written out as gatherStencil is.
-#define FCC_JUMP_TERM(i) float(fcc_face_jump_w[i]) * coefficientAt(fcc_face_jump_site(e, axis, i))
-float faceJumpSum(ivec3 e, int axis) {
-  return FCC_JUMP_TERM(0) + FCC_JUMP_TERM(1) + FCC_JUMP_TERM(2) + FCC_JUMP_TERM(3) + FCC_JUMP_TERM(4) +
-         FCC_JUMP_TERM(5) + FCC_JUMP_TERM(6) + FCC_JUMP_TERM(7) + FCC_JUMP_TERM(8) + FCC_JUMP_TERM(9) +
-         FCC_JUMP_TERM(10) + FCC_JUMP_TERM(11) + FCC_JUMP_TERM(12) + FCC_JUMP_TERM(13) + FCC_JUMP_TERM(14);
-}
-#undef FCC_JUMP_TERM
-
 // Emission-absorption through unit cell `cell` between t0 and t1 with one gather (docs/DVR.md, "One
 // gather a cell"): the chord's end pieces are corner pieces (fcc_cell_chord), its central stretch their
-// Hermite interpolant, and where the walk integrated the cell before this one, across the face between
-// them, this cell's entry piece is that cell's exit piece plus the face jump (15 coefficients summed),
-// so only the exit piece is gathered. Where it did not (the first cell of a brick, or after cells the
-// transfer function maps to zero), this round gathers the entry piece alone and the walk's next round
-// comes back for the exit piece (gDvrCarry, kDvrCarryEntry): every round gathers one piece, the same
-// code for all the rays of a warp. A chord with an end inside the central piece (a ray that starts or
-// stops inside the cell) takes integrateCellPieces.
+// Hermite interpolant, and where the walk integrated the cell before this one, this cell's entry piece
+// is that cell's exit piece plus the jump across the face between them (FccChord.h: from the exit
+// piece's stencil and one more coefficient), so only the exit piece is gathered. Where it did not (the
+// first cell of a brick, or after cells the transfer function maps to zero), this round gathers the
+// entry piece alone and the walk's next round comes back to the cell for the exit piece (gDvrCarry,
+// kDvrCarryEntry): every round gathers one piece, the same code for all the rays of a warp. A chord
+// with an end inside the central piece (a ray that starts or stops inside the cell) takes
+// integrateCellPieces.
 bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
   FccCellChord chord = fcc_cell_chord(cell, o, d, t0, t1);
   DvrCarry carry = gDvrCarry;
@@ -118,38 +112,40 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   dvrBeginCell(cell, o, d);
   bool known = carry.state != kDvrCarryNone && all(equal(cell, carry.cell));
   bool onePiece = chord.ta >= t1;
-  bool prepare = !known && !onePiece;
+  bool prepare = !known && !onePiece && FCC_DVR_CHAIN_PROBE != 2;
   FccFrame frame = prepare ? chord.entry : chord.exit;
   float ts = prepare ? t0 : t1;
-  vec4 gathered = fcc_piece_taylor(fcc_cubic_t0(gatherStencil(frame)), frame, o, d, ts);
+  FccSamples samples = gatherStencil(frame);
+  vec4 gathered = fcc_piece_taylor(fcc_cubic_t0(samples), frame, o, d, ts);
   if (prepare) {
-    gDvrCarry = DvrCarry(gathered, t0, t1, cell, ivec3(0), gDvrExitAxis, kDvrCarryEntry);
+    gDvrCarry = DvrCarry(gathered, t0, t1, cell, gDvrExitAxis, kDvrCarryEntry);
     return false;
   }
-  vec4 entry = fcc_taylor_shift(gathered, t0 - t1);  // one piece: the exit piece is the entry piece
-  if (known && !onePiece) {
-    vec4 carried = carry.taylor;
-    if (carry.state == kDvrCarryExit) {
-      float da = abs(carry.axis == 0 ? d.x : (carry.axis == 1 ? d.y : d.z));
-      carried.w += fcc_face_jump_lambda(faceJumpSum(carry.site, carry.axis)) * da * da * da;
-    }
-    entry = fcc_taylor_shift(carried, t0 - carry.t);
-  }
+  // The entry piece: carried (across the face, the jump is already in its cubic term), or for a chord
+  // in one piece the gathered exit piece itself.
+  vec4 entry = known && !onePiece ? fcc_taylor_shift(carry.taylor, t0 - carry.t) : fcc_taylor_shift(gathered, t0 - t1);
   float ta = chord.ta, tb = chord.tb;
   vec4 bEntry = fcc_taylor_bernstein(entry, 0.0, ta - t0);
   vec4 bExit = fcc_taylor_bernstein(gathered, tb - t1, 0.0);
   float h3 = (tb - ta) * (1.0 / 3.0);
   vec4 central = vec4(bEntry.w, bEntry.w + h3 * fcc_taylor_slope(entry, ta - t0),
                       bExit.x - h3 * fcc_taylor_slope(gathered, tb - t1), bExit.x);
-  // What the next cell needs: this exit piece about t1, where the ray crosses into it, if the exit
-  // piece's FCC site lies on that face (rounding at a face diagonal can pick the other triangle's).
+  // What the next cell needs: this exit piece about t1 plus the jump across the face the ray leaves
+  // through, where the exit piece's FCC site lies on that face (rounding at a face diagonal can pick
+  // the other triangle's) and the face is inside the brick (nothing carries into the next brick).
   int a = gDvrExitAxis;
-  bool up = (a == 0 ? d.x : (a == 1 ? d.y : d.z)) > 0.0;
-  ivec3 unit = ivec3(a == 0 ? 1 : 0, a == 1 ? 1 : 0, a == 2 ? 1 : 0);
-  int face = (a == 0 ? cell.x : (a == 1 ? cell.y : cell.z)) + (up ? 1 : 0);
+  float da = a == 0 ? d.x : (a == 1 ? d.y : d.z);
+  int face = (a == 0 ? cell.x : (a == 1 ? cell.y : cell.z)) + (da > 0.0 ? 1 : 0);
+  int faceInBrick = face - (a == 0 ? gDvrBrickCellLo.x : (a == 1 ? gDvrBrickCellLo.y : gDvrBrickCellLo.z));
   int siteOnAxis = a == 0 ? chord.exit.origin.x : (a == 1 ? chord.exit.origin.y : chord.exit.origin.z);
-  gDvrCarry = DvrCarry(gathered, t1, t1, cell + (up ? unit : -unit), chord.exit.origin, a,
-                       siteOnAxis == face ? kDvrCarryExit : kDvrCarryNone);
+  bool carries = siteOnAxis == face && faceInBrick > 0 && faceInBrick < 16;
+  // The coefficient beyond the face (FccChord.h), read only where carried (then inside the slot).
+  ivec3 beyond = fcc_face_jump_beyond_site(frame, a);
+  float lambda = fcc_face_jump_lambda(samples, a, carries ? coefficientAt(beyond) : 0.0);
+  vec4 next = gathered;
+  if (FCC_DVR_CHAIN_PROBE != 1) next.w += lambda * abs(da) * da * da;
+  ivec3 unit = ivec3(a == 0 ? 1 : 0, a == 1 ? 1 : 0, a == 2 ? 1 : 0);
+  gDvrCarry = DvrCarry(next, t1, t1, cell + (da > 0.0 ? unit : -unit), a, carries ? kDvrCarryExit : kDvrCarryNone);
   return dvrChord3(bEntry, central, bExit, t0, ta, tb, t1, st);
 }
 #else

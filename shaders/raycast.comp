@@ -276,6 +276,7 @@ DvrCellWalk dvrBeginBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float t
   // Nothing carries into a brick: its cells are integrated the same whatever was resident before it
   // (the image does not depend on the cache), and the face jumps' sites stay inside the slot.
   gDvrCarry.state = kDvrCarryNone;
+  gDvrBrickCellLo = w.cellLo;
   return w;
 }
 

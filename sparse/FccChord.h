@@ -15,8 +15,9 @@
 // non-zero a-component, Nabla_Y their forward difference of the coefficients (16 terms, 15 sites),
 // off_x = (-1, 0, -1) and the other axes' by cyclic rotation (found and checked against the pieces'
 // BB-forms: tests/sparse/test_chord.cpp). Along a ray crossing the face at t_f the next cell's entry
-// piece is therefore the last cell's exit piece plus lambda |d_a|^3 (t - t_f)^3: one number, 15 sites,
-// instead of a piece's 19 sites and its BB-form.
+// piece is therefore the last cell's exit piece plus lambda |d_a|^3 (t - t_f)^3; 14 of lambda's 15
+// sites are in the exit piece's stencil, so it costs one more coefficient instead of a piece's 19 and
+// its BB-form.
 //
 // Cubics along the ray are kept in Taylor form about a parameter ts, c.x + c.y tau + c.z tau^2 +
 // c.w tau^3 with tau = t - ts (per unit of t), computed from a piece's blossom with the ray's
@@ -156,23 +157,30 @@ FCC_FUNC FCC_VEC4 fcc_taylor_bernstein(FCC_VEC4 c, float alpha, float beta) {
                        c.x + b * (c.y + b * (c.z + b * c.w)));
 }
 
-// The face jump's sites for axis x, relative to the face triangle's FCC site e, and their weights in
-// Nabla_Y c (Y = 110, 101, 1-10, -101 from e + (-1, 0, -1); site e itself is reached twice). Axes y
-// and z: the offsets rotated cyclically (fcc_face_jump_site).
-#define FCC_FACE_JUMP_SITES 15
-FCC_CONST_INT_ARRAY(fcc_face_jump_dx, 15) FCC_ARRAY_OPEN(int, 15) -1, 0, 0, 0, -2, 1, 1, -1, 1, -1, -1, 2, 0, 0, 1 FCC_ARRAY_CLOSE;
-FCC_CONST_INT_ARRAY(fcc_face_jump_dy, 15) FCC_ARRAY_OPEN(int, 15) 0, 1, 0, -1, 0, 1, 0, 1, -1, 0, -1, 0, 1, -1, 0 FCC_ARRAY_CLOSE;
-FCC_CONST_INT_ARRAY(fcc_face_jump_dz, 15) FCC_ARRAY_OPEN(int, 15) -1, -1, 0, -1, 0, 0, -1, 0, 0, 1, 0, 0, 1, 1, 1 FCC_ARRAY_CLOSE;
-FCC_CONST_INT_ARRAY(fcc_face_jump_w, 15) FCC_ARRAY_OPEN(int, 15) 1, -1, -2, -1, -1, 1, 1, 1, 1, 1, 1, -1, -1, -1, 1 FCC_ARRAY_CLOSE;
-
-// Site i of the jump across a face normal to `axis` (0, 1, 2) whose triangle has FCC site e.
-FCC_FUNC FCC_IVEC3 fcc_face_jump_site(FCC_IVEC3 e, int axis, int i) {
-  int u = fcc_face_jump_dx[i], v = fcc_face_jump_dy[i], w = fcc_face_jump_dz[i];
-  return e + (axis == 0 ? FCC_MAKE_IVEC3(u, v, w) : (axis == 1 ? FCC_MAKE_IVEC3(w, u, v) : FCC_MAKE_IVEC3(v, w, u)));
+// The face jump's sum D = Nabla_Y c(e + off_a) from the 19 coefficients of a corner piece whose corner
+// e lies on the face, normal to `axis` (0, 1, 2; the frame's axes are reflections, so the canonical
+// axis is the world's), and the one coefficient it lacks. D's 15 sites are e, the twelve FCC
+// neighbours of e and e +- 2 along the axis (symmetric under the reflections, so either side's piece
+// gives the same D): weight +1 on the eight neighbours off the face's plane, -1 on the four in it, -1
+// on e +- 2 along the axis, -2 on e. The stencil holds e (sample 0), the twelve neighbours (samples
+// 5-8 in the plane x = 0, 10-13 in y = 0, 15-18 in z = 0) and e + 2 along the axis into the piece
+// (sample 1, 2 or 3); e - 2 along it, the side away from the piece, is `beyond`
+// (fcc_face_jump_beyond_site). lambda = -D / 6.
+FCC_FUNC float fcc_face_jump_lambda(FccSamples s, int axis, float beyond) {
+  float inX = s.v[5] + s.v[6] + s.v[7] + s.v[8], inY = s.v[10] + s.v[11] + s.v[12] + s.v[13];
+  float inZ = s.v[15] + s.v[16] + s.v[17] + s.v[18];
+  float inPlane = axis == 0 ? inX : (axis == 1 ? inY : inZ);
+  float along = axis == 0 ? s.v[1] : (axis == 1 ? s.v[2] : s.v[3]);
+  float d = (inX + inY + inZ) - 2.0f * inPlane - along - beyond - 2.0f * s.v[0];
+  return (-1.0f / 6.0f) * d;
 }
 
-// lambda from the sites' coefficients c[i] summed with their weights (sum = sum_i w_i c_i).
-FCC_FUNC float fcc_face_jump_lambda(float weightedSum) { return (-1.0f / 6.0f) * weightedSum; }
+// The site fcc_face_jump_lambda's `beyond` is read at: the piece's corner minus twice its frame's
+// axis along `axis`.
+FCC_FUNC FCC_IVEC3 fcc_face_jump_beyond_site(FccFrame frame, int axis) {
+  return frame.origin - 2 * FCC_MAKE_IVEC3(axis == 0 ? frame.axis.x : 0, axis == 1 ? frame.axis.y : 0,
+                                           axis == 2 ? frame.axis.z : 0);
+}
 
 FCC_NAMESPACE_END
 

@@ -26,25 +26,42 @@ double pieceAt(const glm::vec3& inPiece, const glm::vec3& x) {
   return double(fcc_decasteljau3(cubic, fcc_barycentric(q, frame.type))) / FCC_CUBIC_DENOM;
 }
 
-float faceJumpLambda(const glm::ivec3& e, int axis) {
-  float sum = 0.0f;
-  for (int i = 0; i < FCC_FACE_JUMP_SITES; ++i) sum += float(fcc_face_jump_w[i]) * hashedCoefficient(fcc_face_jump_site(e, axis, i));
-  return fcc_face_jump_lambda(sum);
+// The slow reference: lambda = -(1/6) Nabla_Y c(e + off_a), the forward difference of the coefficients
+// along the four directions with a non-zero a-component, 16 terms.
+double referenceLambda(const glm::ivec3& e, int axis) {
+  const glm::ivec3 directions[6] = {{1, 1, 0}, {1, 0, 1}, {0, 1, 1}, {1, -1, 0}, {0, 1, -1}, {-1, 0, 1}};
+  glm::ivec3 y[4];
+  int n = 0;
+  for (const glm::ivec3& xi : directions)
+    if (xi[axis] != 0) y[n++] = xi;
+  const glm::ivec3 offX(-1, 0, -1);
+  const glm::ivec3 off = axis == 0 ? offX : (axis == 1 ? glm::ivec3(offX.z, offX.x, offX.y) : glm::ivec3(offX.y, offX.z, offX.x));
+  double sum = 0.0;
+  for (int subset = 0; subset < 16; ++subset) {
+    glm::ivec3 site = e + off;
+    int count = 0;
+    for (int b = 0; b < 4; ++b)
+      if ((subset >> b) & 1) {
+        site += y[b];
+        ++count;
+      }
+    sum += ((4 - count) % 2 == 0 ? 1.0 : -1.0) * hashedCoefficient(site);
+  }
+  return -sum / 6.0;
 }
 
-// The weights are a fourth difference: they sum to 0 and the sites are FCC sites.
-TEST(Chord, FaceJumpSitesAreAFourthDifference) {
-  int sum = 0;
-  for (int i = 0; i < FCC_FACE_JUMP_SITES; ++i) {
-    sum += fcc_face_jump_w[i];
-    EXPECT_EQ((fcc_face_jump_dx[i] + fcc_face_jump_dy[i] + fcc_face_jump_dz[i]) & 1, 0) << "site " << i;
-  }
-  EXPECT_EQ(sum, 0);
+// fcc_face_jump_lambda from the corner piece at e on one side of the face (its stencil and the one
+// site beyond).
+float stencilLambda(const glm::vec3& inCornerPiece, int axis) {
+  const FccFrame frame = fcc_locate(inCornerPiece);
+  return fcc_face_jump_lambda(gatherSamples(frame, hashedCoefficient), axis,
+                              hashedCoefficient(fcc_face_jump_beyond_site(frame, axis)));
 }
 
 // Across a cube face x_a = f the two pieces sharing a face triangle differ by lambda (x_a - f)^3, lambda
-// from the triangle's FCC site: checked at points off the face on both sides, far from the triangle's
-// edges (where a probe could land in another piece).
+// the fourth difference at the triangle's FCC site: checked at points off the face on both sides, far
+// from the triangle's edges (where a probe could land in another piece); and fcc_face_jump_lambda's
+// form from either piece's stencil is that difference.
 TEST(Chord, PiecesAcrossACubeFaceDifferByTheFaceJump) {
   std::mt19937 rng(19);
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
@@ -66,11 +83,16 @@ TEST(Chord, PiecesAcrossACubeFaceDifferByTheFaceJump) {
     glm::vec3 n(0.0f);
     n[axis] = 1.0f;
     const glm::vec3 plusSide = onFace + 0.01f * n, minusSide = onFace - 0.01f * n;
-    const float lambda = faceJumpLambda(e, axis);
+    const double lambda = referenceLambda(e, axis);
+    // The stencil's form, from the corner piece at e on either side.
+    ASSERT_EQ(fcc_locate(plusSide).origin, e);
+    ASSERT_EQ(fcc_locate(minusSide).origin, e);
+    EXPECT_NEAR(stencilLambda(plusSide, axis), lambda, 1e-5) << "axis " << axis << " (plus side)";
+    EXPECT_NEAR(stencilLambda(minusSide, axis), lambda, 1e-5) << "axis " << axis << " (minus side)";
     for (float h : {0.5f, -0.7f}) {
       const glm::vec3 x = onFace + h * n + 0.1f * glm::vec3(0.3f, -0.2f, 0.5f) * (glm::vec3(1.0f) - n);
       const double jump = pieceAt(plusSide, x) - pieceAt(minusSide, x);
-      ASSERT_NEAR(jump, double(lambda) * h * h * h, kTol)
+      ASSERT_NEAR(jump, lambda * h * h * h, kTol)
           << "axis " << axis << " e " << e.x << "," << e.y << "," << e.z << " point " << onFace.x << "," << onFace.y
           << "," << onFace.z << " h " << h;
     }
