@@ -52,7 +52,9 @@ const int kDvrMaxSteps = 64;
 
 // 1: a measurement knob (docs/RENDERER.md): the colour channels count work instead of light, R the
 // unit cells a ray visits in resident bricks, G those it integrates, B its sub-steps (the opacity and
-// the stopping are as without it). Wrong images: for where a frame's work goes.
+// the stopping are as without it). Wrong images: for where a frame's work goes. 2: R the walk's rounds
+// that integrate or prepare a cell, G the cells integrated, B the rounds that only gathered a cell's
+// entry piece (march_fcc.glsl's chain).
 #ifndef FCC_DVR_COUNT
 #define FCC_DVR_COUNT 0
 #endif
@@ -87,19 +89,17 @@ float dvrShadeAt(float t) {
 #endif
 
 // What one integrateCell hands the next in the walk of a brick (march_fcc.glsl's chain of pieces; the
-// other lattices leave it at kDvrCarryNone). kDvrCarryExit: the entry piece of `cell`, the next cell,
-// along the ray (Taylor form about t, the face between them): the last cell's exit piece with the jump
-// across that face. kDvrCarryEntry: the entry piece of `cell` itself (about t, the cell's start),
-// gathered by a round that did not integrate the cell; the walk's next round integrates it, [t, t1],
-// leaving through the face normal to `axis`.
+// other lattices leave it at kDvrCarryNone): the entry piece of the cell the walk finds next along the
+// ray, in Taylor form about that cell's start. kDvrCarryExit: the last cell's exit piece with the jump
+// across the face between them, good only for the next cell in the walk (the walk drops it when it
+// passes over a cell). kDvrCarryEntry: gathered by a round that did not integrate its cell, which the
+// walk keeps for the next round.
 const int kDvrCarryNone = 0, kDvrCarryExit = 1, kDvrCarryEntry = 2;
 struct DvrCarry {
   vec4 taylor;
-  float t, t1;
-  ivec3 cell;
-  int axis, state;
+  int state;
 };
-DvrCarry gDvrCarry = DvrCarry(vec4(0.0), 0.0, 0.0, ivec3(0), 0, kDvrCarryNone);
+DvrCarry gDvrCarry = DvrCarry(vec4(0.0), kDvrCarryNone);
 // Set by raycast.comp's walk for integrateCell: the axis of the face through which the ray leaves the
 // cell (the walk's next step), and the first unit cell of the brick walked.
 int gDvrExitAxis = 0;
@@ -207,7 +207,7 @@ float dvrOpacity(float x) { return x < 0.015625 ? x * (1.0 - x * (0.5 - x * (1.0
 // One sub-step [ta, ta + h] at value v: composited exactly for the medium held constant.
 void dvrComposite(float v, float ta, float h, inout DvrState st) {
   vec4 e = tfLookup(v);
-#if FCC_DVR_COUNT
+#if FCC_DVR_COUNT == 1
   st.color.b += 1.0;
 #endif
   if (e.a <= 0.0) return;  // zero extinction emits nothing either (premultiplied entries)

@@ -110,20 +110,23 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   gDvrCarry.state = kDvrCarryNone;
   if (chord.corners == 0) return integrateCellPieces(cell, o, d, t0, t1, st);
   dvrBeginCell(cell, o, d);
-  bool known = carry.state != kDvrCarryNone && all(equal(cell, carry.cell));
+  bool known = carry.state != kDvrCarryNone;
   bool onePiece = chord.ta >= t1;
   bool prepare = !known && !onePiece && FCC_DVR_CHAIN_PROBE != 2;
   FccFrame frame = prepare ? chord.entry : chord.exit;
-  float ts = prepare ? t0 : t1;
   FccSamples samples = gatherStencil(frame);
-  vec4 gathered = fcc_piece_taylor(fcc_cubic_t0(samples), frame, o, d, ts);
+  // The face jump's sum from the exit piece's stencil, all but its one coefficient beyond the face
+  // (FccChord.h), taken while the samples are at hand.
+  int a = gDvrExitAxis;
+  float jumpPart = fcc_face_jump_lambda(samples, a, 0.0);
+  vec4 gathered = fcc_piece_taylor(fcc_cubic_t0(samples), frame, o, d, prepare ? t0 : t1);
   if (prepare) {
-    gDvrCarry = DvrCarry(gathered, t0, t1, cell, gDvrExitAxis, kDvrCarryEntry);
+    gDvrCarry = DvrCarry(gathered, kDvrCarryEntry);
     return false;
   }
-  // The entry piece: carried (across the face, the jump is already in its cubic term), or for a chord
-  // in one piece the gathered exit piece itself.
-  vec4 entry = known && !onePiece ? fcc_taylor_shift(carry.taylor, t0 - carry.t) : fcc_taylor_shift(gathered, t0 - t1);
+  // The entry piece: carried (across the face, the jump is already in its cubic term; about t0), or
+  // for a chord in one piece the gathered exit piece itself.
+  vec4 entry = known && !onePiece ? carry.taylor : fcc_taylor_shift(gathered, t0 - t1);
   float ta = chord.ta, tb = chord.tb;
   vec4 bEntry = fcc_taylor_bernstein(entry, 0.0, ta - t0);
   vec4 bExit = fcc_taylor_bernstein(gathered, tb - t1, 0.0);
@@ -133,19 +136,18 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   // What the next cell needs: this exit piece about t1 plus the jump across the face the ray leaves
   // through, where the exit piece's FCC site lies on that face (rounding at a face diagonal can pick
   // the other triangle's) and the face is inside the brick (nothing carries into the next brick).
-  int a = gDvrExitAxis;
   float da = a == 0 ? d.x : (a == 1 ? d.y : d.z);
   int face = (a == 0 ? cell.x : (a == 1 ? cell.y : cell.z)) + (da > 0.0 ? 1 : 0);
   int faceInBrick = face - (a == 0 ? gDvrBrickCellLo.x : (a == 1 ? gDvrBrickCellLo.y : gDvrBrickCellLo.z));
   int siteOnAxis = a == 0 ? chord.exit.origin.x : (a == 1 ? chord.exit.origin.y : chord.exit.origin.z);
-  bool carries = siteOnAxis == face && faceInBrick > 0 && faceInBrick < 16;
-  // The coefficient beyond the face (FccChord.h), read only where carried (then inside the slot).
-  ivec3 beyond = fcc_face_jump_beyond_site(frame, a);
-  float lambda = fcc_face_jump_lambda(samples, a, carries ? coefficientAt(beyond) : 0.0);
-  vec4 next = gathered;
-  if (FCC_DVR_CHAIN_PROBE != 1) next.w += lambda * abs(da) * da * da;
-  ivec3 unit = ivec3(a == 0 ? 1 : 0, a == 1 ? 1 : 0, a == 2 ? 1 : 0);
-  gDvrCarry = DvrCarry(next, t1, t1, cell + (da > 0.0 ? unit : -unit), a, carries ? kDvrCarryExit : kDvrCarryNone);
+  if (siteOnAxis == face && faceInBrick > 0 && faceInBrick < 16) {
+    // lambda = jumpPart - (-1/6) beyond (fcc_face_jump_lambda is linear in `beyond`); read only here,
+    // where the site lies inside the slot.
+    float lambda = jumpPart + (1.0 / 6.0) * coefficientAt(fcc_face_jump_beyond_site(frame, a));
+    vec4 next = gathered;
+    if (FCC_DVR_CHAIN_PROBE != 1) next.w += lambda * abs(da) * da * da;
+    gDvrCarry = DvrCarry(next, kDvrCarryExit);
+  }
   return dvrChord3(bEntry, central, bExit, t0, ta, tb, t1, st);
 }
 #else

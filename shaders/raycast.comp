@@ -280,27 +280,38 @@ DvrCellWalk dvrBeginBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float t
   return w;
 }
 
+// Steps the walk past its current cell, which the ray leaves at tExit through the face normal to
+// `axis`; true once the brick is crossed.
+bool dvrStep(inout DvrCellWalk w, float tExit, int axis) {
+  if (tExit >= w.tb) return true;
+  // Never backwards: a start cell clamped into the brick can have a face behind the ray.
+  w.tCell = max(w.tCell, tExit);
+  if (axis == 0) {
+    w.cell.x += w.stepDir.x;
+    w.tMax.x += w.tDelta.x;
+  } else if (axis == 1) {
+    w.cell.y += w.stepDir.y;
+    w.tMax.y += w.tDelta.y;
+  } else {
+    w.cell.z += w.stepDir.z;
+    w.tMax.z += w.tDelta.z;
+  }
+  return any(lessThan(w.cell, w.cellLo)) || any(greaterThan(w.cell, w.cellHi));
+}
+
 // One round of the walk; true once the ray is opaque enough to stop. w.done once the brick is crossed.
+// The walk stays on the cell it finds until integrateCell is done with it: a round that only gathered
+// the cell's entry piece (gDvrCarry's kDvrCarryEntry) leaves it for the next round to find again.
 bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
   bool have = false;
   ivec3 found;
   float foundT0 = 0.0, foundT1 = 0.0;
   int foundAxis = 0;
-  if (gDvrCarry.state == kDvrCarryEntry) {  // the cell whose entry piece the last round gathered
-    have = true;
-    found = gDvrCarry.cell;
-    foundT0 = gDvrCarry.t;
-    foundT1 = gDvrCarry.t1;
-    foundAxis = gDvrCarry.axis;
-  } else for (int iter = 0; iter < kDvrFindCells; ++iter) {
+  for (int iter = 0; iter < kDvrFindCells; ++iter) {
     float tExit = min(min(min(w.tMax.x, w.tMax.y), w.tMax.z), w.tb);
     ivec3 voxel = (w.cell - w.cellLo) >> 1;
     vec2 cellBounds = slotBounds[w.boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
     bool integrate = tExit > w.tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y));
-#if FCC_DVR_COUNT
-    st.color.r += 1.0;
-    if (integrate) st.color.g += 1.0;
-#endif
     // The axis the walk steps along next: the face the ray leaves the cell through.
     int axis = w.tMax.x <= w.tMax.y && w.tMax.x <= w.tMax.z ? 0 : (w.tMax.y <= w.tMax.z ? 1 : 2);
     if (integrate) {
@@ -309,36 +320,36 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
       foundT0 = w.tCell;
       foundT1 = tExit;
       foundAxis = axis;
-    }
-    if (tExit >= w.tb) {
-      w.done = true;
       break;
     }
-    // Never backwards: a start cell clamped into the brick can have a face behind the ray.
-    w.tCell = max(w.tCell, tExit);
-    if (axis == 0) {
-      w.cell.x += w.stepDir.x;
-      w.tMax.x += w.tDelta.x;
-    } else if (axis == 1) {
-      w.cell.y += w.stepDir.y;
-      w.tMax.y += w.tDelta.y;
-    } else {
-      w.cell.z += w.stepDir.z;
-      w.tMax.z += w.tDelta.z;
-    }
-    if (any(lessThan(w.cell, w.cellLo)) || any(greaterThan(w.cell, w.cellHi))) {
-      w.done = true;
-      break;
-    }
-    if (have) break;
-  }
-#if FCC_DVR_WALK_ONLY
-  st.transmittance *= have ? 1.0 - 1e-3 * (foundT1 - foundT0) : 1.0;
-  return st.transmittance <= uStopTransmittance;
-#else
-  gDvrExitAxis = foundAxis;
-  return have && integrateCell(found, o, d, foundT0, foundT1, st);
+#if FCC_DVR_COUNT == 1
+    st.color.r += 1.0;
 #endif
+    gDvrCarry.state = kDvrCarryNone;  // a cell passed over: nothing carries past it
+    if (dvrStep(w, tExit, axis)) {
+      w.done = true;
+      break;
+    }
+  }
+  if (!have) return false;
+#if FCC_DVR_WALK_ONLY
+  st.transmittance *= 1.0 - 1e-3 * (foundT1 - foundT0);
+  bool stop = st.transmittance <= uStopTransmittance;
+#else
+#if FCC_DVR_COUNT == 1
+  if (gDvrCarry.state != kDvrCarryEntry) st.color.rg += 1.0;  // a cell's second round is not counted again
+#elif FCC_DVR_COUNT == 2
+  st.color.r += 1.0;
+#endif
+  gDvrExitAxis = foundAxis;
+  bool stop = integrateCell(found, o, d, foundT0, foundT1, st);
+#endif
+#if FCC_DVR_COUNT == 2
+  if (gDvrCarry.state == kDvrCarryEntry) st.color.b += 1.0;
+  else st.color.g += 1.0;
+#endif
+  if (gDvrCarry.state != kDvrCarryEntry && dvrStep(w, foundT1, foundAxis)) w.done = true;
+  return stop;
 }
 #endif
 
@@ -350,7 +361,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
 #if FCC_MODE_DVR
 bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout DvrState st) {
   DvrCellWalk walk = dvrBeginBrick(b, slot, o, d, invD, ta, tb);
-  for (int r = 0; r < kDvrBrickRounds && (!walk.done || gDvrCarry.state == kDvrCarryEntry); ++r)
+  for (int r = 0; r < kDvrBrickRounds && !walk.done; ++r)
     if (dvrRound(walk, o, d, st)) return true;
   return false;
 }
@@ -639,7 +650,7 @@ void main() {
         found = true;  // opaque enough: nothing behind is integrated or requested
         break;
       }
-      if ((walk.done && gDvrCarry.state != kDvrCarryEntry) || ++rounds >= kDvrBrickRounds) {
+      if (walk.done || ++rounds >= kDvrBrickRounds) {
         inBrick = false;
         t = tWalkEnd > t ? tWalkEnd : t + 1e-5 * abs(t) + 1e-6;
       }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Session 19, second call: the chain of pieces with the face jump from the exit piece's stencil (one more
 # coefficient; the first call's 15 fetches ran slower than two gathers), and where it loses or gains:
-# without the face jump's 15 fetches (FCC_DVR_CHAIN_PROBE=1, wrong images), and without rounds that
+# without the face jump (FCC_DVR_CHAIN_PROBE=1, wrong images), and without rounds that
 # gather an entry piece alone (FCC_DVR_CHAIN_PROBE=2, wrong images); ML 160^3x4 FCC viridis and the
 # engine CT inferno at 1080p. Run as measure_session19.sh.
 set -u
