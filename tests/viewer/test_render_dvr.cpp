@@ -555,6 +555,57 @@ TEST_F(RenderDvr, SubStepsFollowTheTransferFunctionsKinks) {
   EXPECT_GT(steps[1], 1.02 * cells[1]) << "the step must cost sub-steps where chords cross it";
 }
 
+// The FCC chain of pieces (march_fcc.glsl's integrateCell, docs/DVR.md "One gather a cell"): most
+// integrated cells gather only their exit piece (counted: FCC_DVR_COUNT=2's rounds that only gathered
+// an entry piece are few), and the image is session 18's two gathers a cell (FCC_DVR_CHAIN=0) up to
+// float rounding, sub-steps held fixed by a tight tolerance in both.
+TEST_F(RenderDvr, ChainOfPiecesGathersOneACellAndGivesTheTwoGathersImage) {
+  TempDir dir;
+  const std::string path = test::writeSmallBlobs(dir);
+  const render::Camera camera = test::smallBlobsCamera();
+  const int w = 48, h = 48;
+  const io::BrickStore store(path);
+  const render::FccBrickSource source(store, std::size_t(64) << 20);
+  const TransferTable table = rampTable(0.05, 1.0, 2.0);
+  double rounds = 0.0, cells = 0.0, entryOnly = 0.0;
+  {
+    const test::ScopedEnv count("FCCVDB_SHADER_DEFINES", "FCC_DVR_COUNT=2");
+    const render::FrameImages img = renderSource(source, camera, w, h, dvrOptions(table));
+    for (int i = 0; i < w * h; ++i) {
+      rounds += img.rgba[4 * i];
+      cells += img.rgba[4 * i + 1];
+      entryOnly += img.rgba[4 * i + 2];
+    }
+  }
+  std::printf("chain: %.0f cells integrated in %.0f rounds, %.0f of them gathering an entry piece alone\n", cells,
+              rounds, entryOnly);
+  EXPECT_GT(cells, 1000.0);
+  EXPECT_EQ(rounds, cells + entryOnly);
+  EXPECT_GT(entryOnly, 0.0) << "a brick's first cells start a chain";
+  EXPECT_LT(entryOnly, 0.25 * cells) << "the chain is seldom broken";
+
+  render::FrameImages chain, twoGathers;
+  {
+    const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001");
+    chain = renderSource(source, camera, w, h, dvrOptions(table));
+  }
+  {
+    const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001;FCC_DVR_CHAIN=0");
+    twoGathers = renderSource(source, camera, w, h, dvrOptions(table));
+  }
+  constexpr double kComponentTol = 1e-4;
+  int differing = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < chain.rgba.size(); ++i) {
+    const double e = std::abs(double(chain.rgba[i]) - twoGathers.rgba[i]);
+    differing += e != 0.0;
+    worst = std::max(worst, e);
+  }
+  std::printf("chain against two gathers: %d of %zu components differ, by at most %.2e\n", differing, chain.rgba.size(), worst);
+  EXPECT_GT(differing, 0) << "the chain was never taken";
+  EXPECT_LE(worst, kComponentTol);
+}
+
 // Another transfer function on a live renderer (the viewer's editor) gives the image a new renderer
 // with it gives, bit for bit; one whose zero entries did not move (other colours, other non-zero
 // opacities) uploads the table alone: no recomputation of the bricks needed.
