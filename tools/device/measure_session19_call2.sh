@@ -21,4 +21,6 @@ run "[chain, no jump]" "FCC_DVR_CHAIN_PROBE=1"
 run "[chain, no entry rounds]" "FCC_DVR_CHAIN_PROBE=2"
 run "[two gathers]" "FCC_DVR_CHAIN=0"
 run "[chain again]" ""
+run "[chain, 1 sub-step]" "FCC_DVR_FIXED_STEPS=1"
+run "[two gathers, 1 sub-step]" "FCC_DVR_CHAIN=0;FCC_DVR_FIXED_STEPS=1"
 true
