@@ -90,6 +90,8 @@ bool integrateCellPieces(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout D
 #define FCC_DVR_CHAIN 1
 #endif
 
+// Measurement knob (wrong images): 1 the chain without the face jump, 2 without rounds that gather an
+// entry piece alone (the exit piece taken for it), 3 without memory reads for the pieces.
 #ifndef FCC_DVR_CHAIN_PROBE
 #define FCC_DVR_CHAIN_PROBE 0
 #endif
@@ -114,7 +116,15 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   bool onePiece = chord.ta >= t1;
   bool prepare = !known && !onePiece && FCC_DVR_CHAIN_PROBE != 2;
   FccFrame frame = prepare ? chord.entry : chord.exit;
+#if FCC_DVR_CHAIN_PROBE == 3
+  // No memory read (wrong images): values from the frame's corner, made to depend on a uniform so
+  // that the compiler cannot fold the arithmetic away.
+  FccSamples samples;
+  float base = float(frame.origin.x + 3 * frame.origin.y + 7 * frame.origin.z) * 1e-3;
+  for (int i = 0; i < 19; ++i) samples.v[i] = base + float(i) * uStopTransmittance * 1e-6;
+#else
   FccSamples samples = gatherStencil(frame);
+#endif
   // The face jump's sum from the exit piece's stencil, all but its one coefficient beyond the face
   // (FccChord.h), taken while the samples are at hand.
   int a = gDvrExitAxis;
