@@ -117,11 +117,11 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   bool prepare = !known && !onePiece && FCC_DVR_CHAIN_PROBE != 2;
   FccFrame frame = prepare ? chord.entry : chord.exit;
 #if FCC_DVR_CHAIN_PROBE == 3
-  // No memory read (wrong images): values from the frame's corner, made to depend on a uniform so
-  // that the compiler cannot fold the arithmetic away.
+  // No memory read (wrong images): values spread over the cell's bounds (which the walk read), made
+  // to vary with the corner so that the compiler cannot fold the arithmetic away.
   FccSamples samples;
-  float base = float(frame.origin.x + 3 * frame.origin.y + 7 * frame.origin.z) * 1e-3;
-  for (int i = 0; i < 19; ++i) samples.v[i] = base + float(i) * uStopTransmittance * 1e-6;
+  float wiggle = float((frame.origin.x + 3 * frame.origin.y + 7 * frame.origin.z) & 15) * (1.0 / 16.0);
+  for (int i = 0; i < 19; ++i) samples.v[i] = mix(gDvrCellBounds.x, gDvrCellBounds.y, fract(wiggle + float(i) * 0.37));
 #else
   FccSamples samples = gatherStencil(frame);
 #endif

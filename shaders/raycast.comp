@@ -320,6 +320,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
       foundT0 = w.tCell;
       foundT1 = tExit;
       foundAxis = axis;
+      gDvrCellBounds = cellBounds;
       break;
     }
 #if FCC_DVR_COUNT == 1

@@ -27,6 +27,7 @@ for v in "chain:" "two:FCC_DVR_CHAIN=0" "iso:"; do
 done
 run "[chain]" ""
 run "[chain, no memory reads for pieces]" "FCC_DVR_CHAIN_PROBE=3"
+run "[chain, no memory reads for pieces, 1 sub-step]" "FCC_DVR_CHAIN_PROBE=3;FCC_DVR_FIXED_STEPS=1"
 run "[chain, 2 sub-steps a chord]" "FCC_DVR_FIXED_STEPS=2"
 run "[chain, 3 sub-steps a chord]" "FCC_DVR_FIXED_STEPS=3"
 run "[chain, 1 sub-step]" "FCC_DVR_FIXED_STEPS=1"
