@@ -116,19 +116,28 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   bool onePiece = chord.ta >= t1;
   bool prepare = !known && !onePiece && FCC_DVR_CHAIN_PROBE != 2;
   FccFrame frame = prepare ? chord.entry : chord.exit;
+  // Whether this cell's exit piece carries into the next cell: where its FCC site lies on the face the
+  // ray leaves through (rounding at a face diagonal can pick the other triangle's) and the face is
+  // inside the brick (nothing carries into the next brick). Decided before the gather, so that the
+  // face jump's one coefficient beyond the face (FccChord.h) is read with the stencil.
+  int a = gDvrExitAxis;
+  float da = a == 0 ? d.x : (a == 1 ? d.y : d.z);
+  int face = (a == 0 ? cell.x : (a == 1 ? cell.y : cell.z)) + (da > 0.0 ? 1 : 0);
+  int faceInBrick = face - (a == 0 ? gDvrBrickCellLo.x : (a == 1 ? gDvrBrickCellLo.y : gDvrBrickCellLo.z));
+  int siteOnAxis = a == 0 ? chord.exit.origin.x : (a == 1 ? chord.exit.origin.y : chord.exit.origin.z);
+  bool carries = !prepare && siteOnAxis == face && faceInBrick > 0 && faceInBrick < 16;
 #if FCC_DVR_CHAIN_PROBE == 3
   // No memory read (wrong images): values spread over the cell's bounds (which the walk read), made
   // to vary with the corner so that the compiler cannot fold the arithmetic away.
   FccSamples samples;
   float wiggle = float((frame.origin.x + 3 * frame.origin.y + 7 * frame.origin.z) & 15) * (1.0 / 16.0);
   for (int i = 0; i < 19; ++i) samples.v[i] = mix(gDvrCellBounds.x, gDvrCellBounds.y, fract(wiggle + float(i) * 0.37));
+  float beyond = gDvrCellBounds.x;
 #else
   FccSamples samples = gatherStencil(frame);
+  // Read inside the slot whatever (the piece's corner where the face does not carry).
+  float beyond = coefficientAt(carries ? fcc_face_jump_beyond_site(frame, a) : frame.origin);
 #endif
-  // The face jump's sum from the exit piece's stencil, all but its one coefficient beyond the face
-  // (FccChord.h), taken while the samples are at hand.
-  int a = gDvrExitAxis;
-  float jumpPart = fcc_face_jump_lambda(samples, a, 0.0);
   vec4 gathered = fcc_piece_taylor(fcc_cubic_t0(samples), frame, o, d, prepare ? t0 : t1);
   if (prepare) {
     gDvrCarry = DvrCarry(gathered, kDvrCarryEntry);
@@ -143,19 +152,10 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   float h3 = (tb - ta) * (1.0 / 3.0);
   vec4 central = vec4(bEntry.w, bEntry.w + h3 * fcc_taylor_slope(entry, ta - t0),
                       bExit.x - h3 * fcc_taylor_slope(gathered, tb - t1), bExit.x);
-  // What the next cell needs: this exit piece about t1 plus the jump across the face the ray leaves
-  // through, where the exit piece's FCC site lies on that face (rounding at a face diagonal can pick
-  // the other triangle's) and the face is inside the brick (nothing carries into the next brick).
-  float da = a == 0 ? d.x : (a == 1 ? d.y : d.z);
-  int face = (a == 0 ? cell.x : (a == 1 ? cell.y : cell.z)) + (da > 0.0 ? 1 : 0);
-  int faceInBrick = face - (a == 0 ? gDvrBrickCellLo.x : (a == 1 ? gDvrBrickCellLo.y : gDvrBrickCellLo.z));
-  int siteOnAxis = a == 0 ? chord.exit.origin.x : (a == 1 ? chord.exit.origin.y : chord.exit.origin.z);
-  if (siteOnAxis == face && faceInBrick > 0 && faceInBrick < 16) {
-    // lambda = jumpPart - (-1/6) beyond (fcc_face_jump_lambda is linear in `beyond`); read only here,
-    // where the site lies inside the slot.
-    float lambda = jumpPart + (1.0 / 6.0) * coefficientAt(fcc_face_jump_beyond_site(frame, a));
+  if (carries) {
+    // The next cell's entry piece: this exit piece about t1 plus the face jump.
     vec4 next = gathered;
-    if (FCC_DVR_CHAIN_PROBE != 1) next.w += lambda * abs(da) * da * da;
+    if (FCC_DVR_CHAIN_PROBE != 1) next.w += fcc_face_jump_lambda(samples, a, beyond) * abs(da) * da * da;
     gDvrCarry = DvrCarry(next, kDvrCarryExit);
   }
   return dvrChord3(bEntry, central, bExit, t0, ta, tb, t1, st);
