@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Session 19, third call: is the FCC DVR frame bound by the latency of its memory reads? The chain (one
+# Session 19, third call: is the FCC DVR frame bound by the latency of its memory reads? Two cells a
+# round where the chain continues (FCC_DVR_PAIRS=1: two gathers read together). The chain (one
 # gather a cell) ran no faster than two gathers (second call), as if a round's cost were its waits, not
 # its work. Variants: no memory reads for the pieces (FCC_DVR_CHAIN_PROBE=3, wrong images); fixed 2 and
 # 3 sub-steps a chord (no table reads for the rule); and the registers the programs use, from the
@@ -18,7 +19,7 @@ run() {  # label, defines
   [ -s engine.vdb ] && { echo "-- $1 engine inferno"; FCCVDB_SHADER_DEFINES=$2 fccvdb bench render engine.vdb --mode dvr --tf inferno "${D[@]}" | fps; }
 }
 echo "profilers: $(command -v ncu nsys nv-nsight-cu-cli 2>/dev/null | tr '\n' ' ')"
-for v in "chain:" "two:FCC_DVR_CHAIN=0" "iso:"; do
+for v in "chain:" "two:FCC_DVR_CHAIN=0" "pairs:FCC_DVR_PAIRS=1" "iso:"; do
   name=${v%%:*}; defs=${v#*:}; mkdir -p "dump_$name"
   mode=dvr; [ "$name" = iso ] && mode=iso
   FCCVDB_DUMP_PROGRAMS=$PWD/dump_$name FCCVDB_SHADER_DEFINES=$defs fccvdb render engine.vdb --mode $mode --tf inferno \
@@ -26,9 +27,13 @@ for v in "chain:" "two:FCC_DVR_CHAIN=0" "iso:"; do
   echo "-- registers [$name]: $(strings dump_$name/*raycast* 2>/dev/null | grep -iE 'regs|registers|R-regs' | head -3 | tr '\n' ' ')"
 done
 run "[chain]" ""
+run "[pairs]" "FCC_DVR_PAIRS=1"
 run "[chain, no memory reads for pieces]" "FCC_DVR_CHAIN_PROBE=3"
 run "[chain, no memory reads for pieces, 1 sub-step]" "FCC_DVR_CHAIN_PROBE=3;FCC_DVR_FIXED_STEPS=1"
 run "[chain, 2 sub-steps a chord]" "FCC_DVR_FIXED_STEPS=2"
 run "[chain, 3 sub-steps a chord]" "FCC_DVR_FIXED_STEPS=3"
 run "[chain, 1 sub-step]" "FCC_DVR_FIXED_STEPS=1"
+run "[pairs, 1 sub-step]" "FCC_DVR_PAIRS=1;FCC_DVR_FIXED_STEPS=1"
+run "[two gathers]" "FCC_DVR_CHAIN=0"
+run "[pairs again]" "FCC_DVR_PAIRS=1"
 true
