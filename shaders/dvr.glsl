@@ -154,6 +154,10 @@ vec2 tfExtinctionOn(int first, int last) {
 #ifndef FCC_DVR_SELECT_PIECE
 #define FCC_DVR_SELECT_PIECE 0
 #endif
+// 1: an FCC cell's chord takes its sub-steps two at a time (dvrChord3), a measurement knob.
+#ifndef FCC_DVR_SUBSTEP_PAIRS
+#define FCC_DVR_SUBSTEP_PAIRS 0
+#endif
 
 // Sub-steps for a segment of `len` world units whose values lie in [lo, hi], at most `most`; 0 where
 // every entry a lookup there reads has zero extinction (tfZeroOn's question, on the same entries, is a
@@ -205,9 +209,9 @@ float dvrBend(vec4 b) { return max(abs(b.x - 2.0 * b.y + b.z), abs(b.y - 2.0 * b
 // opacity.
 float dvrOpacity(float x) { return x < 0.015625 ? x * (1.0 - x * (0.5 - x * (1.0 / 6.0))) : 1.0 - exp(-x); }
 
-// One sub-step [ta, ta + h] at value v: composited exactly for the medium held constant.
-void dvrComposite(float v, float ta, float h, inout DvrState st) {
-  vec4 e = tfLookup(v);
+// One sub-step [ta, ta + h] whose medium is table entry e: composited exactly for the medium held
+// constant.
+void dvrCompositeEntry(vec4 e, float ta, float h, inout DvrState st) {
 #if FCC_DVR_COUNT == 1
   st.color.b += 1.0;
 #endif
@@ -223,6 +227,9 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
   st.transmittance -= st.transmittance * a;  // not T (1 - a): 1 - a would round a thin sub-step's a
   if (isinf(st.depthHalf) && st.transmittance <= 0.5) st.depthHalf = ta + log(2.0 * before) / e.a;
 }
+
+// One sub-step [ta, ta + h] at value v.
+void dvrComposite(float v, float ta, float h, inout DvrState st) { dvrCompositeEntry(tfLookup(v), ta, h, st); }
 
 // The segment [s0, s1] of the ray where the field is the cubic with Bernstein coefficients bz. Returns
 // true once the ray is opaque enough to stop.
@@ -251,6 +258,26 @@ bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1
                    FCC_DVR_CHORD_MAX_STEPS, max(max(dvrBend(b0), dvrBend(b1)), dvrBend(b2)));
   if (n == 0) return false;
   float h = (t1 - t0) / float(n);
+#if FCC_DVR_SUBSTEP_PAIRS
+  // Two sub-steps an iteration: both values and both table lookups first, so that the two reads wait
+  // together, then the two composites in order (the same arithmetic as one at a time).
+  for (int i = 0; i < n; i += 2) {
+    float ts0 = t0 + float(i) * h, tm0 = ts0 + 0.5 * h;
+    float ts1 = t0 + float(min(i + 1, n - 1)) * h, tm1 = ts1 + 0.5 * h;
+    float v0 = tm0 < ta ? fcc_bernstein3(b0, dvrSpanParameter(tm0, t0, ta))
+                        : (tm0 < tb ? fcc_bernstein3(b1, dvrSpanParameter(tm0, ta, tb)) : fcc_bernstein3(b2, dvrSpanParameter(tm0, tb, t1)));
+    float v1 = tm1 < ta ? fcc_bernstein3(b0, dvrSpanParameter(tm1, t0, ta))
+                        : (tm1 < tb ? fcc_bernstein3(b1, dvrSpanParameter(tm1, ta, tb)) : fcc_bernstein3(b2, dvrSpanParameter(tm1, tb, t1)));
+    vec4 e0 = tfLookup(v0), e1 = tfLookup(v1);
+    dvrCompositeEntry(e0, ts0, h, st);
+    if (st.transmittance <= uStopTransmittance) return true;
+    if (i + 1 < n) {
+      dvrCompositeEntry(e1, ts1, h, st);
+      if (st.transmittance <= uStopTransmittance) return true;
+    }
+  }
+  return false;
+#endif
   for (int i = 0; i < n; ++i) {
     float ts = t0 + float(i) * h, tm = ts + 0.5 * h;
 #if FCC_DVR_SELECT_PIECE

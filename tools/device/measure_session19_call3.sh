@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Session 19, third call: is the FCC DVR frame bound by the latency of its memory reads? Two cells a
-# round where the chain continues (FCC_DVR_PAIRS=1: two gathers read together). The chain (one
+# round where the chain continues (FCC_DVR_PAIRS=1: two gathers read together); sub-steps two at a time
+# (FCC_DVR_SUBSTEP_PAIRS=1: two table reads together). The chain (one
 # gather a cell) ran no faster than two gathers (second call), as if a round's cost were its waits, not
 # its work. Variants: no memory reads for the pieces (FCC_DVR_CHAIN_PROBE=3, wrong images); fixed 2 and
 # 3 sub-steps a chord (no table reads for the rule); and the registers the programs use, from the
@@ -36,4 +37,6 @@ run "[chain, 1 sub-step]" "FCC_DVR_FIXED_STEPS=1"
 run "[pairs, 1 sub-step]" "FCC_DVR_PAIRS=1;FCC_DVR_FIXED_STEPS=1"
 run "[two gathers]" "FCC_DVR_CHAIN=0"
 run "[pairs again]" "FCC_DVR_PAIRS=1"
+run "[chain, sub-steps two at a time]" "FCC_DVR_SUBSTEP_PAIRS=1"
+run "[pairs, sub-steps two at a time]" "FCC_DVR_PAIRS=1;FCC_DVR_SUBSTEP_PAIRS=1"
 true
