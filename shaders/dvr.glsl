@@ -154,10 +154,6 @@ vec2 tfExtinctionOn(int first, int last) {
 #ifndef FCC_DVR_SELECT_PIECE
 #define FCC_DVR_SELECT_PIECE 0
 #endif
-// 1: an FCC cell's chord takes its sub-steps two at a time (dvrChord3), a measurement knob.
-#ifndef FCC_DVR_SUBSTEP_PAIRS
-#define FCC_DVR_SUBSTEP_PAIRS 0
-#endif
 
 // Sub-steps for a segment of `len` world units whose values lie in [lo, hi], at most `most`; 0 where
 // every entry a lookup there reads has zero extinction (tfZeroOn's question, on the same entries, is a
@@ -258,26 +254,6 @@ bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1
                    FCC_DVR_CHORD_MAX_STEPS, max(max(dvrBend(b0), dvrBend(b1)), dvrBend(b2)));
   if (n == 0) return false;
   float h = (t1 - t0) / float(n);
-#if FCC_DVR_SUBSTEP_PAIRS
-  // Two sub-steps an iteration: both values and both table lookups first, so that the two reads wait
-  // together, then the two composites in order (the same arithmetic as one at a time).
-  for (int i = 0; i < n; i += 2) {
-    float ts0 = t0 + float(i) * h, tm0 = ts0 + 0.5 * h;
-    float ts1 = t0 + float(min(i + 1, n - 1)) * h, tm1 = ts1 + 0.5 * h;
-    float v0 = tm0 < ta ? fcc_bernstein3(b0, dvrSpanParameter(tm0, t0, ta))
-                        : (tm0 < tb ? fcc_bernstein3(b1, dvrSpanParameter(tm0, ta, tb)) : fcc_bernstein3(b2, dvrSpanParameter(tm0, tb, t1)));
-    float v1 = tm1 < ta ? fcc_bernstein3(b0, dvrSpanParameter(tm1, t0, ta))
-                        : (tm1 < tb ? fcc_bernstein3(b1, dvrSpanParameter(tm1, ta, tb)) : fcc_bernstein3(b2, dvrSpanParameter(tm1, tb, t1)));
-    vec4 e0 = tfLookup(v0), e1 = tfLookup(v1);
-    dvrCompositeEntry(e0, ts0, h, st);
-    if (st.transmittance <= uStopTransmittance) return true;
-    if (i + 1 < n) {
-      dvrCompositeEntry(e1, ts1, h, st);
-      if (st.transmittance <= uStopTransmittance) return true;
-    }
-  }
-  return false;
-#endif
   for (int i = 0; i < n; ++i) {
     float ts = t0 + float(i) * h, tm = ts + 0.5 * h;
 #if FCC_DVR_SELECT_PIECE

@@ -92,10 +92,6 @@ bool integrateCellPieces(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout D
 
 // Measurement knob (wrong images): 1 the chain without the face jump, 2 without rounds that gather an
 // entry piece alone (the exit piece taken for it), 3 without memory reads for the pieces.
-// 1: two cells a round where the chain continues (integrateCells), a measurement knob.
-#ifndef FCC_DVR_PAIRS
-#define FCC_DVR_PAIRS 0
-#endif
 #ifndef FCC_DVR_CHAIN_PROBE
 #define FCC_DVR_CHAIN_PROBE 0
 #endif
@@ -187,65 +183,6 @@ bool dvrChordFromEnds(vec4 entry, vec4 exitPiece, FccCellChord chord, float t0, 
   return dvrChord3(bEntry, central, bExit, t0, ta, tb, t1, st);
 }
 
-#if FCC_DVR_PAIRS
-// How many cells the last integrateCells took (raycast.comp's dvrRound steps the walk past them).
-int gDvrCellsDone = 1;
-
-// integrateCell for `cell` [t0, t1] (leaving through the face normal to `axis`) and, where `pair` and
-// the chain allows, the next cell in the walk too, [t1, t2] (leaving through axis2): two gathers a
-// round, read together, so that a round's wait for memory serves two cells (FCC_DVR_PAIRS). A cell
-// that starts a chain takes its entry and exit pieces in one round, alone.
-bool integrateCells(ivec3 cell, float t0, float t1, int axis, bool pair, float t2, int axis2, vec3 o, vec3 d,
-                    inout DvrState st) {
-  float da = axis == 0 ? d.x : (axis == 1 ? d.y : d.z), db = axis2 == 0 ? d.x : (axis2 == 1 ? d.y : d.z);
-  ivec3 unitA = ivec3(axis == 0 ? 1 : 0, axis == 1 ? 1 : 0, axis == 2 ? 1 : 0);
-  ivec3 cell2 = cell + (da > 0.0 ? unitA : -unitA);
-  FccCellChord chordA = fcc_cell_chord(cell, o, d, t0, t1);
-  FccCellChord chordB = fcc_cell_chord(cell2, o, d, t1, t2);
-  DvrCarry carry = gDvrCarry;
-  gDvrCarry.state = kDvrCarryNone;
-  gDvrCellsDone = 1;
-  if (chordA.corners == 0) return integrateCellPieces(cell, o, d, t0, t1, st);
-  bool known = carry.state != kDvrCarryNone;
-  bool needEntry = !known && chordA.ta < t1;
-  bool carriesA = dvrCarriesAcross(cell, chordA.exit, axis, da);
-  pair = pair && !needEntry && carriesA && chordB.corners != 0;
-  bool carriesB = pair && dvrCarriesAcross(cell2, chordB.exit, axis2, db);
-  FccFrame frameA = needEntry ? chordA.entry : chordA.exit;
-  FccFrame frameB = needEntry ? chordA.exit : chordB.exit;
-  FccSamples samplesA = gatherStencil(frameA);
-  FccSamples samplesB = samplesA;
-  if (needEntry || pair) samplesB = gatherStencil(frameB);
-  float beyondA = coefficientAt(carriesA ? fcc_face_jump_beyond_site(chordA.exit, axis) : frameA.origin);
-  float beyondB = coefficientAt(carriesB ? fcc_face_jump_beyond_site(chordB.exit, axis2) : frameA.origin);
-  vec4 taylorA = fcc_piece_taylor(fcc_cubic_t0(samplesA), frameA, o, d, needEntry ? t0 : t1);
-  vec4 taylorB = fcc_piece_taylor(fcc_cubic_t0(samplesB), frameB, o, d, needEntry ? t1 : t2);
-  float lambdaA = fcc_face_jump_lambda(needEntry ? samplesB : samplesA, axis, beyondA);
-  float lambdaB = fcc_face_jump_lambda(samplesB, axis2, beyondB);
-  // Cell A: entry carried, gathered this round, or (one piece) the exit piece itself.
-  vec4 exitA = needEntry ? taylorB : taylorA;
-  vec4 entryA = known && chordA.ta < t1 ? carry.taylor : (needEntry ? taylorA : fcc_taylor_shift(taylorA, t0 - t1));
-  dvrBeginCell(cell, o, d);
-  if (dvrChordFromEnds(entryA, exitA, chordA, t0, t1, st)) return true;
-  vec4 nextA = exitA;
-  nextA.w += lambdaA * abs(da) * da * da;
-  if (!pair) {
-    if (carriesA) gDvrCarry = DvrCarry(nextA, kDvrCarryExit);
-    return false;
-  }
-  // Cell B: its entry piece is A's exit piece across the face.
-  gDvrCellsDone = 2;
-  vec4 entryB = chordB.ta < t2 ? nextA : fcc_taylor_shift(taylorB, t1 - t2);
-  dvrBeginCell(cell2, o, d);
-  bool stop = dvrChordFromEnds(entryB, taylorB, chordB, t1, t2, st);
-  if (carriesB) {
-    vec4 nextB = taylorB;
-    nextB.w += lambdaB * abs(db) * db * db;
-    gDvrCarry = DvrCarry(nextB, kDvrCarryExit);
-  }
-  return stop;
-}
-#endif
 #else
 bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
   return integrateCellPieces(cell, o, d, t0, t1, st);

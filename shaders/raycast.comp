@@ -343,22 +343,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
   st.color.r += 1.0;
 #endif
   gDvrExitAxis = foundAxis;
-#if FCC_DVR_PAIRS && FCC_RECON == FCC_RECON_BOXSPLINE && FCC_DVR_CHAIN && !FCC_DVR_GATHER_CENTRAL
-  // The next cell in the walk, taken in the same round if the chain allows (integrateCells); a cell
-  // the transfer function maps to zero composites nothing.
-  DvrCellWalk peek = w;
-  bool pair = !dvrStep(peek, foundT1, foundAxis) && gDvrCarry.state != kDvrCarryEntry;
-  float t2 = min(min(min(peek.tMax.x, peek.tMax.y), peek.tMax.z), peek.tb);
-  int axis2 = peek.tMax.x <= peek.tMax.y && peek.tMax.x <= peek.tMax.z ? 0 : (peek.tMax.y <= peek.tMax.z ? 1 : 2);
-  pair = pair && t2 > peek.tCell;
-  bool stop = integrateCells(found, foundT0, foundT1, foundAxis, pair, t2, axis2, o, d, st);
-  if (gDvrCellsDone == 2 && !dvrStep(w, foundT1, foundAxis)) {
-    foundT1 = t2;
-    foundAxis = axis2;
-  }
-#else
   bool stop = integrateCell(found, o, d, foundT0, foundT1, st);
-#endif
 #endif
 #if FCC_DVR_COUNT == 2
   if (gDvrCarry.state == kDvrCarryEntry) st.color.b += 1.0;
