@@ -95,7 +95,11 @@ bool integrateCellPieces(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout D
 #ifndef FCC_DVR_CHAIN_PROBE
 #define FCC_DVR_CHAIN_PROBE 0
 #endif
-#if FCC_DVR_CHAIN && !FCC_DVR_GATHER_CENTRAL
+// The chain is taken in raycast.comp's flat walk only (FCC_DVR_FLAT): walking a brick to its end
+// (levels of detail, FCC_DVR_FLAT_WALK=0), the rounds that gather a chain's first entry piece keep the
+// warp's other rays waiting, and two gathers a cell ran faster (docs/BENCHMARKS.md, session 19:
+// blobs 2048^3 through the pyramid 93 fps against 78).
+#if FCC_DVR_CHAIN && !FCC_DVR_GATHER_CENTRAL && FCC_DVR_FLAT
 // Emission-absorption through unit cell `cell` between t0 and t1 with one gather (docs/DVR.md, "One
 // gather a cell"): the chord's end pieces are corner pieces (fcc_cell_chord), its central stretch their
 // Hermite interpolant, and where the walk integrated the cell before this one, this cell's entry piece

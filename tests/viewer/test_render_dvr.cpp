@@ -489,7 +489,9 @@ TEST_F(RenderDvr, SkippingAndSmallCachesChangeNothing) {
 // The DVR walk's schedules (docs/DVR.md, "The walk in rounds": a round finds a cell, then integrates
 // it; bricks and rounds in one loop) change when a ray does its work, not what it computes: the images
 // of every schedule are the same bit for bit, with a pool that holds every brick and with one that
-// must evict (several passes, rays resuming).
+// must evict (several passes, rays resuming). Walking bricks one by one takes two gathers a cell (the
+// chain of pieces is the flat walk's: march_fcc.glsl), so it is compared with the flat walk's two
+// gathers.
 TEST_F(RenderDvr, WalkSchedulesGiveTheSameImage) {
   TempDir dir;
   const std::string path = test::writeSmallBlobs(dir);
@@ -507,12 +509,23 @@ TEST_F(RenderDvr, WalkSchedulesGiveTheSameImage) {
     int visible = 0;
     for (std::size_t i = 3; i < main.rgba.size(); i += 4) visible += main.rgba[i] > 0.05f;
     EXPECT_GT(visible, w * h / 10);
-    for (const char* schedule : {"FCC_DVR_FLAT_WALK=0", "FCC_DVR_FIND_THEN_INTEGRATE=0"}) {
+    render::FrameImages twoGathers;
+    {
+      const test::ScopedEnv defines("FCCVDB_SHADER_DEFINES", "FCC_DVR_CHAIN=0");
+      twoGathers = renderSource(render::FccBrickSource(store, hostBytes), camera, w, h, *o);
+    }
+    // Each schedule against the flat walk with the same integration.
+    const std::pair<const char*, const render::FrameImages*> schedules[] = {
+        {"FCC_DVR_FIND_THEN_INTEGRATE=0", &main},
+        {"FCC_DVR_FIND_THEN_INTEGRATE=0;FCC_DVR_CHAIN=0", &twoGathers},
+        {"FCC_DVR_FLAT_WALK=0", &twoGathers}};
+    for (const auto& [schedule, expected] : schedules) {
       const test::ScopedEnv defines("FCCVDB_SHADER_DEFINES", schedule);
       const render::FrameImages other = renderSource(render::FccBrickSource(store, hostBytes), camera, w, h, *o);
-      ASSERT_EQ(main.rgba, other.rgba) << schedule << (o == &small ? ", small pool" : "");
-      ASSERT_EQ(main.normalDepth, other.normalDepth) << schedule << (o == &small ? ", small pool" : "");
+      ASSERT_EQ(expected->rgba, other.rgba) << schedule << (o == &small ? ", small pool" : "");
+      ASSERT_EQ(expected->normalDepth, other.normalDepth) << schedule << (o == &small ? ", small pool" : "");
     }
+    EXPECT_NE(main.rgba, twoGathers.rgba) << "the flat walk's chain was never taken";
   }
   EXPECT_GT(stats[1].bricksUploaded, stats[0].bricksUploaded) << "the small pool must have evicted bricks";
 }
