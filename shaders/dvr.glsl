@@ -205,9 +205,9 @@ float dvrBend(vec4 b) { return max(abs(b.x - 2.0 * b.y + b.z), abs(b.y - 2.0 * b
 // opacity.
 float dvrOpacity(float x) { return x < 0.015625 ? x * (1.0 - x * (0.5 - x * (1.0 / 6.0))) : 1.0 - exp(-x); }
 
-// One sub-step [ta, ta + h] whose medium is table entry e: composited exactly for the medium held
-// constant.
-void dvrCompositeEntry(vec4 e, float ta, float h, inout DvrState st) {
+// One sub-step [ta, ta + h] at value v: composited exactly for the medium held constant.
+void dvrComposite(float v, float ta, float h, inout DvrState st) {
+  vec4 e = tfLookup(v);
 #if FCC_DVR_COUNT == 1
   st.color.b += 1.0;
 #endif
@@ -223,9 +223,6 @@ void dvrCompositeEntry(vec4 e, float ta, float h, inout DvrState st) {
   st.transmittance -= st.transmittance * a;  // not T (1 - a): 1 - a would round a thin sub-step's a
   if (isinf(st.depthHalf) && st.transmittance <= 0.5) st.depthHalf = ta + log(2.0 * before) / e.a;
 }
-
-// One sub-step [ta, ta + h] at value v.
-void dvrComposite(float v, float ta, float h, inout DvrState st) { dvrCompositeEntry(tfLookup(v), ta, h, st); }
 
 // The segment [s0, s1] of the ray where the field is the cubic with Bernstein coefficients bz. Returns
 // true once the ray is opaque enough to stop.

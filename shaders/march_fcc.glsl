@@ -39,8 +39,8 @@ FccSegment pieceSegment(ivec3 cell, vec3 o, vec3 d, float s0, float s1) {
 }
 
 // Emission-absorption through unit cell `cell` between t0 and t1 (dvr.glsl) with both end pieces
-// gathered (session 18's way; integrateCell's for a chord that starts or ends inside the central
-// piece); true once the ray is opaque enough to stop.
+// gathered (session 18's way: the walk through the pyramid's, and integrateCell's for a chord that
+// starts or ends inside the central piece); true once the ray is opaque enough to stop.
 //
 // A unit cell's five pieces are four corner pieces and a central one whose faces are fcc_cell_splits'
 // planes, so a chord crosses the central piece's faces twice (corner, central, corner piece), once (it
@@ -100,71 +100,6 @@ bool integrateCellPieces(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout D
 // warp's other rays waiting, and two gathers a cell ran faster (docs/BENCHMARKS.md, session 19:
 // blobs 2048^3 through the pyramid 93 fps against 78).
 #if FCC_DVR_CHAIN && !FCC_DVR_GATHER_CENTRAL && FCC_DVR_FLAT
-// Emission-absorption through unit cell `cell` between t0 and t1 with one gather (docs/DVR.md, "One
-// gather a cell"): the chord's end pieces are corner pieces (fcc_cell_chord), its central stretch their
-// Hermite interpolant, and where the walk integrated the cell before this one, this cell's entry piece
-// is that cell's exit piece plus the jump across the face between them (FccChord.h: from the exit
-// piece's stencil and one more coefficient), so only the exit piece is gathered. Where it did not (the
-// first cell of a brick, or after cells the transfer function maps to zero), this round gathers the
-// entry piece alone and the walk's next round comes back to the cell for the exit piece (gDvrCarry,
-// kDvrCarryEntry): every round gathers one piece, the same code for all the rays of a warp. A chord
-// with an end inside the central piece (a ray that starts or stops inside the cell) takes
-// integrateCellPieces.
-bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
-  FccCellChord chord = fcc_cell_chord(cell, o, d, t0, t1);
-  DvrCarry carry = gDvrCarry;
-  gDvrCarry.state = kDvrCarryNone;
-  if (chord.corners == 0) return integrateCellPieces(cell, o, d, t0, t1, st);
-  dvrBeginCell(cell, o, d);
-  bool known = carry.state != kDvrCarryNone;
-  bool onePiece = chord.ta >= t1;
-  bool prepare = !known && !onePiece && FCC_DVR_CHAIN_PROBE != 2;
-  FccFrame frame = prepare ? chord.entry : chord.exit;
-  // Whether this cell's exit piece carries into the next cell: where its FCC site lies on the face the
-  // ray leaves through (rounding at a face diagonal can pick the other triangle's) and the face is
-  // inside the brick (nothing carries into the next brick). Decided before the gather, so that the
-  // face jump's one coefficient beyond the face (FccChord.h) is read with the stencil.
-  int a = gDvrExitAxis;
-  float da = a == 0 ? d.x : (a == 1 ? d.y : d.z);
-  int face = (a == 0 ? cell.x : (a == 1 ? cell.y : cell.z)) + (da > 0.0 ? 1 : 0);
-  int faceInBrick = face - (a == 0 ? gDvrBrickCellLo.x : (a == 1 ? gDvrBrickCellLo.y : gDvrBrickCellLo.z));
-  int siteOnAxis = a == 0 ? chord.exit.origin.x : (a == 1 ? chord.exit.origin.y : chord.exit.origin.z);
-  bool carries = !prepare && siteOnAxis == face && faceInBrick > 0 && faceInBrick < 16;
-#if FCC_DVR_CHAIN_PROBE == 3
-  // No memory read (wrong images): values spread over the cell's bounds (which the walk read), made
-  // to vary with the corner so that the compiler cannot fold the arithmetic away.
-  FccSamples samples;
-  float wiggle = float((frame.origin.x + 3 * frame.origin.y + 7 * frame.origin.z) & 15) * (1.0 / 16.0);
-  for (int i = 0; i < 19; ++i) samples.v[i] = mix(gDvrCellBounds.x, gDvrCellBounds.y, fract(wiggle + float(i) * 0.37));
-  float beyond = gDvrCellBounds.x;
-#else
-  FccSamples samples = gatherStencil(frame);
-  // Read inside the slot whatever (the piece's corner where the face does not carry).
-  float beyond = coefficientAt(carries ? fcc_face_jump_beyond_site(frame, a) : frame.origin);
-#endif
-  vec4 gathered = fcc_piece_taylor(fcc_cubic_t0(samples), frame, o, d, prepare ? t0 : t1);
-  if (prepare) {
-    gDvrCarry = DvrCarry(gathered, kDvrCarryEntry);
-    return false;
-  }
-  // The entry piece: carried (across the face, the jump is already in its cubic term; about t0), or
-  // for a chord in one piece the gathered exit piece itself.
-  vec4 entry = known && !onePiece ? carry.taylor : fcc_taylor_shift(gathered, t0 - t1);
-  float ta = chord.ta, tb = chord.tb;
-  vec4 bEntry = fcc_taylor_bernstein(entry, 0.0, ta - t0);
-  vec4 bExit = fcc_taylor_bernstein(gathered, tb - t1, 0.0);
-  float h3 = (tb - ta) * (1.0 / 3.0);
-  vec4 central = vec4(bEntry.w, bEntry.w + h3 * fcc_taylor_slope(entry, ta - t0),
-                      bExit.x - h3 * fcc_taylor_slope(gathered, tb - t1), bExit.x);
-  if (carries) {
-    // The next cell's entry piece: this exit piece about t1 plus the face jump.
-    vec4 next = gathered;
-    if (FCC_DVR_CHAIN_PROBE != 1) next.w += fcc_face_jump_lambda(samples, a, beyond) * abs(da) * da * da;
-    gDvrCarry = DvrCarry(next, kDvrCarryExit);
-  }
-  return dvrChord3(bEntry, central, bExit, t0, ta, tb, t1, st);
-}
-
 // Whether the exit piece `exitPiece` of `cell`, which the ray leaves through the face normal to axis a,
 // carries into the next cell: its FCC site lies on that face (rounding at a face diagonal can pick the
 // other triangle's) and the face is inside the brick (nothing carries into the next brick).
@@ -185,6 +120,60 @@ bool dvrChordFromEnds(vec4 entry, vec4 exitPiece, FccCellChord chord, float t0, 
   vec4 central = vec4(bEntry.w, bEntry.w + h3 * fcc_taylor_slope(entry, ta - t0),
                       bExit.x - h3 * fcc_taylor_slope(exitPiece, tb - t1), bExit.x);
   return dvrChord3(bEntry, central, bExit, t0, ta, tb, t1, st);
+}
+
+// Emission-absorption through unit cell `cell` between t0 and t1 with one gather (docs/DVR.md, "One
+// gather a cell"): the chord's end pieces are corner pieces (fcc_cell_chord), its central stretch their
+// Hermite interpolant, and where the walk integrated the cell before this one, this cell's entry piece
+// is that cell's exit piece plus the jump across the face between them (FccChord.h: from the exit
+// piece's stencil and one more coefficient), so only the exit piece is gathered. Where it did not (the
+// first cell of a brick, or after cells the transfer function maps to zero), this round gathers the
+// entry piece alone and the walk's next round comes back to the cell for the exit piece (gDvrCarry,
+// kDvrCarryEntry): every round gathers one piece, the same code for all the rays of a warp. A chord
+// with an end inside the central piece (a ray that starts or stops inside the cell) takes
+// integrateCellPieces.
+bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
+  FccCellChord chord = fcc_cell_chord(cell, o, d, t0, t1);
+  DvrCarry carry = gDvrCarry;
+  gDvrCarry.state = kDvrCarryNone;
+  if (chord.corners == 0) return integrateCellPieces(cell, o, d, t0, t1, st);
+  dvrBeginCell(cell, o, d);
+  bool known = carry.state != kDvrCarryNone;
+  bool onePiece = chord.ta >= t1;
+  bool prepare = !known && !onePiece && FCC_DVR_CHAIN_PROBE != 2;
+  FccFrame frame = prepare ? chord.entry : chord.exit;
+  // Decided before the gather, so that the face jump's one coefficient beyond the face (FccChord.h)
+  // is read with the stencil.
+  int a = gDvrExitAxis;
+  float da = a == 0 ? d.x : (a == 1 ? d.y : d.z);
+  bool carries = !prepare && dvrCarriesAcross(cell, chord.exit, a, da);
+#if FCC_DVR_CHAIN_PROBE == 3
+  // No memory read (wrong images): values spread over the cell's bounds (which the walk read), made
+  // to vary with the corner so that the compiler cannot fold the arithmetic away.
+  FccSamples samples;
+  float wiggle = float((frame.origin.x + 3 * frame.origin.y + 7 * frame.origin.z) & 15) * (1.0 / 16.0);
+  for (int i = 0; i < 19; ++i) samples.v[i] = mix(gDvrCellBounds.x, gDvrCellBounds.y, fract(wiggle + float(i) * 0.37));
+  float beyond = gDvrCellBounds.x;
+#else
+  FccSamples samples = gatherStencil(frame);
+  // Read inside the slot whatever (the piece's corner where the face does not carry).
+  float beyond = coefficientAt(carries ? fcc_face_jump_beyond_site(frame, a) : frame.origin);
+#endif
+  vec4 gathered = fcc_piece_taylor(fcc_cubic_t0(samples), frame, o, d, prepare ? t0 : t1);
+  if (prepare) {
+    gDvrCarry = DvrCarry(gathered, kDvrCarryEntry);
+    return false;
+  }
+  // The entry piece: carried (across the face, the jump is already in its cubic term; about t0), or
+  // for a chord in one piece the gathered exit piece itself.
+  vec4 entry = known && !onePiece ? carry.taylor : fcc_taylor_shift(gathered, t0 - t1);
+  if (carries) {
+    // The next cell's entry piece: this exit piece about t1 plus the face jump.
+    vec4 next = gathered;
+    if (FCC_DVR_CHAIN_PROBE != 1) next.w += fcc_face_jump_lambda(samples, a, beyond) * abs(da) * da * da;
+    gDvrCarry = DvrCarry(next, kDvrCarryExit);
+  }
+  return dvrChordFromEnds(entry, gathered, chord, t0, t1, st);
 }
 
 #else
