@@ -67,6 +67,26 @@ double psnr(const render::FrameImages& image, const std::vector<DvrPixel>& refer
   return mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : 1e9;
 }
 
+// How two device images differ, component by component: how many components differ, the largest
+// difference and the PSNR between them (1e9 where equal).
+struct ImageDifference {
+  int differing = 0;
+  double worst = 0.0, psnrDb = 1e9;
+};
+ImageDifference differenceOf(const render::FrameImages& a, const render::FrameImages& b) {
+  ImageDifference d;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+    const double e = std::abs(double(a.rgba[i]) - b.rgba[i]);
+    d.differing += e != 0.0;
+    d.worst = std::max(d.worst, e);
+    sum += e * e;
+  }
+  const double mse = sum / double(a.rgba.size());
+  if (mse > 0.0) d.psnrDb = 10.0 * std::log10(1.0 / mse);
+  return d;
+}
+
 // An FCC grid's coefficients for the CPU reference, read from the tree itself, not an accessor (not
 // thread-safe): the reference's rows run in parallel. `grid` outlives the function.
 SiteValue siteValuesOf(const FccGrid& grid) {
@@ -333,21 +353,12 @@ TEST_F(RenderDvr, CellChordFromItsEndPiecesAgreesWithEveryPieceAndTheReference) 
       tightGathered = renderSource(source, camera, w, h, gathered);
     }
     constexpr double kComponentTol = 1e-3;
-    int differing = 0;
-    double worst = 0.0, sum = 0.0;
-    for (std::size_t i = 0; i < tightShortcut.rgba.size(); ++i) {
-      const double e = std::abs(double(tightShortcut.rgba[i]) - tightGathered.rgba[i]);
-      differing += e != 0.0;
-      worst = std::max(worst, e);
-      sum += e * e;
-    }
-    const double mse = sum / double(tightShortcut.rgba.size());
-    const double between = mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : 1e9;
+    const ImageDifference between = differenceOf(tightShortcut, tightGathered);
     std::printf("%s: %d of %zu components differ, by at most %.2e (PSNR %.1f dB), between the chord and every "
-                "piece (tolerance 1e-4)\n", field, differing, tightShortcut.rgba.size(), worst, between);
-    EXPECT_GT(differing, 0) << "the chord was never taken";
-    EXPECT_LE(worst, kComponentTol);
-    EXPECT_GE(between, kMinPsnrDb + 30.0);
+                "piece (tolerance 1e-4)\n", field, between.differing, tightShortcut.rgba.size(), between.worst, between.psnrDb);
+    EXPECT_GT(between.differing, 0) << "the chord was never taken";
+    EXPECT_LE(between.worst, kComponentTol);
+    EXPECT_GE(between.psnrDb, kMinPsnrDb + 30.0);
 
     const FccGrid::Ptr grid = io::readFccGrid(path);
     const SiteValue at = siteValuesOf(*grid);
@@ -607,16 +618,11 @@ TEST_F(RenderDvr, ChainOfPiecesGathersOneACellAndGivesTheTwoGathersImage) {
     twoGathers = renderSource(source, camera, w, h, dvrOptions(table));
   }
   constexpr double kComponentTol = 1e-4;
-  int differing = 0;
-  double worst = 0.0;
-  for (std::size_t i = 0; i < chain.rgba.size(); ++i) {
-    const double e = std::abs(double(chain.rgba[i]) - twoGathers.rgba[i]);
-    differing += e != 0.0;
-    worst = std::max(worst, e);
-  }
-  std::printf("chain against two gathers: %d of %zu components differ, by at most %.2e\n", differing, chain.rgba.size(), worst);
-  EXPECT_GT(differing, 0) << "the chain was never taken";
-  EXPECT_LE(worst, kComponentTol);
+  const ImageDifference between = differenceOf(chain, twoGathers);
+  std::printf("chain against two gathers: %d of %zu components differ, by at most %.2e\n", between.differing,
+              chain.rgba.size(), between.worst);
+  EXPECT_GT(between.differing, 0) << "the chain was never taken";
+  EXPECT_LE(between.worst, kComponentTol);
 }
 
 // Another transfer function on a live renderer (the viewer's editor) gives the image a new renderer
