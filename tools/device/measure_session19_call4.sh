@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Session 19, fourth call: the final build (the chain of pieces, the walk left on a cell until it is
+# Session 19, fourth call (and sixth, on the final build): the build (the chain of pieces, the walk left on a cell until it is
 # integrated) against session 18's two gathers (FCC_DVR_CHAIN=0), alternating; ML 160^3x4 FCC viridis
 # and the engine CT inferno at 1080p, their isosurfaces beside; then blobs 2048^3 DVR through the
 # pyramid at 4x the GPU cache (first complete frame, frames per second still), as session 18's ninth.
