@@ -116,9 +116,8 @@ bool dvrChordFromEnds(vec4 entry, vec4 exitPiece, FccCellChord chord, float t0, 
   float ta = chord.ta, tb = chord.tb;
   vec4 bEntry = fcc_taylor_bernstein(entry, 0.0, ta - t0);
   vec4 bExit = fcc_taylor_bernstein(exitPiece, tb - t1, 0.0);
-  float h3 = (tb - ta) * (1.0 / 3.0);
-  vec4 central = vec4(bEntry.w, bEntry.w + h3 * fcc_taylor_slope(entry, ta - t0),
-                      bExit.x - h3 * fcc_taylor_slope(exitPiece, tb - t1), bExit.x);
+  vec4 central = fcc_hermite_bernstein(bEntry.w, fcc_taylor_slope(entry, ta - t0), bExit.x,
+                                       fcc_taylor_slope(exitPiece, tb - t1), ta, tb);
   return dvrChord3(bEntry, central, bExit, t0, ta, tb, t1, st);
 }
 

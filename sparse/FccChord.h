@@ -80,23 +80,15 @@ FCC_FUNC FccFrame fcc_corner_frame(FCC_IVEC3 corner, FCC_IVEC3 axis, int k) {
 }
 
 FCC_FUNC FccCellChord fcc_cell_chord(FCC_IVEC3 cell, FCC_VEC3 o, FCC_VEC3 d, float t0, float t1) {
-  // Even-cube coordinates p = p0 + t dir (an odd cell is the point reflection of an even one).
-  FCC_VEC3 p0 = o - FCC_VEC3_FROM_IVEC3(cell);
-  FCC_VEC3 dir = d;
-  FCC_IVEC3 corner = cell;
-  FCC_IVEC3 axis = FCC_MAKE_IVEC3(1, 1, 1);
-  if (((cell.x + cell.y + cell.z) & 1) != 0) {
-    p0 = FCC_MAKE_VEC3(1.0f, 1.0f, 1.0f) - p0;
-    dir = -d;
-    corner = cell + FCC_MAKE_IVEC3(1, 1, 1);
-    axis = FCC_MAKE_IVEC3(-1, -1, -1);
-  }
-  // Depth in corner piece k: 1 - (1,1,1).p for k = 0, n_k.p - 1 for n = (1,1,-1), (1,-1,1), (-1,1,1);
-  // linear along the ray: depth(t) = base + t rate.
-  FCC_VEC4 base = FCC_MAKE_VEC4(1.0f - (p0.x + p0.y + p0.z), p0.x + p0.y - p0.z - 1.0f, p0.x - p0.y + p0.z - 1.0f,
-                                -p0.x + p0.y + p0.z - 1.0f);
-  FCC_VEC4 rate = FCC_MAKE_VEC4(-(dir.x + dir.y + dir.z), dir.x + dir.y - dir.z, dir.x - dir.y + dir.z,
-                                -dir.x + dir.y + dir.z);
+  // The even cube's frame (an odd cell is the point reflection of an even one: its far corner).
+  bool odd = ((cell.x + cell.y + cell.z) & 1) != 0;
+  FCC_IVEC3 corner = odd ? cell + FCC_MAKE_IVEC3(1, 1, 1) : cell;
+  FCC_IVEC3 axis = odd ? FCC_MAKE_IVEC3(-1, -1, -1) : FCC_MAKE_IVEC3(1, 1, 1);
+  // Depth in corner piece k: 1 - (1,1,1).p for k = 0, n_k.p - 1 for the other three planes
+  // (fcc_cell_planes); linear along the ray: depth(t) = base + t rate.
+  FccCellPlanes planes = fcc_cell_planes(cell, o, d);
+  FCC_VEC4 base = FCC_MAKE_VEC4(1.0f - planes.at.x, planes.at.y - 1.0f, planes.at.z - 1.0f, planes.at.w - 1.0f);
+  FCC_VEC4 rate = FCC_MAKE_VEC4(-planes.rate.x, planes.rate.y, planes.rate.z, planes.rate.w);
   FCC_VEC4 depth0 = base + t0 * rate, depth1 = base + t1 * rate;
   int kEntry = fcc_deepest_corner(depth0), kExit = fcc_deepest_corner(depth1);
   FccCellChord chord;

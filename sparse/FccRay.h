@@ -73,10 +73,14 @@ FCC_FUNC FccSegment fcc_segment_with_slopes(FccCubic cubic, FccFrame frame, FCC_
 // planes hold three of the six directions; across the cube's faces, which hold two, it is C2), so
 // along the ray the central piece's cubic has the entry piece's value and slope at ta and the exit
 // piece's at tb, and a cubic is its Hermite interpolant. `entry` is the entry piece's segment ending at
-// ta, `exit` the exit piece's starting at tb (fcc_segment_with_slopes).
-FCC_FUNC FCC_VEC4 fcc_central_bernstein(FccSegment entry, FccSegment exit, float ta, float tb) {
+// ta, `exit` the exit piece's starting at tb (fcc_segment_with_slopes). fcc_hermite_bernstein: the
+// cubic on [ta, tb] with value v0 and slope0 (per unit t) at ta, v1 and slope1 at tb.
+FCC_FUNC FCC_VEC4 fcc_hermite_bernstein(float v0, float slope0, float v1, float slope1, float ta, float tb) {
   float h3 = (tb - ta) * (1.0f / 3.0f);
-  return FCC_MAKE_VEC4(entry.b.w, entry.b.w + h3 * entry.slope1, exit.b.x - h3 * exit.slope0, exit.b.x);
+  return FCC_MAKE_VEC4(v0, v0 + h3 * slope0, v1 - h3 * slope1, v1);
+}
+FCC_FUNC FCC_VEC4 fcc_central_bernstein(FccSegment entry, FccSegment exit, float ta, float tb) {
+  return fcc_hermite_bernstein(entry.b.w, entry.slope1, exit.b.x, exit.slope0, ta, tb);
 }
 
 // Where a unit cell's chord [t0, t1] leaves its first piece and enters its last, from fcc_cell_splits'
@@ -106,18 +110,30 @@ FCC_FUNC FCC_VEC2 fcc_chord_knots(FCC_VEC4 splits, float t0, float t1) {
 
 // The parameters in (ta, tb) where the ray crosses the four planes that cut the unit cell at integer
 // corner `cell` into its pieces, sorted; entries past the last crossing are tb.
-FCC_FUNC FCC_VEC4 fcc_cell_splits(FCC_IVEC3 cell, FCC_VEC3 o, FCC_VEC3 d, float ta, float tb) {
-  // Local coordinates p in the cell; an odd cell is the point reflection of an even one (p -> 1 - p).
+// The four planes n . p = 1 that cut unit cell `cell` into its pieces, n = (1,1,1), (1,1,-1),
+// (1,-1,1), (-1,1,1), along the ray: n . p = at + t rate, p the even-cube coordinates (an odd cell is
+// the point reflection of an even one, p -> 1 - p).
+FCC_STRUCT_BEGIN(FccCellPlanes)
+  FCC_VEC4 at;
+  FCC_VEC4 rate;
+FCC_STRUCT_END(FccCellPlanes)
+
+FCC_FUNC FccCellPlanes fcc_cell_planes(FCC_IVEC3 cell, FCC_VEC3 o, FCC_VEC3 d) {
   FCC_VEC3 p = o - FCC_VEC3_FROM_IVEC3(cell);
   FCC_VEC3 dir = d;
   if (((cell.x + cell.y + cell.z) & 1) != 0) {
     p = FCC_MAKE_VEC3(1.0f, 1.0f, 1.0f) - p;
     dir = -d;
   }
-  // Planes n . p = 1 with n = (1,1,1), (1,1,-1), (1,-1,1), (-1,1,1).
-  FCC_VEC4 np = FCC_MAKE_VEC4(p.x + p.y + p.z, p.x + p.y - p.z, p.x - p.y + p.z, -p.x + p.y + p.z);
-  FCC_VEC4 nd = FCC_MAKE_VEC4(dir.x + dir.y + dir.z, dir.x + dir.y - dir.z, dir.x - dir.y + dir.z,
-                              -dir.x + dir.y + dir.z);
+  FccCellPlanes planes;
+  planes.at = FCC_MAKE_VEC4(p.x + p.y + p.z, p.x + p.y - p.z, p.x - p.y + p.z, -p.x + p.y + p.z);
+  planes.rate = FCC_MAKE_VEC4(dir.x + dir.y + dir.z, dir.x + dir.y - dir.z, dir.x - dir.y + dir.z, -dir.x + dir.y + dir.z);
+  return planes;
+}
+
+FCC_FUNC FCC_VEC4 fcc_cell_splits(FCC_IVEC3 cell, FCC_VEC3 o, FCC_VEC3 d, float ta, float tb) {
+  FccCellPlanes planes = fcc_cell_planes(cell, o, d);
+  FCC_VEC4 np = planes.at, nd = planes.rate;
   FCC_VEC4 s = FCC_MAKE_VEC4(tb, tb, tb, tb);
   float t;
   t = nd.x != 0.0f ? (1.0f - np.x) / nd.x : tb;
