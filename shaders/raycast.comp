@@ -299,18 +299,14 @@ bool dvrStep(inout DvrCellWalk w, float tExit, int axis) {
   return any(lessThan(w.cell, w.cellLo)) || any(greaterThan(w.cell, w.cellHi));
 }
 
-// A cell dvrFindCell found to integrate: the ray's stretch [t0, t1] in it, and the axis of the face
-// it leaves through (the walk's next step).
-struct DvrFoundCell {
-  ivec3 cell;
-  float t0, t1;
-  int axis;
-};
-
-// Steps the walk (cheaply: the DDA and the cells' slot bounds) to the next cell the transfer function
-// does not map to zero, or the walk's current cell if it is not; true with it in `found`, false once
-// the brick is crossed (w.done; with FCC_DVR_FIND_THEN_INTEGRATE=0, also after one cell passed over).
-bool dvrFindCell(inout DvrCellWalk w, inout DvrState st, out DvrFoundCell found) {
+// One round of the walk; true once the ray is opaque enough to stop. w.done once the brick is crossed.
+// The walk stays on the cell it finds until integrateCell is done with it: a round that only gathered
+// the cell's entry piece (gDvrCarry's kDvrCarryEntry) leaves it for the next round to find again.
+bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
+  bool have = false;
+  ivec3 found;
+  float foundT0 = 0.0, foundT1 = 0.0;
+  int foundAxis = 0;
   for (int iter = 0; iter < kDvrFindCells; ++iter) {
     float tExit = min(min(min(w.tMax.x, w.tMax.y), w.tMax.z), w.tb);
     ivec3 voxel = (w.cell - w.cellLo) >> 1;
@@ -319,9 +315,13 @@ bool dvrFindCell(inout DvrCellWalk w, inout DvrState st, out DvrFoundCell found)
     // The axis the walk steps along next: the face the ray leaves the cell through.
     int axis = w.tMax.x <= w.tMax.y && w.tMax.x <= w.tMax.z ? 0 : (w.tMax.y <= w.tMax.z ? 1 : 2);
     if (integrate) {
-      found = DvrFoundCell(w.cell, w.tCell, tExit, axis);
+      have = true;
+      found = w.cell;
+      foundT0 = w.tCell;
+      foundT1 = tExit;
+      foundAxis = axis;
       gDvrCellBounds = cellBounds;
-      return true;
+      break;
     }
 #if FCC_DVR_COUNT == 1
     st.color.r += 1.0;
@@ -332,17 +332,9 @@ bool dvrFindCell(inout DvrCellWalk w, inout DvrState st, out DvrFoundCell found)
       break;
     }
   }
-  found = DvrFoundCell(ivec3(0), 0.0, 0.0, 0);
-  return false;
-}
-
-// Integrates the cell dvrFindCell found (dear: integrateCell) and steps the walk past it; true once the
-// ray is opaque enough to stop, w.done once the brick is crossed. The walk stays on the cell until
-// integrateCell is done with it: a round that only gathered the cell's entry piece (gDvrCarry's
-// kDvrCarryEntry) leaves it for the next find.
-bool dvrIntegrateFound(inout DvrCellWalk w, DvrFoundCell f, vec3 o, vec3 d, inout DvrState st) {
+  if (!have) return false;
 #if FCC_DVR_WALK_ONLY
-  st.transmittance *= 1.0 - 1e-3 * (f.t1 - f.t0);
+  st.transmittance *= 1.0 - 1e-3 * (foundT1 - foundT0);
   bool stop = st.transmittance <= uStopTransmittance;
 #else
 #if FCC_DVR_COUNT == 1
@@ -350,21 +342,15 @@ bool dvrIntegrateFound(inout DvrCellWalk w, DvrFoundCell f, vec3 o, vec3 d, inou
 #elif FCC_DVR_COUNT == 2
   st.color.r += 1.0;
 #endif
-  gDvrExitAxis = f.axis;
-  bool stop = integrateCell(f.cell, o, d, f.t0, f.t1, st);
+  gDvrExitAxis = foundAxis;
+  bool stop = integrateCell(found, o, d, foundT0, foundT1, st);
 #endif
 #if FCC_DVR_COUNT == 2
   if (gDvrCarry.state == kDvrCarryEntry) st.color.b += 1.0;
   else st.color.g += 1.0;
 #endif
-  if (gDvrCarry.state != kDvrCarryEntry && dvrStep(w, f.t1, f.axis)) w.done = true;
+  if (gDvrCarry.state != kDvrCarryEntry && dvrStep(w, foundT1, foundAxis)) w.done = true;
   return stop;
-}
-
-// One round of the walk: find a cell, integrate it; true once the ray is opaque enough to stop.
-bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
-  DvrFoundCell f;
-  return dvrFindCell(w, st, f) && dvrIntegrateFound(w, f, o, d, st);
 }
 #endif
 
@@ -658,20 +644,14 @@ void main() {
   float tWalkEnd = 0.0;
   int rounds = 0;
 #endif
-#if FCC_DVR_FLAT
-  // An iteration of this outer loop integrates one cell: the inner loop (the brick DDA's) first steps
-  // through bricks and cells to it, so that a ray's steps to its next brick, past empty bricks and
-  // nodes and past a brick's last zero cells cost no iteration the warp's other rays integrate in.
-  while (true) {
-    DvrFoundCell cell;
-    bool have = false;
-#endif
   while (t < tEnd && guard < 4096) {
 #if FCC_DVR_FLAT
     if (inBrick) {
-      have = dvrFindCell(walk, st, cell);
-      if (have) break;  // to integrate it
-      if (walk.done) {
+      if (dvrRound(walk, o, d, st)) {
+        found = true;  // opaque enough: nothing behind is integrated or requested
+        break;
+      }
+      if (walk.done || ++rounds >= kDvrBrickRounds) {
         inBrick = false;
         t = tWalkEnd > t ? tWalkEnd : t + 1e-5 * abs(t) + 1e-6;
       }
@@ -743,18 +723,6 @@ void main() {
     }
     t = tExitBrick > t ? tExitBrick : t + 1e-5 * abs(t) + 1e-6;
   }
-#if FCC_DVR_FLAT
-    if (!have) break;
-    if (dvrIntegrateFound(walk, cell, o, d, st)) {
-      found = true;  // opaque enough: nothing behind is integrated or requested
-      break;
-    }
-    if (walk.done || ++rounds >= kDvrBrickRounds) {
-      inBrick = false;
-      t = tWalkEnd > t ? tWalkEnd : t + 1e-5 * abs(t) + 1e-6;
-    }
-  }
-#endif
 #endif
 #if FCC_MODE_DVR
   if (stopped && !found) {  // resumes next pass; meanwhile the pixel shows what it has so far
