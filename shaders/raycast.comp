@@ -8,6 +8,15 @@
 // few bricks beyond it), saves where it stopped, and resumes there in the next pass, so a frame whose
 // working set exceeds the pool completes in several passes. Headers are inlined by fcc_embed.
 #define FCC_GLSL 1
+// A measurement knob (docs/RENDERER.md), NVIDIA only: 1 writes each pixel's warp slot on its SM, the SM
+// and the slots an SM has (GL_NV_shader_thread_group) as its colour (opacity 1), so the image's largest
+// slot is the most warps an SM held at once (the occupancy the program's registers allow).
+#ifndef FCC_WARP_PROBE
+#define FCC_WARP_PROBE 0
+#endif
+#if FCC_WARP_PROBE
+#extension GL_NV_shader_thread_group : require
+#endif
 // Only the chosen reconstruction's header is compiled (in the march file): the ids, the spline's types
 // that pool.glsl gathers in, and the pool.
 #include "ReconIds.h"
@@ -63,6 +72,15 @@
 #define FCC_GROUP_Y 8
 #endif
 layout(local_size_x = FCC_GROUP_X, local_size_y = FCC_GROUP_Y) in;
+
+// A measurement knob (docs/RENDERER.md): FCC_OCCUPANCY_PAD floats of shared memory a work group holds
+// and touches, to lower how many groups an SM runs at once (how much the frame depends on occupancy).
+#ifndef FCC_OCCUPANCY_PAD
+#define FCC_OCCUPANCY_PAD 0
+#endif
+#if FCC_OCCUPANCY_PAD > 0
+shared float gOccupancyPad[FCC_OCCUPANCY_PAD];
+#endif
 
 layout(std430, binding = 1) readonly buffer PageTable { uint pageEntries[]; };
 // Per node of 16^3 bricks (relative to uBrickMin): 0 if no brick in it needs evaluation.
@@ -450,6 +468,9 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(uColumnOffset, 0);
+#if FCC_OCCUPANCY_PAD > 0
+  gOccupancyPad[gl_LocalInvocationIndex % uint(FCC_OCCUPANCY_PAD)] = float(pixel.x);
+#endif
   if (any(greaterThanEqual(pixel, uResolution)) || pixel.x < uFirstColumn) return;
   // The first pass writes every pixel's resume value (below), so the image needs no clearing.
   float tResume = uFirstPass != 0 ? 0.0 : imageLoad(uResume, pixel).x;
@@ -733,6 +754,13 @@ void main() {
     return;
   }
   imageStore(uResume, pixel, vec4(-1.0));
+#if FCC_OCCUPANCY_PAD > 0
+  if (gOccupancyPad[gl_LocalInvocationIndex % uint(FCC_OCCUPANCY_PAD)] < -1.0) st.color.r += 1.0;  // never: x >= 0
+#endif
+#if FCC_WARP_PROBE
+  st.color = vec3(float(gl_WarpIDNV), float(gl_SMIDNV), float(gl_WarpsPerSMNV));
+  st.transmittance = 0.0;
+#endif
   imageStore(uColor, pixel, vec4(st.color, 1.0 - st.transmittance));
   imageStore(uNormalDepth, pixel, vec4(0.0, 0.0, 0.0, st.depthHalf));
   if (st.transmittance < 1.0) noteSurfacePixel(pixel);
@@ -775,6 +803,9 @@ void main() {
   vec3 nFacing = dot(n, dirWorld) > 0.0 ? -n : n;
   float diffuse = max(dot(nFacing, uLightDir), 0.0);
   vec3 color = uSurfaceColor * (0.15 + 0.85 * diffuse);
+#if FCC_WARP_PROBE
+  color = vec3(float(gl_WarpIDNV), float(gl_SMIDNV), float(gl_WarpsPerSMNV));
+#endif
   imageStore(uColor, pixel, vec4(color, 1.0));
   imageStore(uNormalDepth, pixel, vec4(n, hit.t));
   noteSurfacePixel(pixel);
