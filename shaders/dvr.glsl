@@ -100,8 +100,8 @@ struct DvrCarry {
   int state;
 };
 DvrCarry gDvrCarry = DvrCarry(vec4(0.0), kDvrCarryNone);
-// Set by raycast.comp's walk for integrateCell: the axis of the face through which the ray leaves the
-// cell (the walk's next step), and the first unit cell of the brick walked.
+// Set by raycast.comp's walk before each integrateCell: the axis of the face through which the ray
+// leaves the cell (the walk's next step), and the first unit cell of the brick walked.
 int gDvrExitAxis = 0;
 vec2 gDvrCellBounds = vec2(0.0);  // the cell's slot bounds (for a measurement knob only)
 ivec3 gDvrBrickCellLo = ivec3(0);

@@ -43,6 +43,7 @@ uniform ivec2 uPoolGrid;
 uint gSlotBase;      // SSBO layouts: index of the slot's first element
 ivec3 gSlotTexel;    // texture layouts: texel of the slot's first element
 ivec3 gSlotOrigin;   // the packed voxel (vec4 layouts) or site (scalar layouts) of the first element
+ivec3 gSlotShift;    // texture layouts: gSlotTexel - gSlotOrigin (one value live instead of two)
 
 void selectSlot(uint slot, ivec3 brick) {
   gSlotBase = slot * uint(kSlotTexels);
@@ -57,6 +58,7 @@ void selectSlot(uint slot, ivec3 brick) {
 #else
   gSlotOrigin = brick * 8 - 1;
 #endif
+  gSlotShift = gSlotTexel - gSlotOrigin;
 }
 
 #if !defined(FCC_POOL_SCALAR)
@@ -88,9 +90,9 @@ float coefficientAt(ivec3 ijk) {
   ivec3 local = ijk - gSlotOrigin;
   return poolSites[gSlotBase + uint((local.z * kSlotDim + local.y) * kSlotDim + local.x)];
 #elif FCC_POOL_LAYOUT == 2
-  return channelOf(texelFetch(uPoolTexture, gSlotTexel + (ijk >> 1) - gSlotOrigin, 0), ijk);
+  return channelOf(texelFetch(uPoolTexture, (ijk >> 1) + gSlotShift, 0), ijk);
 #else
-  return texelFetch(uPoolTexture, gSlotTexel + ijk - gSlotOrigin, 0).r;
+  return texelFetch(uPoolTexture, ijk + gSlotShift, 0).r;
 #endif
 }
 #endif

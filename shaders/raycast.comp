@@ -267,9 +267,11 @@ const int kDvrFindCells = FCC_DVR_FIND_THEN_INTEGRATE != 0 ? 64 : 1;
 // The most rounds a brick takes: a ray crosses at most 46 of its cells, and a cell takes a second round
 // where its entry piece is gathered first (march_fcc.glsl), at most every other cell.
 const int kDvrBrickRounds = 96;
+// Only what the walk changes or cannot derive: the steps' signs and lengths are the ray's (sign(d),
+// |1/d|), the brick's last cell its first + 15.
 struct DvrCellWalk {
-  ivec3 cell, cellLo, cellHi, stepDir;
-  vec3 tMax, tDelta;
+  ivec3 cell, cellLo;
+  vec3 tMax;
   float tCell, tb;
   uint boundsBase;
   bool done;
@@ -281,46 +283,42 @@ DvrCellWalk dvrBeginBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float t
   DvrCellWalk w;
   w.boundsBase = slot * uint(kSlotVoxels);
   w.cellLo = b * 16;
-  w.cellHi = w.cellLo + 15;
   // The starting cell: where the ray is just past ta (clamped: rounding may put it a hair outside).
   vec3 pStart = o + min(ta + 1e-4 * (tb - ta), 0.5 * (ta + tb)) * d;
-  w.cell = clamp(ivec3(floor(pStart)), w.cellLo, w.cellHi);
-  w.stepDir = ivec3(sign(d));
+  w.cell = clamp(ivec3(floor(pStart)), w.cellLo, w.cellLo + 15);
   w.tMax = (vec3(w.cell) + vec3(greaterThan(d, vec3(0.0))) - o) * invD;
-  w.tDelta = abs(invD);
   w.tCell = ta;
   w.tb = tb;
   w.done = false;
   // Nothing carries into a brick: its cells are integrated the same whatever was resident before it
   // (the image does not depend on the cache), and the face jumps' sites stay inside the slot.
   gDvrCarry.state = kDvrCarryNone;
-  gDvrBrickCellLo = w.cellLo;
   return w;
 }
 
-// Steps the walk past its current cell, which the ray leaves at tExit through the face normal to
-// `axis`; true once the brick is crossed.
-bool dvrStep(inout DvrCellWalk w, float tExit, int axis) {
+// Steps the walk past its current cell, which the ray (direction d, invD = 1 / d) leaves at tExit
+// through the face normal to `axis`; true once the brick is crossed.
+bool dvrStep(inout DvrCellWalk w, vec3 d, vec3 invD, float tExit, int axis) {
   if (tExit >= w.tb) return true;
   // Never backwards: a start cell clamped into the brick can have a face behind the ray.
   w.tCell = max(w.tCell, tExit);
   if (axis == 0) {
-    w.cell.x += w.stepDir.x;
-    w.tMax.x += w.tDelta.x;
+    w.cell.x += int(sign(d.x));
+    w.tMax.x += abs(invD.x);
   } else if (axis == 1) {
-    w.cell.y += w.stepDir.y;
-    w.tMax.y += w.tDelta.y;
+    w.cell.y += int(sign(d.y));
+    w.tMax.y += abs(invD.y);
   } else {
-    w.cell.z += w.stepDir.z;
-    w.tMax.z += w.tDelta.z;
+    w.cell.z += int(sign(d.z));
+    w.tMax.z += abs(invD.z);
   }
-  return any(lessThan(w.cell, w.cellLo)) || any(greaterThan(w.cell, w.cellHi));
+  return any(lessThan(w.cell, w.cellLo)) || any(greaterThan(w.cell, w.cellLo + 15));
 }
 
 // One round of the walk; true once the ray is opaque enough to stop. w.done once the brick is crossed.
 // The walk stays on the cell it finds until integrateCell is done with it: a round that only gathered
 // the cell's entry piece (gDvrCarry's kDvrCarryEntry) leaves it for the next round to find again.
-bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
+bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, vec3 invD, inout DvrState st) {
   bool have = false;
   ivec3 found;
   float foundT0 = 0.0, foundT1 = 0.0;
@@ -345,7 +343,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
     st.color.r += 1.0;
 #endif
     gDvrCarry.state = kDvrCarryNone;  // a cell passed over: nothing carries past it
-    if (dvrStep(w, tExit, axis)) {
+    if (dvrStep(w, d, invD, tExit, axis)) {
       w.done = true;
       break;
     }
@@ -361,13 +359,14 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
   st.color.r += 1.0;
 #endif
   gDvrExitAxis = foundAxis;
+  gDvrBrickCellLo = w.cellLo;
   bool stop = integrateCell(found, o, d, foundT0, foundT1, st);
 #endif
 #if FCC_DVR_COUNT == 2
   if (gDvrCarry.state == kDvrCarryEntry) st.color.b += 1.0;
   else st.color.g += 1.0;
 #endif
-  if (gDvrCarry.state != kDvrCarryEntry && dvrStep(w, foundT1, foundAxis)) w.done = true;
+  if (gDvrCarry.state != kDvrCarryEntry && dvrStep(w, d, invD, foundT1, foundAxis)) w.done = true;
   return stop;
 }
 #endif
@@ -381,7 +380,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, inout DvrState st) {
 bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb, inout DvrState st) {
   DvrCellWalk walk = dvrBeginBrick(b, slot, o, d, invD, ta, tb);
   for (int r = 0; r < kDvrBrickRounds && !walk.done; ++r)
-    if (dvrRound(walk, o, d, st)) return true;
+    if (dvrRound(walk, o, d, invD, st)) return true;
   return false;
 }
 #else
@@ -662,19 +661,18 @@ void main() {
   // the warp's others to finish theirs (FCC_DVR_FLAT_WALK).
   bool inBrick = false;
   DvrCellWalk walk;
-  float tWalkEnd = 0.0;
   int rounds = 0;
 #endif
   while (t < tEnd && guard < 4096) {
 #if FCC_DVR_FLAT
     if (inBrick) {
-      if (dvrRound(walk, o, d, st)) {
+      if (dvrRound(walk, o, d, invD, st)) {
         found = true;  // opaque enough: nothing behind is integrated or requested
         break;
       }
       if (walk.done || ++rounds >= kDvrBrickRounds) {
         inBrick = false;
-        t = tWalkEnd > t ? tWalkEnd : t + 1e-5 * abs(t) + 1e-6;
+        t = walk.tb > t ? walk.tb : t + 1e-5 * abs(t) + 1e-6;
       }
       continue;
     }
@@ -728,7 +726,6 @@ void main() {
       walk = dvrBeginBrick(b, entry, o, d, invD, t, tExitBrick);
       inBrick = true;
       rounds = 0;
-      tWalkEnd = tExitBrick;
       continue;
 #elif FCC_MODE_DVR
       if (marchBrick(b, entry, o, d, invD, t, tExitBrick, st)) {

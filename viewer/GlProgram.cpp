@@ -1,9 +1,6 @@
 #include "GlProgram.h"
 
 #include <algorithm>
-#include <cctype>
-#include <cstdlib>
-#include <fstream>
 #include <utility>
 
 namespace fcc {
@@ -80,28 +77,10 @@ GLuint compileStage(GLenum stage, const char* kind, std::string_view source, con
   return shader;
 }
 
-// FCCVDB_DUMP_PROGRAMS=DIR, a measurement aid (docs/RENDERER.md): each linked program's binary as the
-// driver gives it (glGetProgramBinary) in DIR/<name>.bin; NVIDIA's holds its assembly's text, with
-// the registers it uses.
-void dumpProgramBinary(GLuint id, const std::string& what) {
-  const char* dir = std::getenv("FCCVDB_DUMP_PROGRAMS");
-  if (dir == nullptr || *dir == '\0') return;
-  GLint length = 0;
-  glGetProgramiv(id, GL_PROGRAM_BINARY_LENGTH, &length);
-  if (length <= 0) return;
-  std::vector<char> binary(std::size_t(length), '\0');
-  GLenum format = 0;
-  glGetProgramBinary(id, length, nullptr, &format, binary.data());
-  std::string file;
-  for (char c : what) file += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_') ? c : '_';
-  std::ofstream(std::string(dir) + "/" + file + ".bin", std::ios::binary).write(binary.data(), std::streamsize(binary.size()));
-}
-
 // Links the stages into a program (and frees them); throws GlError naming `what`.
 GLuint linkStages(const std::vector<GLuint>& shaders, const std::string& what) {
   const GLuint id = glCreateProgram();
   for (GLuint shader : shaders) glAttachShader(id, shader);
-  if (std::getenv("FCCVDB_DUMP_PROGRAMS") != nullptr) glProgramParameteri(id, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
   glLinkProgram(id);
   for (GLuint shader : shaders) {
     glDetachShader(id, shader);
@@ -114,7 +93,6 @@ GLuint linkStages(const std::vector<GLuint>& shaders, const std::string& what) {
     glDeleteProgram(id);
     throw GlError("linking " + what + " failed:\n" + log);
   }
-  dumpProgramBinary(id, what);
   checkGl("building " + what);
   return id;
 }
