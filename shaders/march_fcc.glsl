@@ -91,7 +91,9 @@ bool integrateCellPieces(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout D
 #endif
 
 // Measurement knob (wrong images): 1 the chain without the face jump, 2 without rounds that gather an
-// entry piece alone (the exit piece taken for it), 3 without memory reads for the pieces.
+// entry piece alone (the exit piece taken for it), 3 without memory reads for the pieces, 4 without
+// integrateCellPieces for chords with an end in the central piece (the deepest corner piece taken:
+// wrong for rays that start or stop there).
 #ifndef FCC_DVR_CHAIN_PROBE
 #define FCC_DVR_CHAIN_PROBE 0
 #endif
@@ -135,7 +137,9 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   FccCellChord chord = fcc_cell_chord(cell, o, d, t0, t1);
   DvrCarry carry = gDvrCarry;
   gDvrCarry.state = kDvrCarryNone;
+#if FCC_DVR_CHAIN_PROBE != 4
   if (chord.corners == 0) return integrateCellPieces(cell, o, d, t0, t1, st);
+#endif
   dvrBeginCell(cell, o, d);
   bool known = carry.state != kDvrCarryNone;
   bool onePiece = chord.ta >= t1;

@@ -801,7 +801,8 @@ void main() {
   float diffuse = max(dot(nFacing, uLightDir), 0.0);
   vec3 color = uSurfaceColor * (0.15 + 0.85 * diffuse);
 #if FCC_WARP_PROBE
-  color = vec3(float(gl_WarpIDNV), float(gl_SMIDNV), float(gl_WarpsPerSMNV));
+  // (uSurfaceColor kept in use: the renderer sets it.)
+  color = vec3(float(gl_WarpIDNV) + (color.r < -1.0 ? 1.0 : 0.0), float(gl_SMIDNV), float(gl_WarpsPerSMNV));
 #endif
   imageStore(uColor, pixel, vec4(color, 1.0));
   imageStore(uNormalDepth, pixel, vec4(n, hit.t));

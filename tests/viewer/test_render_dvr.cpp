@@ -625,6 +625,39 @@ TEST_F(RenderDvr, ChainOfPiecesGathersOneACellAndGivesTheTwoGathersImage) {
   EXPECT_LE(between.worst, kComponentTol);
 }
 
+// Chords cut short inside a cell (rays start and stop at a clipping box's faces, which lie inside
+// cells): the chain takes those that end in corner pieces, integrateCellPieces those that end in the
+// central piece (march_fcc.glsl's integrateCell); the image is two gathers a cell's up to float
+// rounding.
+TEST_F(RenderDvr, ChainTakesChordsCutInsideACell) {
+  TempDir dir;
+  const std::string path = test::writeSmallBlobs(dir);
+  const render::Camera camera = test::smallBlobsCamera();
+  const int w = 48, h = 48;
+  const io::BrickStore store(path);
+  const render::FccBrickSource source(store, std::size_t(64) << 20);
+  render::RenderOptions options = dvrOptions(rampTable(0.05, 1.0, 2.0));
+  options.clipLo = glm::dvec3(20.3, 15.7, 18.2);
+  options.clipHi = glm::dvec3(70.6, 75.1, 66.45);
+  render::FrameImages chain, twoGathers;
+  {
+    const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001");
+    chain = renderSource(source, camera, w, h, options);
+  }
+  {
+    const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001;FCC_DVR_CHAIN=0");
+    twoGathers = renderSource(source, camera, w, h, options);
+  }
+  int visible = 0;
+  for (std::size_t i = 3; i < chain.rgba.size(); i += 4) visible += chain.rgba[i] > 0.05f;
+  EXPECT_GT(visible, w * h / 20) << "the clipped volume must show";
+  constexpr double kComponentTol = 1e-4;
+  const ImageDifference between = differenceOf(chain, twoGathers);
+  std::printf("clipped, chain against two gathers: %d of %zu components differ, by at most %.2e\n", between.differing,
+              chain.rgba.size(), between.worst);
+  EXPECT_LE(between.worst, kComponentTol);
+}
+
 // Another transfer function on a live renderer (the viewer's editor) gives the image a new renderer
 // with it gives, bit for bit; one whose zero entries did not move (other colours, other non-zero
 // opacities) uploads the table alone: no recomputation of the bricks needed.
