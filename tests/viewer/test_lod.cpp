@@ -360,6 +360,17 @@ TEST_F(Lod, DvrDrawsEachBrickFromItsLevel) {
   EXPECT_LT(biased.bricksUploaded, atZero.bricksUploaded);
   EXPECT_LT(meanDifference(coarserImage), 0.01) << "a coarser spline of the same field";
   EXPECT_NE(coarserImage.rgba, full.rgba);
+  // The walk's schedule changes no pixel through the pyramid either (a round that takes one cell
+  // against one that finds the next non-zero cell; RenderDvr.WalkSchedulesGiveTheSameImage covers the
+  // flat walk).
+  {
+    const test::ScopedEnv oneCell("FCCVDB_SHADER_DEFINES", "FCC_DVR_FIND_THEN_INTEGRATE=0");
+    render::Raycaster scheduled(opened.level0, lod);
+    scheduled.render(nearCamera(), kW, kH);
+    const render::FrameImages other = scheduled.readImages();
+    EXPECT_EQ(other.rgba, coarserImage.rgba) << "FCC_DVR_FIND_THEN_INTEGRATE=0 through the pyramid";
+    EXPECT_EQ(other.normalDepth, coarserImage.normalDepth) << "FCC_DVR_FIND_THEN_INTEGRATE=0 through the pyramid";
+  }
 
   // Shaded: a coarser level's gradient is in its own index space (2^k times level 0's): shading by it
   // must come out as level 0's would, close to the full-resolution shaded image.
