@@ -324,8 +324,7 @@ TEST_F(RenderDvr, MatchesTheCpuReferenceOnEveryLattice) {
 // takes it (the GPU's clamp to the table gives 0 for NaN, and a NaN range reads entry 0 alone), and
 // the image is the reference's (within kNanPsnrDb, tighter than the bound: both integrate the
 // same medium, 69 and 75 dB; NaN taken as the table's last entry gives 43 dB); no NaN reaches a
-// pixel. Two tables: the first entry transparent (the ball a hole), and
-// opaque enough to show the ball.
+// pixel. Two tables: the first entry transparent (the ball a hole), and opaque enough to show it.
 TEST_F(RenderDvr, NanSamplesAreTheTablesFirstEntryAsOnTheCpu) {
   constexpr double kNanPsnrDb = 60.0;
   TempDir dir;
