@@ -17,17 +17,6 @@
 #if FCC_WARP_PROBE
 #extension GL_NV_shader_thread_group : require
 #endif
-// Measurement knobs (docs/RENDERER.md): NVIDIA's compiler options by pragma (other drivers ignore
-// them): 1 no loop unrolling, 2 no if-conversion (branches kept as branches), 3 both.
-#ifndef FCC_NV_OPTIONS
-#define FCC_NV_OPTIONS 0
-#endif
-#if FCC_NV_OPTIONS == 1 || FCC_NV_OPTIONS == 3
-#pragma optionNV(unroll none)
-#endif
-#if FCC_NV_OPTIONS == 2 || FCC_NV_OPTIONS == 3
-#pragma optionNV(ifcvt none)
-#endif
 // Only the chosen reconstruction's header is compiled (in the march file): the ids, the spline's types
 // that pool.glsl gathers in, and the pool.
 #include "ReconIds.h"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Session 20, tenth call: NVIDIA's compiler options by pragma (FCC_NV_OPTIONS: 1 no unrolling, 2 no
 # if-conversion, 3 both): each one's occupancy (FCC_WARP_PROBE images in $OUT, engine DVR at 960x540)
-# and frame rate (ML 160^3x4 FCC viridis, engine CT inferno, 1080p), alternating with main. Run as
+# and frame rate (ML 160^3x4 FCC viridis, engine CT inferno, 1080p), alternating with main. The knob
+# is in commit d748c0a only (removed after: no effect). Run as
 #   ../shared/tools/device-bundle build/bin/fccvdb build/bin/fccvdb-guard ../shared/data/engine_256x256x128_uint8.raw.gz
 #   source .devbundle/env.sh && bash tools/device/measure_session20_call10.sh
 set -u
