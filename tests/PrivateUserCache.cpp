@@ -22,6 +22,9 @@ struct PrivateUserCache {
     }
     dir = pattern;
     ::setenv("FCCVDB_CACHE_DIR", dir.c_str(), 1);
+    // PoCL's compiled kernels: in the build tree, shared by the tests (a fresh folder each would
+    // compile every kernel again), not in the user's ~/.cache/pocl. A caller's own setting stays.
+    ::setenv("POCL_CACHE_DIR", FCC_TEST_POCL_CACHE_DIR, 0);
   }
   ~PrivateUserCache() {
     std::error_code ignored;

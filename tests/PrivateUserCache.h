@@ -3,7 +3,8 @@
 // points FCCVDB_CACHE_DIR at a fresh folder of its own in TMPDIR before main() runs and removes it at
 // exit. CTest runs each test case in its own process, so each test has its own cache folder, and the
 // `fccvdb` processes a test starts inherit it. A test that wants a folder of its own sets the variable
-// with a ScopedEnv, which puts the private folder back afterwards.
+// with a ScopedEnv, which puts the private folder back afterwards. PoCL's kernel cache (POCL_CACHE_DIR,
+// unless set already) goes to the build tree's pocl-cache, shared by the tests.
 #pragma once
 
 #include <cstdlib>
