@@ -43,7 +43,7 @@ uniform ivec2 uPoolGrid;
 uint gSlotBase;      // SSBO layouts: index of the slot's first element
 ivec3 gSlotTexel;    // texture layouts: texel of the slot's first element
 ivec3 gSlotOrigin;   // the packed voxel (vec4 layouts) or site (scalar layouts) of the first element
-ivec3 gSlotShift;    // texture layouts: gSlotTexel - gSlotOrigin (one value live instead of two)
+ivec3 gSlotShift;    // texture layouts: gSlotTexel - gSlotOrigin, from a site (packed voxel) to its texel
 
 void selectSlot(uint slot, ivec3 brick) {
   gSlotBase = slot * uint(kSlotTexels);
