@@ -22,4 +22,12 @@ inline double uploadSecondsWithin(double frameBudget, double lastRest, double mo
   return std::clamp(frameBudget * (1.0 - kUploadHeadroom) - lastRest, least, most);
 }
 
+// The frame budget of a display refreshing refreshHz times a second (GLFW's video mode; 0 or less:
+// unknown, taken as 60 Hz), within [1/500, 1/24] s: a reported rate outside that is taken at its bound.
+constexpr int kDefaultRefreshHz = 60;
+inline double frameBudgetForRefresh(int refreshHz) {
+  if (refreshHz <= 0) refreshHz = kDefaultRefreshHz;
+  return 1.0 / double(std::clamp(refreshHz, 24, 500));
+}
+
 }  // namespace fcc::render

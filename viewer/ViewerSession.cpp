@@ -374,7 +374,7 @@ void ViewerSession::frame(int fbWidth, int fbHeight, int windowHeight, int buffe
   // waiting for the CPU (on the H200, waiting first cost 0.1-0.2 ms a frame, 7-13% at 1080p). So
   // panel edits take effect from the next frame on, and the streaming line tells the last frame's.
   // Uploads within what the frame budget leaves after the last frame's other work (viewer/UploadBudget.h).
-  raycaster_.startStep(camera_, fbWidth, fbHeight, uploadSecondsWithin(kFrameBudgetSeconds, lastFrameRest_, kUploadSecondsPerFrame),
+  raycaster_.startStep(camera_, fbWidth, fbHeight, uploadSecondsWithin(frameBudgetSeconds_, lastFrameRest_, kUploadSecondsPerFrame),
                        covered);
   drawPanel(windowHeight);
   if (settings_.showHelp) drawHelp();

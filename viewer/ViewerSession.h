@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -24,6 +25,7 @@
 #include "Raycaster.h"
 #include "RedrawTracker.h"
 #include "TransferFunctionEditor.h"
+#include "UploadBudget.h"
 
 namespace fcc::render {
 
@@ -227,9 +229,13 @@ class ViewerSession {
   // The panel's width in window coordinates (0 while hidden), where the image is covered.
   float panelWidth() const { return settings_.showPanel ? panelWidth_ : 0.0f; }
   // The upload time budget per frame (seconds), so a frame's uploads do not stall the UI.
-  // At most: less when the last frame's other work leaves less of kFrameBudgetSeconds (viewer/UploadBudget.h).
+  // At most: less when the last frame's other work leaves less of the frame budget (viewer/UploadBudget.h).
   static constexpr double kUploadSecondsPerFrame = 0.004;
-  static constexpr double kFrameBudgetSeconds = 1.0 / 60.0;  // a 60 Hz display
+  // The display's frame time (ViewerWindow sets it from the monitor's refresh rate; 60 Hz until then).
+  void setFrameBudgetSeconds(double seconds) {
+    if (seconds > 0.0 && std::isfinite(seconds)) frameBudgetSeconds_ = seconds;
+  }
+  double frameBudgetSeconds() const { return frameBudgetSeconds_; }
   static constexpr float kPanelWidth = 330.0f;  // window units, before the font scale
 
  private:
@@ -305,6 +311,7 @@ class ViewerSession {
   std::string notice_;
   std::chrono::steady_clock::time_point noticeUntil_;
   double lastFrameRest_ = -1.0;  // the last frame()'s time besides its uploads, seconds (< 0: none yet)
+  double frameBudgetSeconds_ = frameBudgetForRefresh(0);
   std::string shownStatusLine_;
   bool shownSettled_ = false;
   std::chrono::steady_clock::time_point rateWindowStart_;

@@ -91,6 +91,14 @@ void ViewerWindow::setTitle(const std::string& title) { glfwSetWindowTitle(windo
 
 std::optional<OpenRequest> ViewerWindow::run(ViewerSession& session) {
   const bool automated = !options_.screenshot.empty();
+  // Interactively, uploads fit the display's frame time (the primary monitor's refresh rate; a window
+  // on another monitor is not followed). Automation keeps 60 Hz, so its frames do not depend on the
+  // machine's display.
+  if (!automated) {
+    GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+    const GLFWvidmode* mode = monitor ? glfwGetVideoMode(monitor) : nullptr;
+    session.setFrameBudgetSeconds(frameBudgetForRefresh(mode ? mode->refreshRate : 0));
+  }
   int frames = 0;
   while (!glfwWindowShouldClose(window_)) {
     // Idle and complete: wait for input instead of redrawing the same image.

@@ -42,5 +42,18 @@ TEST(UploadBudget, NeverMoreWhenTheRestGrows) {
   }
 }
 
+// The viewer's frame budget follows the display's refresh rate; GLFW's 0 (unknown) is 60 Hz, and a
+// reported rate outside [24, 500] Hz is taken at its bound.
+TEST(UploadBudget, FrameBudgetFollowsTheRefreshRate) {
+  EXPECT_DOUBLE_EQ(frameBudgetForRefresh(60), 1.0 / 60.0);
+  EXPECT_DOUBLE_EQ(frameBudgetForRefresh(144), 1.0 / 144.0);
+  EXPECT_DOUBLE_EQ(frameBudgetForRefresh(0), 1.0 / 60.0);
+  EXPECT_DOUBLE_EQ(frameBudgetForRefresh(-1), 1.0 / 60.0);
+  EXPECT_DOUBLE_EQ(frameBudgetForRefresh(1), 1.0 / 24.0);
+  EXPECT_DOUBLE_EQ(frameBudgetForRefresh(100000), 1.0 / 500.0);
+  // A faster display leaves less upload time for the same rest of the frame.
+  EXPECT_LT(uploadSecondsWithin(frameBudgetForRefresh(144), 0.004, kMost), uploadSecondsWithin(frameBudgetForRefresh(60), 0.004, kMost));
+}
+
 }  // namespace
 }  // namespace fcc::render
