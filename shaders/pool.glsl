@@ -43,7 +43,7 @@ uniform ivec2 uPoolGrid;
 uint gSlotBase;      // SSBO layouts: index of the slot's first element
 ivec3 gSlotTexel;    // texture layouts: texel of the slot's first element
 ivec3 gSlotOrigin;   // the packed voxel (vec4 layouts) or site (scalar layouts) of the first element
-ivec3 gSlotShift;    // texture layouts: gSlotTexel - gSlotOrigin, from a site (packed voxel) to its texel
+ivec3 gSlotShift;    // FCC and CC texture layouts: gSlotTexel - gSlotOrigin, a site's (packed voxel's) texel
 
 void selectSlot(uint slot, ivec3 brick) {
   gSlotBase = slot * uint(kSlotTexels);
@@ -58,7 +58,9 @@ void selectSlot(uint slot, ivec3 brick) {
 #else
   gSlotOrigin = brick * 8 - 1;
 #endif
+#if FCC_POOL_LAYOUT >= 2
   gSlotShift = gSlotTexel - gSlotOrigin;
+#endif
 }
 
 #if !defined(FCC_POOL_SCALAR)

@@ -8,9 +8,10 @@
 // few bricks beyond it), saves where it stopped, and resumes there in the next pass, so a frame whose
 // working set exceeds the pool completes in several passes. Headers are inlined by fcc_embed.
 #define FCC_GLSL 1
-// A measurement knob (docs/RENDERER.md), NVIDIA only: 1 writes each pixel's warp slot on its SM, the SM
-// and the slots an SM has (GL_NV_shader_thread_group) as its colour (opacity 1), so the image's largest
-// slot is the most warps an SM held at once (the occupancy the program's registers allow).
+// A measurement knob (docs/RENDERER.md), NVIDIA only: 1 writes the warp slot on its SM, the SM and the
+// slots an SM has (GL_NV_shader_thread_group) as the colour (opacity 1) of each pixel whose ray ends in
+// this pass (DVR; the isosurface where it hits), so the image's largest slot + 1 is the most warps an SM
+// held at once (the occupancy the program's registers allow).
 #ifndef FCC_WARP_PROBE
 #define FCC_WARP_PROBE 0
 #endif
@@ -296,8 +297,9 @@ DvrCellWalk dvrBeginBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float t
   return w;
 }
 
-// Steps the walk past its current cell, which the ray (direction d, invD = 1 / d) leaves at tExit
-// through the face normal to `axis`; true once the brick is crossed.
+// Steps the walk past its current cell, which the ray (direction d; invD its 1 / d, through a pyramid
+// level the level's scaled one, as dvrBeginBrick had it) leaves at tExit through the face normal to
+// `axis`; true once the brick is crossed.
 bool dvrStep(inout DvrCellWalk w, vec3 d, vec3 invD, float tExit, int axis) {
   if (tExit >= w.tb) return true;
   // Never backwards: a start cell clamped into the brick can have a face behind the ray.

@@ -14,6 +14,7 @@
 
 #include "io/ImageOutput.h"
 #include "sparse/Error.h"
+#include "viewer/UploadBudget.h"
 
 namespace fcc::render {
 namespace {
