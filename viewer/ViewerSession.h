@@ -235,7 +235,6 @@ class ViewerSession {
   void setFrameBudgetSeconds(double seconds) {
     if (seconds > 0.0 && std::isfinite(seconds)) frameBudgetSeconds_ = seconds;
   }
-  double frameBudgetSeconds() const { return frameBudgetSeconds_; }
   static constexpr float kPanelWidth = 330.0f;  // window units, before the font scale
 
  private:

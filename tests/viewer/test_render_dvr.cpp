@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <random>
@@ -105,6 +106,27 @@ TransferTable rampTable(double lo, double hi, double unitDistance, double cut = 
   if (cut < 1e30) opacity.insert(opacity.end(), {{cut, 0.6}, {cut, 0.0}});
   const TransferFunction tf({{lo, {0.1, 0.2, 0.9}}, {0.5 * (lo + hi), {0.9, 0.5, 0.1}}, {hi, {1.0, 1.0, 0.8}}}, opacity);
   return TransferTable(tf, lo, cut < 1e30 ? cut + 0.05 : hi, 256, OpticalScale{unitDistance, 1.0});
+}
+
+// The camera the Cartesian and BCC test grids (test::kDim^3 points, worldFromIndex theirs) are seen
+// from: at their centre, from above one corner.
+render::Camera cartesianTestCamera(const glm::dmat4& worldFromIndex) {
+  render::Camera camera;
+  camera.lookat = glm::dvec3(worldFromIndex * glm::dvec4(24.0, 24.0, 24.0, 1.0));
+  camera.eye = camera.lookat + glm::dvec3(30.0, 22.0, 36.0);
+  camera.fovYDegrees = 35.0;
+  return camera;
+}
+
+// The test grid's samples for the CPU reference: field(ijk) on [0, test::kDim)^3, the background
+// outside, `pad` sites of it around.
+LatticeSamples testBoxSamples(Lattice lattice, const std::function<float(const glm::ivec3&)>& field, int pad) {
+  LatticeSamples samples(lattice, glm::ivec3(-pad), glm::ivec3(test::kDim + 2 * pad), test::kBackground);
+  samples.fill([&](const glm::ivec3& ijk) {
+    const bool in = glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) && glm::all(glm::lessThan(ijk, glm::ivec3(test::kDim)));
+    return in ? field(ijk) : test::kBackground;
+  });
+  return samples;
 }
 
 // viewer/DvrTableGpu's sparse table, read as dvr.glsl's tfExtinctionOn reads it (two overlapping
@@ -241,22 +263,14 @@ TEST_F(RenderDvr, MatchesTheCpuReferenceOnEveryLattice) {
   test::writeCartesianFile(ccPath, test::wavy, scale, openvdb::Vec3d(-3.0, 1.0, 2.0));
   const io::CartesianBrickStore ccStore(ccPath);
   const glm::dmat4 ccIndexFromWorld = glm::inverse(ccStore.worldFromIndex());
-  render::Camera camera;
-  camera.lookat = glm::dvec3(ccStore.worldFromIndex() * glm::dvec4(24.0, 24.0, 24.0, 1.0));
-  camera.eye = camera.lookat + glm::dvec3(30.0, 22.0, 36.0);
-  camera.fovYDegrees = 35.0;
+  const render::Camera camera = cartesianTestCamera(ccStore.worldFromIndex());
   const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
   for (const char* name : {"trilinear", "tricubic", "type6"}) {
     SCOPED_TRACE(name);
     const ReconstructionInfo& info = findReconstruction(name);
     const render::CartesianBrickSource source(ccStore, info);
     const render::FrameImages gpu = renderSource(source, camera, w, h, dvrOptions(table));
-    const int pad = kBSplinePrefilterReach + 4;
-    LatticeSamples samples(Lattice::Cc, glm::ivec3(-pad), glm::ivec3(test::kDim + 2 * pad), test::kBackground);
-    samples.fill([](const glm::ivec3& ijk) {
-      const bool in = glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) && glm::all(glm::lessThan(ijk, glm::ivec3(test::kDim)));
-      return in ? test::wavy(ijk) : test::kBackground;
-    });
+    LatticeSamples samples = testBoxSamples(Lattice::Cc, test::wavy, kBSplinePrefilterReach + 4);
     samples.prefilter(info.prefilter);
     const CellBounds bounds(samples);
     const std::unique_ptr<Reconstruction> recon = makeReconstruction(name);
@@ -272,11 +286,7 @@ TEST_F(RenderDvr, MatchesTheCpuReferenceOnEveryLattice) {
   // CPU's Reconstruction::setView does from the same direction.
   const std::string bccPath = dir / "wavy_bcc.vdb";
   test::writeBccFile(bccPath, test::wavy, scale, openvdb::Vec3d(-3.0, 1.0, 2.0));
-  LatticeSamples bccSamples(Lattice::Bcc, glm::ivec3(-8), glm::ivec3(test::kDim + 16), test::kBackground);
-  bccSamples.fill([](const glm::ivec3& x) {
-    const bool in = glm::all(glm::greaterThanEqual(x, glm::ivec3(0))) && glm::all(glm::lessThan(x, glm::ivec3(test::kDim)));
-    return in ? test::wavy(x) : test::kBackground;
-  });
+  const LatticeSamples bccSamples = testBoxSamples(Lattice::Bcc, test::wavy, 8);
   const CellBounds bccBounds(bccSamples);
   for (const char* name : {"barycentric", "sheared-trilinear", "bilinear-spatial"}) {
     SCOPED_TRACE(name);
@@ -338,17 +348,10 @@ TEST_F(RenderDvr, NanSamplesAreTheTablesFirstEntryAsOnTheCpu) {
   test::writeCartesianFile(path, field, 0.5, openvdb::Vec3d(-3.0, 1.0, 2.0));
   const io::CartesianBrickStore ccStore(path);
   const glm::dmat4 indexFromWorld = glm::inverse(ccStore.worldFromIndex());
-  render::Camera camera;
-  camera.lookat = glm::dvec3(ccStore.worldFromIndex() * glm::dvec4(24.0, 24.0, 24.0, 1.0));
-  camera.eye = camera.lookat + glm::dvec3(30.0, 22.0, 36.0);
-  camera.fovYDegrees = 35.0;
+  const render::Camera camera = cartesianTestCamera(ccStore.worldFromIndex());
   const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
   const render::CartesianBrickSource source(ccStore, findReconstruction("trilinear"));
-  LatticeSamples samples(Lattice::Cc, glm::ivec3(-4), glm::ivec3(test::kDim + 8), test::kBackground);
-  samples.fill([&](const glm::ivec3& ijk) {
-    const bool in = glm::all(glm::greaterThanEqual(ijk, glm::ivec3(0))) && glm::all(glm::lessThan(ijk, glm::ivec3(test::kDim)));
-    return in ? field(ijk) : test::kBackground;
-  });
+  const LatticeSamples samples = testBoxSamples(Lattice::Cc, field, 4);
   const CellBounds bounds(samples);
   const std::unique_ptr<Reconstruction> recon = makeReconstruction("trilinear");
   DvrOptions reference;
@@ -632,6 +635,29 @@ TEST_F(RenderDvr, SubStepsFollowTheTransferFunctionsKinks) {
   EXPECT_GT(steps[1], 1.02 * cells[1]) << "the step must cost sub-steps where chords cross it";
 }
 
+// The chain of pieces (the default) against two gathers a cell (FCC_DVR_CHAIN=0), both with a tight
+// sub-step tolerance (FCC_DVR_TOLERANCE 1e-4, so that where the sub-steps lie matters little): how
+// their images differ, and the chain's image.
+struct ChainAgainstTwoGathers {
+  render::FrameImages chain;
+  ImageDifference difference;
+};
+ChainAgainstTwoGathers chainAgainstTwoGathers(const render::BrickSource& source, const render::Camera& camera, int w, int h,
+                                              const render::RenderOptions& options) {
+  ChainAgainstTwoGathers r;
+  render::FrameImages twoGathers;
+  {
+    const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001");
+    r.chain = renderSource(source, camera, w, h, options);
+  }
+  {
+    const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001;FCC_DVR_CHAIN=0");
+    twoGathers = renderSource(source, camera, w, h, options);
+  }
+  r.difference = differenceOf(r.chain, twoGathers);
+  return r;
+}
+
 // The FCC chain of pieces (march_fcc.glsl's integrateCell, docs/DVR.md "One gather a cell"): most
 // integrated cells gather only their exit piece (counted: FCC_DVR_COUNT=2's rounds that only gathered
 // an entry piece are few), and the image is session 18's two gathers a cell (FCC_DVR_CHAIN=0) up to
@@ -661,19 +687,11 @@ TEST_F(RenderDvr, ChainOfPiecesGathersOneACellAndGivesTheTwoGathersImage) {
   EXPECT_GT(entryOnly, 0.0) << "a brick's first cells start a chain";
   EXPECT_LT(entryOnly, 0.25 * cells) << "the chain is seldom broken";
 
-  render::FrameImages chain, twoGathers;
-  {
-    const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001");
-    chain = renderSource(source, camera, w, h, dvrOptions(table));
-  }
-  {
-    const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001;FCC_DVR_CHAIN=0");
-    twoGathers = renderSource(source, camera, w, h, dvrOptions(table));
-  }
+  const ChainAgainstTwoGathers compared = chainAgainstTwoGathers(source, camera, w, h, dvrOptions(table));
   constexpr double kComponentTol = 1e-4;
-  const ImageDifference between = differenceOf(chain, twoGathers);
+  const ImageDifference& between = compared.difference;
   std::printf("chain against two gathers: %d of %zu components differ, by at most %.2e\n", between.differing,
-              chain.rgba.size(), between.worst);
+              compared.chain.rgba.size(), between.worst);
   EXPECT_GT(between.differing, 0) << "the chain was never taken";
   EXPECT_LE(between.worst, kComponentTol);
 }
@@ -692,22 +710,14 @@ TEST_F(RenderDvr, ChainTakesChordsCutInsideACell) {
   render::RenderOptions options = dvrOptions(rampTable(0.05, 1.0, 2.0));
   options.clipLo = glm::dvec3(20.3, 15.7, 18.2);
   options.clipHi = glm::dvec3(70.6, 75.1, 66.45);
-  render::FrameImages chain, twoGathers;
-  {
-    const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001");
-    chain = renderSource(source, camera, w, h, options);
-  }
-  {
-    const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001;FCC_DVR_CHAIN=0");
-    twoGathers = renderSource(source, camera, w, h, options);
-  }
+  const ChainAgainstTwoGathers compared = chainAgainstTwoGathers(source, camera, w, h, options);
   int visible = 0;
-  for (std::size_t i = 3; i < chain.rgba.size(); i += 4) visible += chain.rgba[i] > 0.05f;
+  for (std::size_t i = 3; i < compared.chain.rgba.size(); i += 4) visible += compared.chain.rgba[i] > 0.05f;
   EXPECT_GT(visible, w * h / 20) << "the clipped volume must show";
   constexpr double kComponentTol = 1e-4;
-  const ImageDifference between = differenceOf(chain, twoGathers);
+  const ImageDifference& between = compared.difference;
   std::printf("clipped, chain against two gathers: %d of %zu components differ, by at most %.2e\n", between.differing,
-              chain.rgba.size(), between.worst);
+              compared.chain.rgba.size(), between.worst);
   EXPECT_GT(between.differing, 0) << "the chain was never taken";
   EXPECT_LE(between.worst, kComponentTol);
 }
