@@ -636,26 +636,27 @@ TEST_F(RenderDvr, SubStepsFollowTheTransferFunctionsKinks) {
 }
 
 // The chain of pieces (the default) against two gathers a cell (FCC_DVR_CHAIN=0), both with a tight
-// sub-step tolerance (FCC_DVR_TOLERANCE 1e-4, so that where the sub-steps lie matters little): how
-// their images differ, and the chain's image.
-struct ChainAgainstTwoGathers {
-  render::FrameImages chain;
-  ImageDifference difference;
-};
-ChainAgainstTwoGathers chainAgainstTwoGathers(const render::BrickSource& source, const render::Camera& camera, int w, int h,
-                                              const render::RenderOptions& options) {
-  ChainAgainstTwoGathers r;
-  render::FrameImages twoGathers;
+// sub-step tolerance (FCC_DVR_TOLERANCE 1e-4, so that where the sub-steps lie matters little): the
+// images differ (the chain is taken), every component by at most 1e-4 (float rounding). Returns the
+// chain's image.
+render::FrameImages expectChainIsTwoGathers(const render::BrickSource& source, const render::Camera& camera, int w, int h,
+                                            const render::RenderOptions& options, const char* what) {
+  constexpr double kComponentTol = 1e-4;
+  render::FrameImages chain, twoGathers;
   {
     const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001");
-    r.chain = renderSource(source, camera, w, h, options);
+    chain = renderSource(source, camera, w, h, options);
   }
   {
     const test::ScopedEnv tight("FCCVDB_SHADER_DEFINES", "FCC_DVR_TOLERANCE=0.0001;FCC_DVR_CHAIN=0");
     twoGathers = renderSource(source, camera, w, h, options);
   }
-  r.difference = differenceOf(r.chain, twoGathers);
-  return r;
+  const ImageDifference between = differenceOf(chain, twoGathers);
+  std::printf("%s, chain against two gathers: %d of %zu components differ, by at most %.2e\n", what, between.differing,
+              chain.rgba.size(), between.worst);
+  EXPECT_GT(between.differing, 0) << what << ": the chain was never taken";
+  EXPECT_LE(between.worst, kComponentTol) << what;
+  return chain;
 }
 
 // The FCC chain of pieces (march_fcc.glsl's integrateCell, docs/DVR.md "One gather a cell"): most
@@ -687,13 +688,7 @@ TEST_F(RenderDvr, ChainOfPiecesGathersOneACellAndGivesTheTwoGathersImage) {
   EXPECT_GT(entryOnly, 0.0) << "a brick's first cells start a chain";
   EXPECT_LT(entryOnly, 0.25 * cells) << "the chain is seldom broken";
 
-  const ChainAgainstTwoGathers compared = chainAgainstTwoGathers(source, camera, w, h, dvrOptions(table));
-  constexpr double kComponentTol = 1e-4;
-  const ImageDifference& between = compared.difference;
-  std::printf("chain against two gathers: %d of %zu components differ, by at most %.2e\n", between.differing,
-              compared.chain.rgba.size(), between.worst);
-  EXPECT_GT(between.differing, 0) << "the chain was never taken";
-  EXPECT_LE(between.worst, kComponentTol);
+  expectChainIsTwoGathers(source, camera, w, h, dvrOptions(table), "unclipped");
 }
 
 // Chords cut short inside a cell (rays start and stop at a clipping box's faces, which lie inside
@@ -710,16 +705,10 @@ TEST_F(RenderDvr, ChainTakesChordsCutInsideACell) {
   render::RenderOptions options = dvrOptions(rampTable(0.05, 1.0, 2.0));
   options.clipLo = glm::dvec3(20.3, 15.7, 18.2);
   options.clipHi = glm::dvec3(70.6, 75.1, 66.45);
-  const ChainAgainstTwoGathers compared = chainAgainstTwoGathers(source, camera, w, h, options);
+  const render::FrameImages chain = expectChainIsTwoGathers(source, camera, w, h, options, "clipped");
   int visible = 0;
-  for (std::size_t i = 3; i < compared.chain.rgba.size(); i += 4) visible += compared.chain.rgba[i] > 0.05f;
+  for (std::size_t i = 3; i < chain.rgba.size(); i += 4) visible += chain.rgba[i] > 0.05f;
   EXPECT_GT(visible, w * h / 20) << "the clipped volume must show";
-  constexpr double kComponentTol = 1e-4;
-  const ImageDifference& between = compared.difference;
-  std::printf("clipped, chain against two gathers: %d of %zu components differ, by at most %.2e\n", between.differing,
-              compared.chain.rgba.size(), between.worst);
-  EXPECT_GT(between.differing, 0) << "the chain was never taken";
-  EXPECT_LE(between.worst, kComponentTol);
 }
 
 // Another transfer function on a live renderer (the viewer's editor) gives the image a new renderer
