@@ -1,6 +1,8 @@
 #include "GlProgram.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <fstream>
 #include <utility>
 
 namespace fcc {
@@ -100,6 +102,15 @@ GLuint linkStages(const std::vector<GLuint>& shaders, const std::string& what) {
 }  // namespace
 
 GlProgram GlProgram::compute(std::string_view source, std::string_view name) {
+  // FCCVDB_DUMP_SHADERS=DIR: each compute program's whole source, as compiled, to DIR/N_NAME (for
+  // tools/shader-stats, which asks a Vulkan driver what the program compiles to; GL does not say).
+  if (const char* dir = std::getenv("FCCVDB_DUMP_SHADERS")) {
+    static int dumped = 0;
+    std::string base(name);
+    for (char& c : base)
+      if (c == '/') c = '_';
+    std::ofstream(std::string(dir) + "/" + std::to_string(dumped++) + "_" + base) << source;
+  }
   GlProgram p;
   p.name_ = std::string(name);
   p.id_ = linkStages({compileStage(GL_COMPUTE_SHADER, "compute", source, p.name_)}, "compute shader '" + p.name_ + "'");
