@@ -278,20 +278,6 @@ struct DvrCellWalk {
   bool done;
 };
 
-// A measurement knob: 1, the walk's state waits in shared memory while a cell is integrated (so that
-// its registers are free for the integration's); 2, the flat walk's loop state too.
-#ifndef FCC_DVR_STASH
-#define FCC_DVR_STASH 0
-#endif
-#ifndef FCC_DVR_STASH_FENCE
-#define FCC_DVR_STASH_FENCE 0
-#endif
-#if FCC_DVR_STASH
-const uint kStashStride = uint(FCC_GROUP_X * FCC_GROUP_Y);
-shared vec4 gStashF[3 * kStashStride];
-shared ivec4 gStashI[3 * kStashStride];
-#endif
-
 // The walk of brick b (resident in `slot`) between ta and tb; selects the slot for coefficientAt.
 DvrCellWalk dvrBeginBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float tb) {
   selectSlot(slot, b);
@@ -376,30 +362,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, vec3 invD, inout DvrState st)
 #endif
   gDvrExitAxis = foundAxis;
   gDvrBrickCellLo = w.cellLo;
-#if FCC_DVR_STASH
-  uint lid = gl_LocalInvocationIndex;
-  gStashF[lid] = vec4(w.tMax, w.tCell);
-  gStashF[kStashStride + lid] = vec4(w.tb, foundT1, 0.0, 0.0);
-  gStashI[lid] = ivec4(w.cell, int(w.boundsBase));
-  gStashI[kStashStride + lid] = ivec4(w.cellLo, foundAxis | (w.done ? 4 : 0));
-#endif
   bool stop = integrateCell(found, o, d, foundT0, foundT1, st);
-#if FCC_DVR_STASH
-#if FCC_DVR_STASH_FENCE
-  memoryBarrierShared();  // so that the compiler reloads rather than keeps the values in registers
-#endif
-  vec4 f0 = gStashF[lid], f1 = gStashF[kStashStride + lid];
-  ivec4 i0 = gStashI[lid], i1 = gStashI[kStashStride + lid];
-  w.tMax = f0.xyz;
-  w.tCell = f0.w;
-  w.tb = f1.x;
-  foundT1 = f1.y;
-  w.cell = i0.xyz;
-  w.boundsBase = uint(i0.w);
-  w.cellLo = i1.xyz;
-  foundAxis = i1.w & 3;
-  w.done = (i1.w & 4) != 0;
-#endif
 #endif
 #if FCC_DVR_COUNT == 2
   if (gDvrCarry.state == kDvrCarryEntry) st.color.b += 1.0;
@@ -705,27 +668,7 @@ void main() {
   while (t < tEnd && guard < 4096) {
 #if FCC_DVR_FLAT
     if (inBrick) {
-#if FCC_DVR_STASH >= 2
-      gStashF[2u * kStashStride + gl_LocalInvocationIndex] = vec4(t, tEnd, 0.0, 0.0);
-      gStashI[2u * kStashStride + gl_LocalInvocationIndex] = ivec4(guard, rounds, lookahead, stopped ? 1 : 0);
-      t = 0.0;
-      tEnd = 0.0;
-#endif
-      bool stopRay = dvrRound(walk, o, d, invD, st);
-#if FCC_DVR_STASH >= 2
-#if FCC_DVR_STASH_FENCE
-      memoryBarrierShared();
-#endif
-      vec4 lf = gStashF[2u * kStashStride + gl_LocalInvocationIndex];
-      ivec4 li = gStashI[2u * kStashStride + gl_LocalInvocationIndex];
-      t = lf.x;
-      tEnd = lf.y;
-      guard = li.x;
-      rounds = li.y;
-      lookahead = li.z;
-      stopped = li.w != 0;
-#endif
-      if (stopRay) {
+      if (dvrRound(walk, o, d, invD, st)) {
         found = true;  // opaque enough: nothing behind is integrated or requested
         break;
       }

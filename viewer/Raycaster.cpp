@@ -122,36 +122,18 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source.reconstruction().deviceId) + "\n";
   const bool dvr = options.mode == RenderMode::Dvr;
   if (dvr && !options.transfer) throw ValueError("direct volume rendering needs a transfer function");
-  const std::string modeDefines =
-      dvr ? std::string("#define FCC_MODE_DVR 1\n") + (options.dvrShading ? "#define FCC_DVR_SHADING 1\n" : "") +
-                (options.dvrGatherCentral ? "#define FCC_DVR_GATHER_CENTRAL 1\n" : "")
-          : "";
-  const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
-                                   "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
-  raycastDefines_ = defines + modeDefines + groupDefines + shaderDefinesFromEnvironment();
-  program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_), "shaders/raycast.comp");
+  buildRaycastProgram();
   // A CPU rasteriser gets the cheap coefficient-hull cell bounds, a GPU the BB-coefficient ones
   // (both conservative; the image is the same, only the work skipped differs).
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   if (!(renderer && std::string(renderer).find("llvmpipe") != std::string::npos)) defines += "#define FCC_SLOT_BOUNDS_BB 1\n";
-  uniforms_ = uniformsOf(program_, dvr);
   slotBoundsProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/slot_bounds.comp"), defines),
                                           "shaders/slot_bounds.comp");
   slotBoundsPassUniform_ = slotBoundsProgram_.uniformLocation("uPass");
   pageUpdateProgram_ = GlProgram::compute(embedded::shaders("shaders/page_update.comp"), "shaders/page_update.comp");
   pageUpdateCountUniform_ = pageUpdateProgram_.uniformLocation("uCount");
-  pool_->setUniforms(program_);
   pool_->setUniforms(slotBoundsProgram_);
   if (levelSources_.size() > 1) {
-    // The levels' variant, beside the full-resolution program (which stays the same text and speed).
-    lodProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_ + "#define FCC_LOD 1\n"),
-                                     "shaders/raycast.comp (level of detail)");
-    lodUniforms_ = uniformsOf(lodProgram_, dvr, true);
-    const auto at = [this](const char* name) { return lodProgram_.uniformLocation(name); };
-    lodExtra_ = LodUniforms{at("uLevelCount"), at("uLevelBrickMin"), at("uLevelBrickDims"), at("uLevelNodeDims"),
-                            at("uLevelPageOffset"), at("uLevelNodeOffset"), at("uLevelScale"), at("uLevelSize"),
-                            at("uLodBias"), at("uPixelAngle")};
-    pool_->setUniforms(lodProgram_);
     levelHits_ = std::make_unique<GlBuffer>(kMaxLodLevels * sizeof(uint32_t));
     levelHits_->clear();
     slotDrawn_ = std::make_unique<GlBuffer>(slots * sizeof(uint32_t));
@@ -205,6 +187,50 @@ Raycaster::Uniforms Raycaster::uniformsOf(const GlProgram& program, bool lenient
                   glGetUniformLocation(program.id(), "uBccParams")};  // BCC programs only (-1 elsewhere)
 }
 
+void Raycaster::buildRaycastProgram() {
+  const RenderOptions& options = options_;
+  const bool dvr = options.mode == RenderMode::Dvr;
+  const std::string modeDefines =
+      dvr ? std::string("#define FCC_MODE_DVR 1\n") + (options.dvrShading ? "#define FCC_DVR_SHADING 1\n" : "") +
+                (options.dvrGatherCentral ? "#define FCC_DVR_GATHER_CENTRAL 1\n" : "")
+          : "";
+  const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
+                                   "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
+  raycastDefines_ = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source_.reconstruction().deviceId) + "\n" +
+                    modeDefines + groupDefines + shaderDefinesFromEnvironment();
+  program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_), "shaders/raycast.comp");
+  uniforms_ = uniformsOf(program_, dvr);
+  pool_->setUniforms(program_);
+  if (levelSources_.size() > 1) {
+    // The levels' variant, beside the full-resolution program (which stays the same text and speed).
+    lodProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_ + "#define FCC_LOD 1\n"),
+                                     "shaders/raycast.comp (level of detail)");
+    lodUniforms_ = uniformsOf(lodProgram_, dvr, true);
+    const auto at = [this](const char* name) { return lodProgram_.uniformLocation(name); };
+    lodExtra_ = LodUniforms{at("uLevelCount"), at("uLevelBrickMin"), at("uLevelBrickDims"), at("uLevelNodeDims"),
+                            at("uLevelPageOffset"), at("uLevelNodeOffset"), at("uLevelScale"), at("uLevelSize"),
+                            at("uLodBias"), at("uPixelAngle")};
+    pool_->setUniforms(lodProgram_);
+  }
+}
+
+void Raycaster::setDvrShading(bool on) {
+  if (options_.mode != RenderMode::Dvr) throw Error("renderer: gradient shading outside DVR mode");
+  if (options_.dvrShading == on) return;
+  options_.dvrShading = on;
+  buildRaycastProgram();  // FCC_DVR_SHADING is the program's: the unshaded one stays as fast as it was
+  setTransferUniforms();
+  ++settings_;
+}
+
+void Raycaster::setTerminationOpacity(float opacity) {
+  if (!(opacity > 0.0f && opacity <= 1.0f))
+    throw ValueError("stop opacity " + std::to_string(opacity) + ": valid are (0, 1]");
+  options_.terminationOpacity = opacity;
+  if (dvrTable_) setTransferUniforms();  // uStopTransmittance; the compositing variant sets its own every pass
+  ++settings_;
+}
+
 void Raycaster::buildSurfacesProgram() {
   if (surfacesProgram_.id() != 0) return;
   surfacesProgram_ = GlProgram::compute(
@@ -220,6 +246,10 @@ void Raycaster::buildSurfacesProgram() {
 
 void Raycaster::uploadTransfer() {
   dvrTable_->upload(*options_.transfer);
+  setTransferUniforms();
+}
+
+void Raycaster::setTransferUniforms() {
   dvrTable_->setUniforms(program_, 1.0f - options_.terminationOpacity);
   if (lodProgram_.id() != 0) dvrTable_->setUniforms(lodProgram_, 1.0f - options_.terminationOpacity);
 }

@@ -285,11 +285,16 @@ class Raycaster {
   void setFiniteDifferenceNormals(bool on);
   void setSurfaceColor(const glm::vec3& rgb);
   void setLightInCamera(const glm::vec3& direction);
+  // DVR: gradient shading on or off (builds the raycasting programs again), and the opacity at which
+  // a ray stops, in (0, 1] (ValueError otherwise; nothing changes).
+  void setDvrShading(bool on);
+  void setTerminationOpacity(float opacity);
   void setCountBricksDrawn(bool on) { options_.countBricksDrawn = on; }
 
  private:
   Raycaster(std::unique_ptr<BrickSource> owned, const RenderOptions& options);  // keeps `owned`
   void restartRays(int width, int height);
+  void buildRaycastProgram();  // program_ (and lodProgram_ with levels) from options_, and their uniforms
   bool lodDrawing() const;  // the LOD program draws the frames (levels, iso mode, one opaque surface)
   int passLookahead() const;  // options_.lookahead, or what kLookaheadAuto means for this frame
   void requestCoarsest();   // the coarsest level's missing bricks, before anything else
@@ -299,6 +304,7 @@ class Raycaster {
   void noteView(const CameraFrame& frame, int width, int height);  // a new view forgets thrashBias_
   void updateNeeded();  // the bricks the isovalue or the transfer function needs, and the page table
   void uploadTransfer();  // DVR: the table, its zero-prefix and bin maxima
+  void setTransferUniforms();  // DVR: the programs' table uniforms and stop transmittance
   struct PassResult {
     uint32_t requested = 0;  // bricks the pass's rays asked for
     double gpuSeconds = 0.0;

@@ -81,6 +81,7 @@ void ViewerSession::drawPanel(int windowHeight) {
   ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);  // room for the labels
 
   layout_.isoLabel = layout_.isoSlider = layout_.transferCombo = layout_.densitySlider = {};
+  layout_.unitDistanceSlider = layout_.stopOpacitySlider = layout_.shadingCheckbox = {};
   layout_.colorMapCombo = layout_.transferPathField = layout_.transferLoad = layout_.transferSave = {};
   layout_.opacityPoints.clear();
   if (dvr()) {
@@ -116,6 +117,10 @@ void ViewerSession::drawPanel(int windowHeight) {
   if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("empty-space skipping", &settings_.skipEmpty);
     if (!dvr()) ImGui::Checkbox("finite-difference normals", &settings_.finiteDifferenceNormals);
+    if (dvr()) {
+      ImGui::Checkbox("gradient shading", &settings_.dvrShading);
+      layout_.shadingCheckbox = lastItemRect();
+    }
     row("mode", dvr() ? "direct volume rendering" : "isosurface");
     drawReconstructionChoice();
     row("brick layout", brickLayoutName(*raycaster_.options().layout));
@@ -242,9 +247,12 @@ void ViewerSession::drawTransferSection() {
   ImGui::SliderFloat("density scale", &settings_.densityScale, 0.01f, 100.0f, "%.3g",
                      ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
   layout_.densitySlider = lastItemRect();
-  char unit[48];
-  std::snprintf(unit, sizeof unit, "%.4g world units", dvr_->scale.unitDistance);
-  row("unit distance", unit);
+  // An opacity in the function is that of a segment this long (world units): logarithmic too.
+  ImGui::SliderFloat("unit distance", &settings_.unitDistance, 0.01f * initialUnitDistance_, 100.0f * initialUnitDistance_,
+                     "%.4g", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
+  layout_.unitDistanceSlider = lastItemRect();
+  ImGui::SliderFloat("stop opacity", &settings_.stopOpacity, 0.5f, 1.0f, "%.3f", ImGuiSliderFlags_NoRoundToFormat);
+  layout_.stopOpacitySlider = lastItemRect();
   drawHistogram();  // with the opacity curve and the editor's points over it
   drawTransferFiles();  // viewer/PanelTransfer.cpp
 }

@@ -76,9 +76,12 @@ void ViewerSession::init(const RenderOptions& options) {
   settings_.clipLo = options.clipLo;  // +-1e30 (the default): no box
   settings_.clipHi = options.clipHi;
   settings_.reconstruction = std::string(raycaster_.source().reconstruction().name);
+  settings_.stopOpacity = options.terminationOpacity;
+  settings_.dvrShading = options.dvrShading;
   if (dvr_) {
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
+    settings_.unitDistance = appliedUnitDistance_ = initialUnitDistance_ = float(dvr_->scale.unitDistance);
     // Points may go anywhere on the histogram's axis (the samples' range), or the source's values
     // without one; the editor widens that to the function's own points.
     const bool axis = !summary_.histogram.empty() && summary_.histogramMax > summary_.histogramMin;
@@ -111,6 +114,7 @@ void ViewerSession::restoreView(const SessionView& view) {
     dvr_ = view.dvr;
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
+    settings_.unitDistance = appliedUnitDistance_ = float(dvr_->scale.unitDistance);
     raycaster_.setTransfer(dvr_->table());
     editor_->reset(dvr_->function);
     appliedRevision_ = baseRevision_ = editor_->revision();
@@ -263,8 +267,20 @@ bool ViewerSession::applySettings() {
   const RenderOptions o = raycaster_.options();
   const std::vector<Isosurface> surfaces = raycaster_.surfaces();
   const std::shared_ptr<const TransferTable> transfer = o.transfer;
-  if (dvr_) applyTransfer();
-  else if (surfacesOfSettings() != surfaces) raycaster_.setSurfaces(surfacesOfSettings());
+  if (dvr_) {
+    applyTransfer();
+    if (settings_.dvrShading != o.dvrShading) raycaster_.setDvrShading(settings_.dvrShading);
+    if (settings_.stopOpacity != o.terminationOpacity) {
+      try {
+        raycaster_.setTerminationOpacity(settings_.stopOpacity);
+      } catch (const Error& e) {  // typed out of range (ctrl + click): the setting goes back
+        settings_.stopOpacity = o.terminationOpacity;
+        notify(e.what());
+      }
+    }
+  } else if (surfacesOfSettings() != surfaces) {
+    raycaster_.setSurfaces(surfacesOfSettings());
+  }
   if (settings_.skipEmpty != o.skipEmpty) raycaster_.setSkipEmpty(settings_.skipEmpty);
   if (settings_.finiteDifferenceNormals != o.finiteDifferenceNormals)
     raycaster_.setFiniteDifferenceNormals(settings_.finiteDifferenceNormals);
@@ -273,7 +289,8 @@ bool ViewerSession::applySettings() {
   const RenderOptions& now = raycaster_.options();
   return raycaster_.surfaces() != surfaces || now.transfer != transfer || now.skipEmpty != o.skipEmpty ||
          now.finiteDifferenceNormals != o.finiteDifferenceNormals || now.surfaceColor != o.surfaceColor ||
-         now.lightInCamera != o.lightInCamera || now.clipLo != o.clipLo || now.clipHi != o.clipHi;
+         now.lightInCamera != o.lightInCamera || now.clipLo != o.clipLo || now.clipHi != o.clipHi ||
+         now.dvrShading != o.dvrShading || now.terminationOpacity != o.terminationOpacity;
 }
 
 std::vector<Isosurface> ViewerSession::surfacesOfSettings() const {
@@ -292,11 +309,12 @@ void ViewerSession::applyTransfer() {
   // points and colours, when edited, are the function.
   const bool newBase = settings_.transferFunction != dvr_->spec || std::exchange(reloadBase_, false);
   const bool edited = editor_->revision() != appliedRevision_;
-  if (!newBase && !edited && settings_.densityScale == appliedDensityScale_) return;
+  if (!newBase && !edited && settings_.densityScale == appliedDensityScale_ && settings_.unitDistance == appliedUnitDistance_)
+    return;
   try {
     const std::string& name = settings_.transferFunction;
     const TransferFunction function = newBase ? baseFunction(name) : editor_->function(dvr_->function.name());
-    DvrTransfer next{name, function, OpticalScale{dvr_->scale.unitDistance, double(settings_.densityScale)}};
+    DvrTransfer next{name, function, OpticalScale{double(settings_.unitDistance), double(settings_.densityScale)}};
     // Validates the scale first: a throw changes nothing. Only the table is uploaded (and the bricks
     // needed recomputed when its zero entries moved): resident bricks stay.
     raycaster_.setTransfer(next.table());
@@ -308,9 +326,11 @@ void ViewerSession::applyTransfer() {
     }
     appliedRevision_ = editor_->revision();
     appliedDensityScale_ = settings_.densityScale;
+    appliedUnitDistance_ = settings_.unitDistance;
   } catch (const Error& e) {  // a typed density scale below 0, say: the settings go back
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_;
+    settings_.unitDistance = appliedUnitDistance_;
     if (edited) {
       editor_->reset(dvr_->function);
       appliedRevision_ = editor_->revision();

@@ -46,6 +46,12 @@ struct ViewerSettings {
   // named, a file) and the density scale; the GPU's table is rebuilt when either changes.
   std::string transferFunction;
   float densityScale = 1.0f;
+  // The unit distance (world units; the panel's slider spans a hundredth to a hundred times the one
+  // the session started with), the opacity at which a ray stops, and gradient shading (which builds
+  // the raycasting program again): RenderOptions' terminationOpacity and dvrShading.
+  float unitDistance = 1.0f;
+  float stopOpacity = 0.995f;
+  bool dvrShading = false;
   // The clipping box, world space (RenderOptions::clipLo/clipHi); the panel's sliders span the data.
   glm::dvec3 clipLo{-1e30}, clipHi{1e30};
   // The reconstruction the source is rendered with (its name; the panel's combo for a Cartesian grid).
@@ -66,6 +72,7 @@ struct ImRectF {
 struct PanelLayout {
   ImRectF isoLabel, isoSlider, histogram, backgroundSwatch;
   ImRectF transferCombo, densitySlider;  // DVR mode's (empty in isosurface mode, as the iso ones in DVR)
+  ImRectF unitDistanceSlider, stopOpacitySlider, shadingCheckbox;  // DVR mode's too
   // DVR's editor (viewer/PanelTransfer.cpp): the colour-map combo, the file field and its buttons, and
   // a small square around each opacity point drawn over the histogram (the editor's order).
   ImRectF colorMapCombo, transferPathField, transferLoad, transferSave;
@@ -221,6 +228,7 @@ class ViewerSession {
   ViewerSettings& settings() { return settings_; }
   const ViewerStats& stats() const { return stats_; }
   bool dvr() const { return raycaster_.options().mode == RenderMode::Dvr; }
+  const RenderOptions& renderOptions() const { return raycaster_.options(); }  // as the renderer has them now
   // The transfer function in use (DVR mode; null otherwise): as of the last frame's settings.
   const DvrTransfer* transfer() const { return dvr_ ? &*dvr_ : nullptr; }
   const BrickSource& source() const { return raycaster_.source(); }
@@ -273,6 +281,8 @@ class ViewerSession {
   Raycaster raycaster_;
   std::optional<DvrTransfer> dvr_, initialDvr_;  // in use; what the session opened with (--tf)
   float appliedDensityScale_ = 1.0f;
+  float appliedUnitDistance_ = 1.0f;
+  float initialUnitDistance_ = 1.0f;  // the unit distance slider's centre
   // The editor over dvr_'s function, the revision the table was last built from, the point a drag
   // holds (-1: none), functions loaded from the panel (spec, fitted function) and the colour maps
   // offered (name, colours in data values: the presets fitted to the source, then files' maps).

@@ -713,8 +713,9 @@ TEST_F(RenderDvr, ChainTakesChordsCutInsideACell) {
 
 // Another transfer function on a live renderer (the viewer's editor) gives the image a new renderer
 // with it gives, bit for bit; one whose zero entries did not move (other colours, other non-zero
-// opacities) uploads the table alone: no recomputation of the bricks needed.
-TEST_F(RenderDvr, NewTransferFunctionOnALiveRendererIsItsImage) {
+// opacities) uploads the table alone: no recomputation of the bricks needed. So do gradient shading
+// and the stop opacity changed on it.
+TEST_F(RenderDvr, TransferShadingAndStopChangedOnALiveRendererGiveAFreshOnesImage) {
   TempDir dir;
   const std::string path = test::writeSmallBlobs(dir);
   const render::Camera camera = test::smallBlobsCamera();
@@ -743,6 +744,24 @@ TEST_F(RenderDvr, NewTransferFunctionOnALiveRendererIsItsImage) {
   EXPECT_EQ(secondImage.rgba, renderSource(source, camera, w, h, dvrOptions(second)).rgba);
   live.setTransfer(std::make_shared<const TransferTable>(third));
   EXPECT_GT(live.neededUpdates(), updates) << "zero entries moved: the bricks needed must be recomputed";
+  live.render(camera, w, h);
+  EXPECT_EQ(live.readImages().rgba, renderSource(source, camera, w, h, dvrOptions(third)).rgba);
+
+  // The viewer's other DVR settings on a live renderer: gradient shading (the programs built again)
+  // and the stop opacity give a fresh renderer's image, and back off, the first again.
+  render::RenderOptions shadedHalf = dvrOptions(third);
+  shadedHalf.dvrShading = true;
+  shadedHalf.terminationOpacity = 0.5f;
+  live.setDvrShading(true);
+  live.setTerminationOpacity(0.5f);
+  live.render(camera, w, h);
+  const render::FrameImages liveShadedHalf = live.readImages();
+  EXPECT_NE(liveShadedHalf.rgba, renderSource(source, camera, w, h, dvrOptions(third)).rgba);
+  EXPECT_EQ(liveShadedHalf.rgba, renderSource(source, camera, w, h, shadedHalf).rgba);
+  EXPECT_THROW(live.setTerminationOpacity(0.0f), ValueError);
+  EXPECT_EQ(live.options().terminationOpacity, 0.5f) << "a refused stop opacity changes nothing";
+  live.setDvrShading(false);
+  live.setTerminationOpacity(dvrOptions(third).terminationOpacity);
   live.render(camera, w, h);
   EXPECT_EQ(live.readImages().rgba, renderSource(source, camera, w, h, dvrOptions(third)).rgba);
 }

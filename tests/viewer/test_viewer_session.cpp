@@ -731,6 +731,58 @@ TEST_F(ViewerSession, DvrShowsTheVolumeAndThePanelChangesTheTransferFunction) {
   EXPECT_NE(h.session->notice().find("density scale"), std::string::npos) << h.session->notice();
 }
 
+// DVR's panel: the unit distance (the table rebuilt: a longer one is more transparent), the opacity at
+// which rays stop and gradient shading (the program built again) each change the image and reach the
+// renderer; set back, each gives the first image back bit for bit; a stop opacity out of range goes back,
+// with a notice.
+TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), "grayscale");
+  ASSERT_TRUE(h.settle());
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  const render::PanelLayout& layout = h.session->panelLayout();
+  EXPECT_FALSE(layout.unitDistanceSlider.empty());
+  EXPECT_FALSE(layout.stopOpacitySlider.empty());
+  EXPECT_FALSE(layout.shadingCheckbox.empty());
+  const std::vector<unsigned char> first = h.pixels();
+  const float unit = h.session->settings().unitDistance;
+  EXPECT_EQ(unit, float(h.session->transfer()->scale.unitDistance));
+
+  h.session->settings().unitDistance = 4.0f * unit;
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(h.session->transfer()->scale.unitDistance, double(4.0f * unit));
+  const std::vector<unsigned char> longer = h.pixels();
+  EXPECT_GT(differingChannels(first, longer, panel), 0) << "another unit distance must change the image";
+  h.session->settings().unitDistance = unit;
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(differingChannels(first, h.pixels(), panel), 0) << "the first unit distance gives the first image";
+
+  h.session->settings().stopOpacity = 0.5f;
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(h.session->renderOptions().terminationOpacity, 0.5f);
+  const std::vector<unsigned char> half = h.pixels();
+  EXPECT_GT(differingChannels(first, half, panel), 0) << "rays stopping at half opacity must change the image";
+  h.session->settings().stopOpacity = 0.995f;
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(differingChannels(first, h.pixels(), panel), 0) << "the first stop opacity gives the first image";
+
+  ASSERT_FALSE(h.session->renderOptions().dvrShading);
+  h.session->settings().dvrShading = true;
+  ASSERT_TRUE(h.settle());
+  EXPECT_TRUE(h.session->renderOptions().dvrShading);
+  EXPECT_GT(differingChannels(first, h.pixels(), panel), 0) << "shading must change the image";
+  h.session->settings().dvrShading = false;
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(differingChannels(first, h.pixels(), panel), 0) << "unshaded again: the first image";
+
+  // Last: the notice is drawn over the image.
+  h.session->settings().stopOpacity = 2.0f;  // as ctrl + click could type it
+  h.frame();
+  EXPECT_EQ(h.session->settings().stopOpacity, 0.995f) << "a refused stop opacity goes back";
+  EXPECT_EQ(h.session->renderOptions().terminationOpacity, 0.995f);
+  EXPECT_NE(h.session->notice().find("stop opacity"), std::string::npos) << h.session->notice();
+}
+
 // The transfer table the session's renderer uses, as uploaded.
 std::vector<glm::vec4> tableInUse(const SessionHarness& h) { return h.session->transfer()->table()->entries(); }
 
