@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -25,6 +28,7 @@
 #include "viewer/BccBrickSource.h"
 #include "viewer/DvrTableGpu.h"
 #include "viewer/FccBrickSource.h"
+#include "viewer/GlProgram.h"
 #include "viewer/ProjectedTetrahedra.h"
 
 namespace fcc {
@@ -764,6 +768,40 @@ TEST_F(RenderDvr, TransferShadingAndStopChangedOnALiveRendererGiveAFreshOnesImag
   live.setTerminationOpacity(dvrOptions(third).terminationOpacity);
   live.render(camera, w, h);
   EXPECT_EQ(live.readImages().rgba, renderSource(source, camera, w, h, dvrOptions(third)).rgba);
+}
+
+// FCCVDB_DUMP_SHADERS (tools/shader-stats): each compute program's whole source as compiled, one file
+// a program; the raycaster's DVR program there compiles again as it is, and shading toggled on a live
+// renderer writes the program built again, with its define.
+TEST_F(RenderDvr, DumpedProgramsAreTheSourcesAsCompiled) {
+  TempDir dir, dump;
+  const std::string path = test::writeSmallBlobs(dir);
+  const io::BrickStore store(path);
+  const render::FccBrickSource source(store, std::size_t(64) << 20);
+  const std::string dumpDir = dump.path.string();
+  const test::ScopedEnv dumping("FCCVDB_DUMP_SHADERS", dumpDir.c_str());
+  render::Raycaster raycaster(source, dvrOptions(rampTable(0.2, 1.0, 2.0)));
+  const auto raycastSources = [&dump] {
+    std::vector<std::string> texts;
+    for (const auto& entry : std::filesystem::directory_iterator(dump.path))
+      if (entry.path().filename().string().find("_shaders_raycast.comp") != std::string::npos) {
+        std::ifstream in(entry.path());
+        texts.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      }
+    return texts;
+  };
+  std::vector<std::string> texts = raycastSources();
+  ASSERT_EQ(texts.size(), 1u);
+  EXPECT_NE(texts[0].find("#define FCC_MODE_DVR 1"), std::string::npos);
+  EXPECT_EQ(texts[0].find("#define FCC_DVR_SHADING 1"), std::string::npos);
+  EXPECT_EQ(texts[0].find("#include"), std::string::npos) << "includes resolved";
+  EXPECT_NO_THROW(GlProgram::compute(texts[0], "dumped raycast.comp"));
+  raycaster.setDvrShading(true);
+  texts = raycastSources();
+  ASSERT_EQ(texts.size(), 2u);
+  EXPECT_EQ(std::count_if(texts.begin(), texts.end(),
+                          [](const std::string& t) { return t.find("#define FCC_DVR_SHADING 1") != std::string::npos; }),
+            1);
 }
 
 // Gradient shading (--shading on) multiplies each sub-step's emission by a factor in [ambient, 1] and
