@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <utility>
 
@@ -109,7 +110,12 @@ GlProgram GlProgram::compute(std::string_view source, std::string_view name) {
     std::string base(name);
     for (char& c : base)
       if (c == '/') c = '_';
-    std::ofstream(std::string(dir) + "/" + std::to_string(dumped++) + "_" + base) << source;
+    std::error_code ignored;  // a folder that cannot be made fails the write below, with its path
+    std::filesystem::create_directories(dir, ignored);
+    const std::string path = std::string(dir) + "/" + std::to_string(dumped++) + "_" + base;
+    std::ofstream out(path);
+    out << source;
+    if (!out) throw GlError("FCCVDB_DUMP_SHADERS: cannot write " + path);
   }
   GlProgram p;
   p.name_ = std::string(name);

@@ -196,15 +196,22 @@ void Raycaster::buildRaycastProgram() {
           : "";
   const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
                                    "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
-  raycastDefines_ = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source_.reconstruction().deviceId) + "\n" +
-                    modeDefines + groupDefines + shaderDefinesFromEnvironment();
-  program_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_), "shaders/raycast.comp");
-  uniforms_ = uniformsOf(program_, dvr);
-  pool_->setUniforms(program_);
+  std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source_.reconstruction().deviceId) +
+                        "\n" + modeDefines + groupDefines + shaderDefinesFromEnvironment();
+  // Both compiled before either replaces the one in use: a program that fails to build changes nothing.
+  GlProgram program = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines), "shaders/raycast.comp");
+  GlProgram lodProgram;
   if (levelSources_.size() > 1) {
     // The levels' variant, beside the full-resolution program (which stays the same text and speed).
-    lodProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), raycastDefines_ + "#define FCC_LOD 1\n"),
-                                     "shaders/raycast.comp (level of detail)");
+    lodProgram = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines + "#define FCC_LOD 1\n"),
+                                    "shaders/raycast.comp (level of detail)");
+  }
+  raycastDefines_ = std::move(defines);
+  program_ = std::move(program);
+  uniforms_ = uniformsOf(program_, dvr);
+  pool_->setUniforms(program_);
+  if (lodProgram.id() != 0) {
+    lodProgram_ = std::move(lodProgram);
     lodUniforms_ = uniformsOf(lodProgram_, dvr, true);
     const auto at = [this](const char* name) { return lodProgram_.uniformLocation(name); };
     lodExtra_ = LodUniforms{at("uLevelCount"), at("uLevelBrickMin"), at("uLevelBrickDims"), at("uLevelNodeDims"),
@@ -218,7 +225,12 @@ void Raycaster::setDvrShading(bool on) {
   if (options_.mode != RenderMode::Dvr) throw Error("renderer: gradient shading outside DVR mode");
   if (options_.dvrShading == on) return;
   options_.dvrShading = on;
-  buildRaycastProgram();  // FCC_DVR_SHADING is the program's: the unshaded one stays as fast as it was
+  try {
+    buildRaycastProgram();  // FCC_DVR_SHADING is the program's: the unshaded one stays as fast as it was
+  } catch (...) {
+    options_.dvrShading = !on;  // the programs in use are still the old ones
+    throw;
+  }
   setTransferUniforms();
   ++settings_;
 }

@@ -269,7 +269,14 @@ bool ViewerSession::applySettings() {
   const std::shared_ptr<const TransferTable> transfer = o.transfer;
   if (dvr_) {
     applyTransfer();
-    if (settings_.dvrShading != o.dvrShading) raycaster_.setDvrShading(settings_.dvrShading);
+    if (settings_.dvrShading != o.dvrShading) {
+      try {
+        raycaster_.setDvrShading(settings_.dvrShading);
+      } catch (const Error& e) {  // the shaded program failed to build: the unshaded one stays
+        settings_.dvrShading = o.dvrShading;
+        notify(e.what());
+      }
+    }
     if (settings_.stopOpacity != o.terminationOpacity) {
       try {
         raycaster_.setTerminationOpacity(settings_.stopOpacity);
@@ -314,7 +321,11 @@ void ViewerSession::applyTransfer() {
   try {
     const std::string& name = settings_.transferFunction;
     const TransferFunction function = newBase ? baseFunction(name) : editor_->function(dvr_->function.name());
-    DvrTransfer next{name, function, OpticalScale{double(settings_.unitDistance), double(settings_.densityScale)}};
+    // The unit distance as the session has it (a double: --unit-distance, or the voxel size) until the
+    // slider moves it, so that the table stays render's, bit for bit.
+    const double unitDistance =
+        settings_.unitDistance == appliedUnitDistance_ ? dvr_->scale.unitDistance : double(settings_.unitDistance);
+    DvrTransfer next{name, function, OpticalScale{unitDistance, double(settings_.densityScale)}};
     // Validates the scale first: a throw changes nothing. Only the table is uploaded (and the bricks
     // needed recomputed when its zero entries moved): resident bricks stay.
     raycaster_.setTransfer(next.table());

@@ -804,6 +804,28 @@ TEST_F(RenderDvr, DumpedProgramsAreTheSourcesAsCompiled) {
             1);
 }
 
+// Gradient shading whose program fails to build (here: a define that breaks the shaded code alone,
+// set after the renderer was made) is one error, and the renderer goes on as it was: unshaded, the
+// same image.
+TEST_F(RenderDvr, ShadingThatFailsToBuildLeavesTheRendererAsItWas) {
+  TempDir dir;
+  const std::string path = test::writeSmallBlobs(dir);
+  const render::Camera camera = test::smallBlobsCamera();
+  const int w = 32, h = 32;
+  const io::BrickStore store(path);
+  const render::FccBrickSource source(store, std::size_t(64) << 20);
+  render::Raycaster live(source, dvrOptions(rampTable(0.2, 1.0, 2.0)));
+  live.render(camera, w, h);
+  const render::FrameImages before = live.readImages();
+  {
+    const test::ScopedEnv broken("FCCVDB_SHADER_DEFINES", "kDvrAmbient=1");  // "const float 1 = ...": shaded only
+    EXPECT_THROW(live.setDvrShading(true), GlError);
+  }
+  EXPECT_FALSE(live.options().dvrShading);
+  live.render(camera, w, h);
+  EXPECT_EQ(live.readImages().rgba, before.rgba);
+}
+
 // Gradient shading (--shading on) multiplies each sub-step's emission by a factor in [ambient, 1] and
 // leaves absorption alone: opacity and depth are the unshaded image's, bit for bit, every colour lies
 // between ambient times and once the unshaded one, and it darkens where the gradient turns away from the

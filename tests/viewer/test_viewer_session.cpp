@@ -746,6 +746,9 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   EXPECT_FALSE(layout.shadingCheckbox.empty());
   const std::vector<unsigned char> first = h.pixels();
   const float unit = h.session->settings().unitDistance;
+  const float stop = h.session->renderOptions().terminationOpacity;
+  ASSERT_EQ(h.session->settings().stopOpacity, stop);
+  ASSERT_NE(stop, 0.5f);
   EXPECT_EQ(unit, float(h.session->transfer()->scale.unitDistance));
 
   h.session->settings().unitDistance = 4.0f * unit;
@@ -762,7 +765,7 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   EXPECT_EQ(h.session->renderOptions().terminationOpacity, 0.5f);
   const std::vector<unsigned char> half = h.pixels();
   EXPECT_GT(differingChannels(first, half, panel), 0) << "rays stopping at half opacity must change the image";
-  h.session->settings().stopOpacity = 0.995f;
+  h.session->settings().stopOpacity = stop;
   ASSERT_TRUE(h.settle());
   EXPECT_EQ(differingChannels(first, h.pixels(), panel), 0) << "the first stop opacity gives the first image";
 
@@ -778,8 +781,8 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   // Last: the notice is drawn over the image.
   h.session->settings().stopOpacity = 2.0f;  // as ctrl + click could type it
   h.frame();
-  EXPECT_EQ(h.session->settings().stopOpacity, 0.995f) << "a refused stop opacity goes back";
-  EXPECT_EQ(h.session->renderOptions().terminationOpacity, 0.995f);
+  EXPECT_EQ(h.session->settings().stopOpacity, stop) << "a refused stop opacity goes back";
+  EXPECT_EQ(h.session->renderOptions().terminationOpacity, stop);
   EXPECT_NE(h.session->notice().find("stop opacity"), std::string::npos) << h.session->notice();
 }
 

@@ -18,7 +18,7 @@ for spec in "$@"; do
     if [[ $item == *=* ]]; then defines+="#define ${item%%=*} ${item#*=}\n"; else defines+="#define $item 1\n"; fi
   done
   # After the #version line, as the renderer's withDefines puts them.
-  { head -1 "$src"; printf "$defines"; tail -n +2 "$src"; } >"$out/$name.comp"
+  { head -1 "$src"; printf '%b' "$defines"; tail -n +2 "$src"; } >"$out/$name.comp"
   # -R: OpenGL's loose uniforms into a default uniform block; GL's separate binding spaces kept apart.
   glslangValidator -V --target-env vulkan1.2 -R --amb --aml --sib 100 --stb 300 --sub 400 -S comp \
     -o "$out/$name.spv" "$out/$name.comp" >"$out/$name.log" || { cat "$out/$name.log"; exit 1; }

@@ -2,6 +2,7 @@
 # On the GPU machine: vkstats over every .vk/NAME.spv (with .vk/NAME.bindings), a line of registers a
 # program. IR="a b": also the driver's internal representations of .vk/a.spv and .vk/b.spv. Call with carry [".gl", ".vk"] (tools/shader-stats/README.md). Writes $OUT/vkstats.txt.
 set -uo pipefail
+shopt -s nullglob
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
 # NVIDIA's ICD, wherever the machine has it, and the libraries it opens (/usr/local/nvidia/lib64 there).

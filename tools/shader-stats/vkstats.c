@@ -70,8 +70,11 @@ int main(int argc, char** argv) {
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
   const char* extensions[] = {VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME};
+  // Only executable statistics: a core feature such as robustBufferAccess would compile bounds checks
+  // into the program that GL's context does not, and change its registers.
+  memset(&features.features, 0, sizeof features.features);
   VkDeviceCreateInfo dci = {VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-  dci.pNext = &features;  // every core feature the device has, and executable statistics
+  dci.pNext = &features;
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
   dci.enabledExtensionCount = 1;
@@ -196,7 +199,7 @@ int main(int argc, char** argv) {
       getIr(device, &einfo, &irCount, irs);
       for (uint32_t i = 0; i < irCount; ++i) irs[i].pData = malloc(irs[i].dataSize ? irs[i].dataSize : 1);
       getIr(device, &einfo, &irCount, irs);
-      FILE* out = fopen(argv[3], "wb");
+      FILE* out = fopen(argv[3], e == 0 ? "wb" : "ab");
       for (uint32_t i = 0; out && i < irCount; ++i) {
         printf("    representation %u: %s, %zu bytes%s\n", i, irs[i].name, irs[i].dataSize, irs[i].isText ? ", text" : "");
         fprintf(out, "=== %s (%s)\n", irs[i].name, irs[i].description);
@@ -204,6 +207,7 @@ int main(int argc, char** argv) {
         fprintf(out, "\n");
       }
       if (out) fclose(out);
+      for (uint32_t i = 0; i < irCount; ++i) free(irs[i].pData);
     }
   }
   vkDestroyPipeline(device, pipeline, NULL);
