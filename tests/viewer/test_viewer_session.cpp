@@ -993,10 +993,15 @@ TEST_F(ViewerSession, CartesianDvrSwitchesTheReconstructionKeepingModeAndTransfe
         EXPECT_EQ(s.settings().reconstruction, "trilinear");
         s.settings().transferFunction = "ct-bone";
         s.settings().densityScale = 0.5f;
+        s.settings().unitDistance *= 2.0f;
+        s.settings().stopOpacity = 0.9f;
+        s.settings().dvrShading = true;
         s.setCamera(render::orbit(s.camera(), 60.0, -25.0));
         EXPECT_TRUE(h.settle());
         EXPECT_EQ(s.transfer()->spec, "ct-bone");
         EXPECT_EQ(s.transfer()->scale.densityScale, 0.5);
+        EXPECT_EQ(s.transfer()->scale.unitDistance, double(s.settings().unitDistance));
+        EXPECT_TRUE(s.renderOptions().dvrShading);
         keptTransfer = *s.transfer();
         keptCamera = s.camera();
         trilinearImage = h.pixels();
@@ -1030,11 +1035,18 @@ TEST_F(ViewerSession, CartesianDvrSwitchesTheReconstructionKeepingModeAndTransfe
         }
         EXPECT_EQ(s.settings().transferFunction, "ct-bone");
         EXPECT_EQ(s.settings().densityScale, 0.5f);
+        // The panel's unit distance (in the function kept), stop opacity and shading come along too.
+        EXPECT_EQ(s.transfer()->scale.unitDistance, keptTransfer->scale.unitDistance);
+        EXPECT_EQ(s.settings().unitDistance, float(keptTransfer->scale.unitDistance));
+        EXPECT_EQ(s.settings().stopOpacity, 0.9f);
+        EXPECT_TRUE(s.settings().dvrShading);
         EXPECT_EQ(s.camera().eye, keptCamera.eye);
         EXPECT_EQ(s.camera().lookat, keptCamera.lookat);
         EXPECT_EQ(s.camera().up, keptCamera.up);
         EXPECT_EQ(s.camera().fovYDegrees, keptCamera.fovYDegrees);
         EXPECT_TRUE(h.settle()) << "the tricubic image does not converge";
+        EXPECT_EQ(s.renderOptions().terminationOpacity, 0.9f);
+        EXPECT_TRUE(s.renderOptions().dvrShading);
         EXPECT_TRUE(s.panelLayout().isoSlider.empty()) << "an isovalue slider in DVR mode";
         EXPECT_FALSE(s.panelLayout().transferCombo.empty()) << "no transfer function controls";
         tricubicImage = h.pixels();
@@ -1078,11 +1090,14 @@ TEST_F(ViewerSession, CartesianDvrSwitchesTheReconstructionKeepingModeAndTransfe
   EXPECT_GE(both, 0.9 * trilinearShown) << "the tricubic volume is not where the trilinear one was";
   EXPECT_GE(both, 0.9 * tricubicShown) << "the tricubic volume is where the trilinear one was not";
 
-  // A fresh tricubic DVR session with the kept function and camera draws the same image.
+  // A fresh tricubic DVR session with the kept function, camera, stop opacity and shading draws the
+  // same image.
   DvrData fresh{store, sourceOf(*store, "tricubic"), keptTransfer};
   h.session.reset();
   h.session = makeSession(fresh);
   h.session->setCamera(keptCamera);
+  h.session->settings().stopOpacity = 0.9f;
+  h.session->settings().dvrShading = true;
   ASSERT_TRUE(h.settle());
   EXPECT_EQ(differing(tricubicImage, h.pixels()), 0) << "the switched session is not a tricubic DVR session with the view kept";
   EXPECT_NO_THROW(checkGl("a fresh tricubic DVR session"));
