@@ -110,29 +110,3 @@ FccSamples gatherStencil(FccFrame frame) {
   return s;
 }
 #undef FCC_GATHER
-
-// A measurement knob (docs/RENDERER.md): 1, the slots' cell bounds (slot_bounds.comp, read by the
-// walks) as two halves in one uint, rounded outwards so that they stay bounds: half the bytes in the
-// caches. 0: two floats.
-#ifndef FCC_SLOT_BOUNDS_HALF
-#define FCC_SLOT_BOUNDS_HALF 0
-#endif
-#if FCC_SLOT_BOUNDS_HALF
-// x as a half, rounded down (up: rounded up) where the nearest half lies on the wrong side.
-uint halfOutward(float x, bool up) {
-  uint h = packHalf2x16(vec2(x, 0.0)) & 0xffffu;
-  float back = unpackHalf2x16(h).x;
-  bool negative = (h & 0x8000u) != 0u;
-  if (!up && back > x) h = negative ? h + 1u : (h == 0u ? 0x8001u : h - 1u);
-  if (up && back < x) h = negative ? (h == 0x8000u ? 1u : h - 1u) : h + 1u;
-  return h;
-}
-uint packSlotBounds(vec2 b) { return halfOutward(b.x, false) | (halfOutward(b.y, true) << 16); }
-#define FCC_SLOT_BOUNDS_TYPE uint
-#define FCC_SLOT_BOUNDS_STORE(v) packSlotBounds(v)
-#define FCC_SLOT_BOUNDS_LOAD(u) unpackHalf2x16(u)
-#else
-#define FCC_SLOT_BOUNDS_TYPE vec2
-#define FCC_SLOT_BOUNDS_STORE(v) (v)
-#define FCC_SLOT_BOUNDS_LOAD(u) (u)
-#endif

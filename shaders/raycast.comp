@@ -99,7 +99,7 @@ layout(std430, binding = 3) coherent buffer Requests {
 layout(std430, binding = 4) buffer RequestBits { uint requestBits[]; };
 // Per slot: the last pass that read it (for least-recently-used eviction).
 layout(std430, binding = 5) buffer SlotUse { uint slotLastUse[]; };
-layout(std430, binding = 6) readonly buffer SlotBounds { FCC_SLOT_BOUNDS_TYPE slotBounds[]; };  // see pool.glsl
+layout(std430, binding = 6) readonly buffer SlotBounds { vec2 slotBounds[]; };  // see pool.glsl
 
 #if FCC_MODE_DVR || FCC_MULTI_ISO
 // Read back where a ray resumes: the colour so far, and in the normal's x the transmittance so far.
@@ -328,7 +328,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, vec3 invD, inout DvrState st)
   for (int iter = 0; iter < kDvrFindCells; ++iter) {
     float tExit = min(min(min(w.tMax.x, w.tMax.y), w.tMax.z), w.tb);
     ivec3 voxel = (w.cell - w.cellLo) >> 1;
-    vec2 cellBounds = FCC_SLOT_BOUNDS_LOAD(slotBounds[w.boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)]);
+    vec2 cellBounds = slotBounds[w.boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
     bool integrate = tExit > w.tCell && !(uSkipEmpty != 0 && tfZeroOn(cellBounds.x, cellBounds.y));
     // The axis the walk steps along next: the face the ray leaves the cell through.
     int axis = w.tMax.x <= w.tMax.y && w.tMax.x <= w.tMax.z ? 0 : (w.tMax.y <= w.tMax.z ? 1 : 2);
@@ -403,7 +403,7 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
     float tExit = min(min(min(tMax.x, tMax.y), tMax.z), tb);
     ivec3 voxel = (cell - cellLo) >> 1;
     uint voxelEntry = boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x);
-    vec2 cellBounds = FCC_SLOT_BOUNDS_LOAD(slotBounds[voxelEntry]);
+    vec2 cellBounds = slotBounds[voxelEntry];
     if (tExit > tCell && uSkipEmpty != 0 && !(cellBounds.x <= uIso && uIso <= cellBounds.y)) {
       prevSign = cellBounds.x > uIso ? 1 : -1;
     } else if (tExit > tCell) {

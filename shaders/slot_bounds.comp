@@ -18,7 +18,7 @@
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 5) writeonly buffer SlotUse { uint slotLastUse[]; };
-layout(std430, binding = 6) writeonly buffer SlotBounds { FCC_SLOT_BOUNDS_TYPE slotBounds[]; };
+layout(std430, binding = 6) writeonly buffer SlotBounds { vec2 slotBounds[]; };
 layout(std430, binding = 7) readonly buffer Uploaded { uint uploadedSlots[]; };
 // The pass in which the slots were uploaded: they count as used in it, so the next assignment does
 // not evict them first (one write a slot here instead of a buffer update a slot on the host).
@@ -55,7 +55,7 @@ void main() {
         mn = min(mn, c);
         mx = max(mx, c);
       }
-  slotBounds[slot * uint(kSlotVoxels) + voxel] = FCC_SLOT_BOUNDS_STORE(vec2(mn, mx));
+  slotBounds[slot * uint(kSlotVoxels) + voxel] = vec2(mn, mx);
 }
 #elif defined(FCC_SLOT_BCC)
 // A BCC slot (viewer/BccBrickSource.h): every BCC scheme is a convex combination of sites within 3 index
@@ -78,7 +78,7 @@ void main() {
           mn = min(mn, c);
           mx = max(mx, c);
         }
-  slotBounds[slot * uint(kSlotVoxels) + voxel] = FCC_SLOT_BOUNDS_STORE(vec2(mn, mx));
+  slotBounds[slot * uint(kSlotVoxels) + voxel] = vec2(mn, mx);
 }
 #elif defined(FCC_SLOT_BOUNDS_BB)
 // On a GPU the tighter bound costs nothing worth saving: min/max over the BB-coefficients of the 40
@@ -102,7 +102,7 @@ void main() {
       hi = max(hi, r.hi);
     }
   }
-  slotBounds[slot * uint(kSlotVoxels) + voxel] = FCC_SLOT_BOUNDS_STORE(vec2(lo, hi));
+  slotBounds[slot * uint(kSlotVoxels) + voxel] = vec2(lo, hi);
 }
 #else
 void main() {
@@ -121,6 +121,6 @@ void main() {
         lo = min(lo, c);
         hi = max(hi, c);
       }
-  slotBounds[slot * uint(kSlotVoxels) + voxel] = FCC_SLOT_BOUNDS_STORE(vec2(lo, hi));
+  slotBounds[slot * uint(kSlotVoxels) + voxel] = vec2(lo, hi);
 }
 #endif

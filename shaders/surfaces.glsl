@@ -229,7 +229,7 @@ bool marchBrickSurfaces(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta,
   for (int iter = 0; iter < 64; ++iter) {
     float tExit = min(min(min(tMax.x, tMax.y), tMax.z), tb);
     ivec3 voxel = (cell - cellLo) >> 1;
-    vec2 cellBounds = FCC_SLOT_BOUNDS_LOAD(slotBounds[boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)]);
+    vec2 cellBounds = slotBounds[boundsBase + uint((voxel.z * 8 + voxel.y) * 8 + voxel.x)];
     if (tExit > tCell && uSkipEmpty != 0 && !holdsAnySurface(cellBounds.x, cellBounds.y)) {
       st.side = sidesAtEnd(0.0, cellBounds.x, cellBounds.y);
     } else if (tExit > tCell) {

@@ -127,7 +127,6 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   // (both conservative; the image is the same, only the work skipped differs).
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   if (!(renderer && std::string(renderer).find("llvmpipe") != std::string::npos)) defines += "#define FCC_SLOT_BOUNDS_BB 1\n";
-  defines += shaderDefinesFromEnvironment();  // the measurement knobs the slots' bounds share with the walk
   slotBoundsProgram_ = GlProgram::compute(withDefines(embedded::shaders("shaders/slot_bounds.comp"), defines),
                                           "shaders/slot_bounds.comp");
   slotBoundsPassUniform_ = slotBoundsProgram_.uniformLocation("uPass");
