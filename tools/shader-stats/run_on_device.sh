@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # On the GPU machine: vkstats over every .vk/NAME.spv (with .vk/NAME.bindings), a line of registers a
-# program. IR="a b": also the driver's internal representations of .vk/a.spv and .vk/b.spv. Call with carry [".gl", ".vk"] (tools/shader-stats/README.md). Writes $OUT/vkstats.txt.
+# program. IR="a b": also the driver's internal representations of .vk/a.spv and .vk/b.spv. Call with
+# carry [".gl", ".vk"] (tools/shader-stats/README.md). Writes $OUT/vkstats.txt.
 set -uo pipefail
 shopt -s nullglob
 for f in .gl/*.deb; do dpkg -x "$f" /; done
