@@ -122,6 +122,15 @@ render::Camera cartesianTestCamera(const glm::dmat4& worldFromIndex) {
   return camera;
 }
 
+// The small blobs file (test::writeSmallBlobs) in a temporary folder, its store, a source that holds
+// every brick, and the camera that sees it: what most tests below start from.
+struct SmallBlobs {
+  TempDir dir;
+  io::BrickStore store{test::writeSmallBlobs(dir)};
+  render::FccBrickSource source{store, std::size_t(64) << 20};
+  render::Camera camera = test::smallBlobsCamera();
+};
+
 // The test grid's samples for the CPU reference: field(ijk) on [0, test::kDim)^3, the background
 // outside, `pad` sites of it around.
 LatticeSamples testBoxSamples(Lattice lattice, const std::function<float(const glm::ivec3&)>& field, int pad) {
@@ -529,21 +538,18 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
 // Skipping (bricks, nodes, cells, segments the transfer function maps to zero) and a pool of a few
 // slots change no pixel: bit for bit.
 TEST_F(RenderDvr, SkippingAndSmallCachesChangeNothing) {
-  TempDir dir;
-  const std::string path = test::writeSmallBlobs(dir);
-  const render::Camera camera = test::smallBlobsCamera();
+  const SmallBlobs blobs;
   const int w = 48, h = 48;
   const TransferTable table = rampTable(0.2, 1.0, 2.0);
-  const io::BrickStore store(path);
   render::RenderOptions options = dvrOptions(table);
   render::FrameStats bigStats, smallStats;
-  const render::FrameImages reference = renderSource(render::FccBrickSource(store, std::size_t(64) << 20), camera, w, h, options, &bigStats);
+  const render::FrameImages reference = renderSource(render::FccBrickSource(blobs.store, std::size_t(64) << 20), blobs.camera, w, h, options, &bigStats);
   render::RenderOptions noSkip = options;
   noSkip.skipEmpty = false;
   render::RenderOptions small = options;
   small.gpuCacheBytes = small.hostCacheBytes = test::kSmallPoolBytes;
-  const render::FrameImages unskipped = renderSource(render::FccBrickSource(store, std::size_t(64) << 20), camera, w, h, noSkip);
-  const render::FrameImages limited = renderSource(render::FccBrickSource(store, test::kSmallPoolBytes), camera, w, h, small, &smallStats);
+  const render::FrameImages unskipped = renderSource(render::FccBrickSource(blobs.store, std::size_t(64) << 20), blobs.camera, w, h, noSkip);
+  const render::FrameImages limited = renderSource(render::FccBrickSource(blobs.store, test::kSmallPoolBytes), blobs.camera, w, h, small, &smallStats);
   std::printf("unbounded: %d passes, %llu uploads; 1 MiB: %d passes, %llu uploads\n", bigStats.passes,
               (unsigned long long)bigStats.bricksUploaded, smallStats.passes, (unsigned long long)smallStats.bricksUploaded);
   EXPECT_GT(smallStats.bricksUploaded, bigStats.bricksUploaded) << "the small pool must have evicted bricks";
@@ -564,11 +570,8 @@ TEST_F(RenderDvr, SkippingAndSmallCachesChangeNothing) {
 // chain of pieces is the flat walk's: march_fcc.glsl), so it is compared with the flat walk's two
 // gathers.
 TEST_F(RenderDvr, WalkSchedulesGiveTheSameImage) {
-  TempDir dir;
-  const std::string path = test::writeSmallBlobs(dir);
-  const render::Camera camera = test::smallBlobsCamera();
+  const SmallBlobs blobs;
   const int w = 48, h = 48;
-  const io::BrickStore store(path);
   const render::RenderOptions options = dvrOptions(rampTable(0.2, 1.0, 2.0));
   render::RenderOptions small = options;
   small.gpuCacheBytes = small.hostCacheBytes = test::kSmallPoolBytes;
@@ -576,14 +579,14 @@ TEST_F(RenderDvr, WalkSchedulesGiveTheSameImage) {
   render::FrameStats stats[2];
   for (const render::RenderOptions* o : pools) {
     const std::size_t hostBytes = o == &small ? test::kSmallPoolBytes : std::size_t(64) << 20;
-    const render::FrameImages main = renderSource(render::FccBrickSource(store, hostBytes), camera, w, h, *o, &stats[o == &small]);
+    const render::FrameImages main = renderSource(render::FccBrickSource(blobs.store, hostBytes), blobs.camera, w, h, *o, &stats[o == &small]);
     int visible = 0;
     for (std::size_t i = 3; i < main.rgba.size(); i += 4) visible += main.rgba[i] > 0.05f;
     EXPECT_GT(visible, w * h / 10);
     render::FrameImages twoGathers;
     {
       const test::ScopedEnv defines("FCCVDB_SHADER_DEFINES", "FCC_DVR_CHAIN=0");
-      twoGathers = renderSource(render::FccBrickSource(store, hostBytes), camera, w, h, *o);
+      twoGathers = renderSource(render::FccBrickSource(blobs.store, hostBytes), blobs.camera, w, h, *o);
     }
     // Each schedule against the flat walk with the same integration.
     const std::pair<const char*, const render::FrameImages*> schedules[] = {
@@ -592,7 +595,7 @@ TEST_F(RenderDvr, WalkSchedulesGiveTheSameImage) {
         {"FCC_DVR_FLAT_WALK=0", &twoGathers}};
     for (const auto& [schedule, expected] : schedules) {
       const test::ScopedEnv defines("FCCVDB_SHADER_DEFINES", schedule);
-      const render::FrameImages other = renderSource(render::FccBrickSource(store, hostBytes), camera, w, h, *o);
+      const render::FrameImages other = renderSource(render::FccBrickSource(blobs.store, hostBytes), blobs.camera, w, h, *o);
       ASSERT_EQ(expected->rgba, other.rgba) << schedule << (o == &small ? ", small pool" : "");
       ASSERT_EQ(expected->normalDepth, other.normalDepth) << schedule << (o == &small ? ", small pool" : "");
     }
@@ -607,12 +610,8 @@ TEST_F(RenderDvr, WalkSchedulesGiveTheSameImage) {
 // midpoint rule is exact for it, whatever the data; a step in the opacity takes more where chords
 // cross it.
 TEST_F(RenderDvr, SubStepsFollowTheTransferFunctionsKinks) {
-  TempDir dir;
-  const std::string path = test::writeSmallBlobs(dir);
-  const render::Camera camera = test::smallBlobsCamera();
+  const SmallBlobs blobs;
   const int w = 48, h = 48;
-  const io::BrickStore store(path);
-  const render::FccBrickSource source(store, std::size_t(64) << 20);
   // The table spans more than the field's range, BB-coefficients included (the prefiltered blobs dip
   // below 0): past its ends a lookup is constant, a kink the rule rightly counts.
   const double vmin = -1.0, vmax = 3.0, unit = 2.0;
@@ -624,7 +623,7 @@ TEST_F(RenderDvr, SubStepsFollowTheTransferFunctionsKinks) {
   for (int f = 0; f < 2; ++f) {
     const TransferTable table(f == 0 ? constant : stepped, vmin, vmax, 256, OpticalScale{unit, 1.0});
     ASSERT_EQ(f == 0, table.kinkSumOn(vmin + 0.05, vmax - 0.05) < 1e-5) << "the table's kinks";
-    const render::FrameImages img = renderSource(source, camera, w, h, dvrOptions(table));
+    const render::FrameImages img = renderSource(blobs.source, blobs.camera, w, h, dvrOptions(table));
     for (int i = 0; i < w * h; ++i) {
       const float integrated = img.rgba[4 * i + 1], subSteps = img.rgba[4 * i + 2];
       if (f == 0) {
@@ -668,17 +667,13 @@ render::FrameImages expectChainIsTwoGathers(const render::BrickSource& source, c
 // an entry piece are few), and the image is session 18's two gathers a cell (FCC_DVR_CHAIN=0) up to
 // float rounding, sub-steps held fixed by a tight tolerance in both.
 TEST_F(RenderDvr, ChainOfPiecesGathersOneACellAndGivesTheTwoGathersImage) {
-  TempDir dir;
-  const std::string path = test::writeSmallBlobs(dir);
-  const render::Camera camera = test::smallBlobsCamera();
+  const SmallBlobs blobs;
   const int w = 48, h = 48;
-  const io::BrickStore store(path);
-  const render::FccBrickSource source(store, std::size_t(64) << 20);
   const TransferTable table = rampTable(0.05, 1.0, 2.0);
   double rounds = 0.0, cells = 0.0, entryOnly = 0.0;
   {
     const test::ScopedEnv count("FCCVDB_SHADER_DEFINES", "FCC_DVR_COUNT=2");
-    const render::FrameImages img = renderSource(source, camera, w, h, dvrOptions(table));
+    const render::FrameImages img = renderSource(blobs.source, blobs.camera, w, h, dvrOptions(table));
     for (int i = 0; i < w * h; ++i) {
       rounds += img.rgba[4 * i];
       cells += img.rgba[4 * i + 1];
@@ -692,7 +687,7 @@ TEST_F(RenderDvr, ChainOfPiecesGathersOneACellAndGivesTheTwoGathersImage) {
   EXPECT_GT(entryOnly, 0.0) << "a brick's first cells start a chain";
   EXPECT_LT(entryOnly, 0.25 * cells) << "the chain is seldom broken";
 
-  expectChainIsTwoGathers(source, camera, w, h, dvrOptions(table), "unclipped");
+  expectChainIsTwoGathers(blobs.source, blobs.camera, w, h, dvrOptions(table), "unclipped");
 }
 
 // Chords cut short inside a cell (rays start and stop at a clipping box's faces, which lie inside
@@ -700,16 +695,12 @@ TEST_F(RenderDvr, ChainOfPiecesGathersOneACellAndGivesTheTwoGathersImage) {
 // central piece (march_fcc.glsl's integrateCell); the image is two gathers a cell's up to float
 // rounding.
 TEST_F(RenderDvr, ChainTakesChordsCutInsideACell) {
-  TempDir dir;
-  const std::string path = test::writeSmallBlobs(dir);
-  const render::Camera camera = test::smallBlobsCamera();
+  const SmallBlobs blobs;
   const int w = 48, h = 48;
-  const io::BrickStore store(path);
-  const render::FccBrickSource source(store, std::size_t(64) << 20);
   render::RenderOptions options = dvrOptions(rampTable(0.05, 1.0, 2.0));
   options.clipLo = glm::dvec3(20.3, 15.7, 18.2);
   options.clipHi = glm::dvec3(70.6, 75.1, 66.45);
-  const render::FrameImages chain = expectChainIsTwoGathers(source, camera, w, h, options, "clipped");
+  const render::FrameImages chain = expectChainIsTwoGathers(blobs.source, blobs.camera, w, h, options, "clipped");
   int visible = 0;
   for (std::size_t i = 3; i < chain.rgba.size(); i += 4) visible += chain.rgba[i] > 0.05f;
   EXPECT_GT(visible, w * h / 20) << "the clipped volume must show";
@@ -720,12 +711,8 @@ TEST_F(RenderDvr, ChainTakesChordsCutInsideACell) {
 // opacities) uploads the table alone: no recomputation of the bricks needed. So do gradient shading
 // and the stop opacity changed on it.
 TEST_F(RenderDvr, TransferShadingAndStopChangedOnALiveRendererGiveAFreshOnesImage) {
-  TempDir dir;
-  const std::string path = test::writeSmallBlobs(dir);
-  const render::Camera camera = test::smallBlobsCamera();
+  const SmallBlobs blobs;
   const int w = 48, h = 48;
-  const io::BrickStore store(path);
-  const render::FccBrickSource source(store, std::size_t(64) << 20);
   const TransferTable first = rampTable(0.2, 1.0, 2.0);
   // The same zeros (below 0.2), other colours and opacities above them.
   const TransferFunction recoloured({{0.2, {0.9, 0.1, 0.1}}, {1.0, {0.1, 0.9, 0.3}}}, {{0.2, 0.0}, {0.5, 0.9}, {1.0, 0.3}});
@@ -736,20 +723,20 @@ TEST_F(RenderDvr, TransferShadingAndStopChangedOnALiveRendererGiveAFreshOnesImag
   const TransferTable third(narrower, first.vmin(), first.vmax(), first.size(), OpticalScale{2.0, 1.0});
   ASSERT_NE(third.nonZeroPrefix(), first.nonZeroPrefix());
 
-  render::Raycaster live(source, dvrOptions(first));
-  live.render(camera, w, h);
+  render::Raycaster live(blobs.source, dvrOptions(first));
+  live.render(blobs.camera, w, h);
   const render::FrameImages firstImage = live.readImages();
   const uint64_t updates = live.neededUpdates();
   live.setTransfer(std::make_shared<const TransferTable>(second));
   EXPECT_EQ(live.neededUpdates(), updates) << "the same zero entries: the bricks needed were recomputed";
-  live.render(camera, w, h);
+  live.render(blobs.camera, w, h);
   const render::FrameImages secondImage = live.readImages();
   EXPECT_NE(secondImage.rgba, firstImage.rgba) << "the new colours must show";
-  EXPECT_EQ(secondImage.rgba, renderSource(source, camera, w, h, dvrOptions(second)).rgba);
+  EXPECT_EQ(secondImage.rgba, renderSource(blobs.source, blobs.camera, w, h, dvrOptions(second)).rgba);
   live.setTransfer(std::make_shared<const TransferTable>(third));
   EXPECT_GT(live.neededUpdates(), updates) << "zero entries moved: the bricks needed must be recomputed";
-  live.render(camera, w, h);
-  EXPECT_EQ(live.readImages().rgba, renderSource(source, camera, w, h, dvrOptions(third)).rgba);
+  live.render(blobs.camera, w, h);
+  EXPECT_EQ(live.readImages().rgba, renderSource(blobs.source, blobs.camera, w, h, dvrOptions(third)).rgba);
 
   // The viewer's other DVR settings on a live renderer: gradient shading (the programs built again)
   // and the stop opacity give a fresh renderer's image, and back off, the first again.
@@ -758,29 +745,27 @@ TEST_F(RenderDvr, TransferShadingAndStopChangedOnALiveRendererGiveAFreshOnesImag
   shadedHalf.terminationOpacity = 0.5f;
   live.setDvrShading(true);
   live.setTerminationOpacity(0.5f);
-  live.render(camera, w, h);
+  live.render(blobs.camera, w, h);
   const render::FrameImages liveShadedHalf = live.readImages();
-  EXPECT_NE(liveShadedHalf.rgba, renderSource(source, camera, w, h, dvrOptions(third)).rgba);
-  EXPECT_EQ(liveShadedHalf.rgba, renderSource(source, camera, w, h, shadedHalf).rgba);
+  EXPECT_NE(liveShadedHalf.rgba, renderSource(blobs.source, blobs.camera, w, h, dvrOptions(third)).rgba);
+  EXPECT_EQ(liveShadedHalf.rgba, renderSource(blobs.source, blobs.camera, w, h, shadedHalf).rgba);
   EXPECT_THROW(live.setTerminationOpacity(0.0f), ValueError);
   EXPECT_EQ(live.options().terminationOpacity, 0.5f) << "a refused stop opacity changes nothing";
   live.setDvrShading(false);
   live.setTerminationOpacity(dvrOptions(third).terminationOpacity);
-  live.render(camera, w, h);
-  EXPECT_EQ(live.readImages().rgba, renderSource(source, camera, w, h, dvrOptions(third)).rgba);
+  live.render(blobs.camera, w, h);
+  EXPECT_EQ(live.readImages().rgba, renderSource(blobs.source, blobs.camera, w, h, dvrOptions(third)).rgba);
 }
 
 // FCCVDB_DUMP_SHADERS (tools/shader-stats): each compute program's whole source as compiled, one file
 // a program; the raycaster's DVR program there compiles again as it is, and shading toggled on a live
 // renderer writes the program built again, with its define.
 TEST_F(RenderDvr, DumpedProgramsAreTheSourcesAsCompiled) {
-  TempDir dir, dump;
-  const std::string path = test::writeSmallBlobs(dir);
-  const io::BrickStore store(path);
-  const render::FccBrickSource source(store, std::size_t(64) << 20);
+  const SmallBlobs blobs;
+  TempDir dump;
   const std::string dumpDir = dump.path.string();
   const test::ScopedEnv dumping("FCCVDB_DUMP_SHADERS", dumpDir.c_str());
-  render::Raycaster raycaster(source, dvrOptions(rampTable(0.2, 1.0, 2.0)));
+  render::Raycaster raycaster(blobs.source, dvrOptions(rampTable(0.2, 1.0, 2.0)));
   const auto raycastSources = [&dump] {
     std::vector<std::string> texts;
     for (const auto& entry : std::filesystem::directory_iterator(dump.path))
@@ -808,21 +793,17 @@ TEST_F(RenderDvr, DumpedProgramsAreTheSourcesAsCompiled) {
 // set after the renderer was made) is one error, and the renderer goes on as it was: unshaded, the
 // same image.
 TEST_F(RenderDvr, ShadingThatFailsToBuildLeavesTheRendererAsItWas) {
-  TempDir dir;
-  const std::string path = test::writeSmallBlobs(dir);
-  const render::Camera camera = test::smallBlobsCamera();
+  const SmallBlobs blobs;
   const int w = 32, h = 32;
-  const io::BrickStore store(path);
-  const render::FccBrickSource source(store, std::size_t(64) << 20);
-  render::Raycaster live(source, dvrOptions(rampTable(0.2, 1.0, 2.0)));
-  live.render(camera, w, h);
+  render::Raycaster live(blobs.source, dvrOptions(rampTable(0.2, 1.0, 2.0)));
+  live.render(blobs.camera, w, h);
   const render::FrameImages before = live.readImages();
   {
     const test::ScopedEnv broken("FCCVDB_SHADER_DEFINES", "kDvrAmbient=1");  // "const float 1 = ...": shaded only
     EXPECT_THROW(live.setDvrShading(true), GlError);
   }
   EXPECT_FALSE(live.options().dvrShading);
-  live.render(camera, w, h);
+  live.render(blobs.camera, w, h);
   EXPECT_EQ(live.readImages().rgba, before.rgba);
 }
 
