@@ -5,9 +5,9 @@
 // Along a ray the field is a known polynomial on each piece (a cubic for the box spline and trilinear,
 // degree 9 for tricubic), given here in Bernstein form on the piece's segment. Its range lies within
 // its Bernstein coefficients, so a segment whose range the table maps to zero extinction is passed
-// over exactly, and the others are cut into equal sub-steps, as many as the midpoint rule's error
-// estimate on that range asks for (dvrSteps; docs/DVR.md, "How many sub-steps"). Each sub-step takes
-// the medium at its midpoint, the polynomial evaluated there, and composites exactly.
+// over exactly, and the others are cut into equal sub-steps, as many as an error estimate on that
+// range asks for (dvrSteps; docs/DVR.md, "How many sub-steps"). Each sub-step takes the medium at the
+// polynomial's mean over it (a cubic's, exactly; degree 9: at its midpoint) and composites exactly.
 
 layout(std430, binding = 12) readonly buffer TfEntries { vec4 tfEntries[]; };
 // tfPrefix[i]: among entries [0, i), those with non-zero extinction (TransferTable::nonZeroPrefix), and
@@ -147,30 +147,41 @@ vec2 tfExtinctionOn(int first, int last) {
 #ifndef FCC_DVR_ENTRY_RULE
 #define FCC_DVR_ENTRY_RULE 0
 #endif
-// 0: the rule without its term for the value curving along the segment (a measurement knob).
+// 1: a cubic's sub-steps take the medium at their midpoint value and the rule its term for the value
+// curving along the segment, as until session 21 (a measurement knob, for comparison; docs/DVR.md,
+// "The value a sub-step takes").
+#ifndef FCC_DVR_MIDPOINT
+#define FCC_DVR_MIDPOINT 0
+#endif
+// Whether a cubic's sub-step count keeps the rule's curvature term (dvrSteps' `bend`): for midpoint
+// values, and with gradient shading, whose headlight term follows the slope along the ray, which
+// changes with the same second differences (the shade is taken at each sub-step's midpoint). Also a
+// measurement knob: 1 gives an unshaded image the shaded one's sub-steps (test_render_dvr).
 #ifndef FCC_DVR_BEND_TERM
-#define FCC_DVR_BEND_TERM 1
+#define FCC_DVR_BEND_TERM (FCC_DVR_MIDPOINT != 0 || FCC_DVR_SHADING != 0)
 #endif
-#ifndef FCC_DVR_SELECT_PIECE
-#define FCC_DVR_SELECT_PIECE 0
-#endif
+const bool kDvrBendTerm = bool(FCC_DVR_BEND_TERM);
 
 // Sub-steps for a segment of `len` world units whose values lie in [lo, hi], at most `most`; 0 where
 // every entry a lookup there reads has zero extinction (tfZeroOn's question, on the same entries, is a
-// largest extinction of 0): one query decides both the skip and the count. `bend`: the largest
-// second difference of the segment's Bernstein coefficients (how far its value curves).
+// largest extinction of 0): one query decides both the skip and the count. `bend`: for sub-steps that
+// take the medium at their midpoint value (or are shaded: kDvrBendTerm), the largest second
+// difference of the segment's Bernstein coefficients (how far its value curves); else 0.
 //
 // The rule (docs/DVR.md, "How many sub-steps"): with n equal sub-steps the midpoint rule's error on a
 // segment of optical depth at most tau = sigma_max len, whose values span E table entries, is about
 //   K E / (8 sigma_max n^2)   (the table's kinks inside [lo, hi], slope changes summing to K per world
 //                              unit, each crossed by a sub-step spanning E / n entries),
-//   C tau / (12 n^2)          (the colour moving by C while the light is absorbed), and
+//   C tau / (12 n^2)          (the colour moving by C while the light is absorbed),
+//   C (dsigma / sigma_max) / (12 n^2)   (the colour and the extinction moving together: emission is
+//                              their product; dsigma the extinction's range there), and, for midpoint
+//                              values only,
 //   q (dsigma / sigma_max + C) / (4 n^2)   (the value curving along the segment: a sub-step's midpoint
-//                              value is off its mean by up to bend / (4 n^2), q = bend / (hi - lo);
-//                              dsigma the extinction's range there)
-// relative to tau; their sum is held below kDvrTolerance. A medium linear along the segment needs
-// one sub-step (the midpoint rule is exact for it), and no sub-step holds more than kDvrStepDepth of
-// optical depth, where the estimate (second order in the sub-step) stays true.
+//                              value is off its mean by up to bend / (4 n^2), q = bend / (hi - lo))
+// relative to tau; their sum is held below kDvrTolerance. Where the table is linear over a sub-step's
+// values, its mean value gives the optical depth exactly, however the value curves; a medium constant
+// along the segment needs one sub-step, and no sub-step holds more than kDvrStepDepth of optical
+// depth, where the estimate (second order in the sub-step) stays true.
 int dvrSteps(float lo, float hi, float len, int most, float bend) {
   int first = int(floor(tfPosition(lo))), last = int(ceil(tfPosition(hi)));
   vec2 sigma = tfExtinctionOn(first, last);
@@ -187,9 +198,8 @@ int dvrSteps(float lo, float hi, float len, int most, float bend) {
   float kinks = kinkLast >= kinkFirst ? float(tfPrefix[kinkLast + 1].y - tfPrefix[kinkFirst].y) * uTfKinkQuantum : 0.0;
   float colour = float(tfPrefix[last].z - tfPrefix[first].z) * uTfColourQuantum;
   float tau = sigma.x * len, entries = (hi - lo) * uTfScale;
-  float q = hi > lo ? float(FCC_DVR_BEND_TERM) * bend / (hi - lo) : 0.0;
-  float n2 = (kinks * entries / (8.0 * sigma.x) + colour * tau / 12.0 + 0.25 * q * ((sigma.x - sigma.y) / sigma.x + colour)) /
-             kDvrTolerance;
+  float q = hi > lo ? bend / (hi - lo) : 0.0, spread = (sigma.x - sigma.y) / sigma.x;
+  float n2 = (kinks * entries / (8.0 * sigma.x) + colour * (tau + spread) / 12.0 + 0.25 * q * (spread + colour)) / kDvrTolerance;
   // In float first: a huge (or NaN) count becomes `most`, not an undefined int.
   float n = ceil(max(tau / kDvrStepDepth, sqrt(n2)));
   return n < float(most) ? max(int(n), 1) : most;
@@ -228,11 +238,12 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
 // true once the ray is opaque enough to stop.
 bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) {
   float lo = min(min(bz.x, bz.y), min(bz.z, bz.w)), hi = max(max(bz.x, bz.y), max(bz.z, bz.w));
-  int n = dvrSteps(lo, hi, s1 - s0, kDvrMaxSteps, dvrBend(bz));
+  int n = dvrSteps(lo, hi, s1 - s0, kDvrMaxSteps, kDvrBendTerm ? dvrBend(bz) : 0.0);
   if (n == 0) return false;
-  float h = (s1 - s0) / float(n);
+  float h = (s1 - s0) / float(n), w = 1.0 / float(n);
   for (int i = 0; i < n; ++i) {
-    dvrComposite(fcc_bernstein3(bz, (float(i) + 0.5) / float(n)), s0 + float(i) * h, h, st);
+    float um = (float(i) + 0.5) / float(n);
+    dvrComposite(FCC_DVR_MIDPOINT != 0 ? fcc_bernstein3(bz, um) : fcc_bernstein3_mean(bz, um, w), s0 + float(i) * h, h, st);
     if (st.transmittance <= uStopTransmittance) return true;
   }
   return false;
@@ -243,29 +254,44 @@ bool dvrSegment3(vec4 bz, float s0, float s1, inout DvrState st) {
 float dvrSpanParameter(float tm, float a, float b) { return b > a ? clamp((tm - a) / (b - a), 0.0, 1.0) : 0.0; }
 
 // Three consecutive cubic segments [t0, ta], [ta, tb], [tb, t1] (Bernstein coefficients b0, b1, b2;
-// empty ones allowed) as one for the sub-step rule: their union's hull and the whole length, each
-// sub-step's midpoint on the segment that holds it (march_fcc.glsl: a unit cell's chord of the box spline).
+// empty ones allowed) as one for the sub-step rule: their union's hull and the whole length
+// (march_fcc.glsl: a unit cell's chord of the box spline). A sub-step's value is the mean of the
+// piecewise cubic over it, from its primitive at the sub-step's ends, whatever pieces it spans.
 bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1, inout DvrState st) {
   vec4 lo4 = min(min(b0, b1), b2), hi4 = max(max(b0, b1), b2);
   int n = dvrSteps(min(min(lo4.x, lo4.y), min(lo4.z, lo4.w)), max(max(hi4.x, hi4.y), max(hi4.z, hi4.w)), t1 - t0,
-                   FCC_DVR_CHORD_MAX_STEPS, max(max(dvrBend(b0), dvrBend(b1)), dvrBend(b2)));
-  if (n == 0) return false;
+                   FCC_DVR_CHORD_MAX_STEPS, kDvrBendTerm ? max(max(dvrBend(b0), dvrBend(b1)), dvrBend(b2)) : 0.0);
+  if (n == 0 || !(t1 > t0)) return false;
   float h = (t1 - t0) / float(n);
+#if FCC_DVR_MIDPOINT
   for (int i = 0; i < n; ++i) {
     float ts = t0 + float(i) * h, tm = ts + 0.5 * h;
-#if FCC_DVR_SELECT_PIECE
-    // The piece's coefficients and span chosen first, then one evaluation (a measurement knob).
-    bool first = tm < ta, second = tm < tb;
-    vec4 b = first ? b0 : (second ? b1 : b2);
-    float sa = first ? t0 : (second ? ta : tb), sb = first ? ta : (second ? tb : t1);
-    float v = fcc_bernstein3(b, dvrSpanParameter(tm, sa, sb));
-#else
     float v = tm < ta ? fcc_bernstein3(b0, dvrSpanParameter(tm, t0, ta))
                       : (tm < tb ? fcc_bernstein3(b1, dvrSpanParameter(tm, ta, tb)) : fcc_bernstein3(b2, dvrSpanParameter(tm, tb, t1)));
-#endif
     dvrComposite(v, ts, h, st);
     if (st.transmittance <= uStopTransmittance) return true;
   }
+#else
+  // The primitive V(t) of (value - vRef) from t0, per piece in power form (vRef, the entry value, keeps
+  // V's differences free of a large offset); vA = V(ta), vB = V(tb).
+  float vRef = b0.x;
+  vec4 p0 = fcc_bernstein3_primitive(b0 - vRef), p1 = fcc_bernstein3_primitive(b1 - vRef),
+       p2 = fcc_bernstein3_primitive(b2 - vRef);
+  float vA = (ta - t0) * fcc_primitive3_at(p0, 1.0), vB = vA + (tb - ta) * fcc_primitive3_at(p1, 1.0);
+  float ts = t0, vBefore = 0.0;  // the sub-step's start and V there
+  for (int i = 0; i < n; ++i) {
+    float te = i + 1 < n ? t0 + float(i + 1) * h : t1;
+    bool first = te < ta, second = te < tb;
+    vec4 p = first ? p0 : (second ? p1 : p2);
+    float sa = first ? t0 : (second ? ta : tb), sb = first ? ta : (second ? tb : t1), base = first ? 0.0 : (second ? vA : vB);
+    float vAfter = base + (sb - sa) * fcc_primitive3_at(p, dvrSpanParameter(te, sa, sb));
+    // (A sub-step shorter than float can tell, te = ts: the entry value, not 0 / 0.)
+    dvrComposite(vRef + (te > ts ? (vAfter - vBefore) / (te - ts) : 0.0), ts, h, st);
+    ts = te;
+    vBefore = vAfter;
+    if (st.transmittance <= uStopTransmittance) return true;
+  }
+#endif
   return false;
 }
 

@@ -89,6 +89,21 @@ FCC_FUNC float fcc_bernstein3(FCC_VEC4 b, float u) {
   return v * v * (v * b.x + 3.0f * u * b.y) + u * u * (3.0f * v * b.z + u * b.w);
 }
 
+// The mean of the Bernstein cubic b over [um - w / 2, um + w / 2]: its value at the midpoint plus its
+// second derivative there times w^2 / 24. Exact for a cubic: about um its odd Taylor terms average to
+// zero and the third derivative is constant (docs/DVR.md, "The value a sub-step takes").
+FCC_FUNC float fcc_bernstein3_mean(FCC_VEC4 b, float um, float w) {
+  float d0 = b.x - 2.0f * b.y + b.z, d1 = b.y - 2.0f * b.z + b.w;
+  return fcc_bernstein3(b, um) + 0.25f * w * w * ((1.0f - um) * d0 + um * d1);
+}
+
+// The primitive of the Bernstein cubic b on [0, 1] that is 0 at 0, in power form for Horner's rule:
+// P(u) = u (p.x + u (p.y + u (p.z + u p.w))) (fcc_primitive3_at); P(1) is the sum of b over 4.
+FCC_FUNC FCC_VEC4 fcc_bernstein3_primitive(FCC_VEC4 b) {
+  return FCC_MAKE_VEC4(b.x, 1.5f * (b.y - b.x), b.x - 2.0f * b.y + b.z, 0.25f * (b.w - 3.0f * b.z + 3.0f * b.y - b.x));
+}
+FCC_FUNC float fcc_primitive3_at(FCC_VEC4 p, float u) { return u * (p.x + u * (p.y + u * (p.z + u * p.w))); }
+
 // The first u in [0, 1] where the cubic with Bernstein coefficients b is zero, or -1 if it has none.
 // Exact up to float rounding: the cubic is monotone between its critical points, so the first
 // monotone interval whose ends differ in sign holds the first root, found by bisection.

@@ -77,6 +77,38 @@ TEST(Ray, FindsTheFirstOfTwoCloseRoots) {
   }
 }
 
+// The mean of a cubic over a sub-interval and its primitive (ReconCommon.h; DVR's sub-step values), on
+// random cubics and intervals against Simpson's rule in double (exact for cubics), within float
+// rounding of the coefficients.
+TEST(Ray, CubicMeansAndPrimitivesAreTheirIntegrals) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> coefficient(-1.0f, 1.0f), u01(0.0f, 1.0f);
+  constexpr double kTol = 2e-6;  // float rounding of values of order 1
+  auto simpson = [](const glm::dvec4& b, double a, double c) {
+    const double m = 0.5 * (a + c);
+    auto panel = [&](double x, double y) { return (y - x) / 6.0 * (bernstein3(b, x) + 4.0 * bernstein3(b, 0.5 * (x + y)) + bernstein3(b, y)); };
+    return panel(a, m) + panel(m, c);
+  };
+  for (int trial = 0; trial < 5000; ++trial) {
+    const glm::vec4 b(coefficient(rng), coefficient(rng), coefficient(rng), coefficient(rng));
+    const float ua = u01(rng), ub = u01(rng), lo = std::min(ua, ub), hi = std::max(ua, ub);
+    const float um = 0.5f * (lo + hi), w = hi - lo;
+    const double expectedMean = w > 0.0f ? simpson(glm::dvec4(b), lo, hi) / w : bernstein3(glm::dvec4(b), um);
+    ASSERT_NEAR(fcc_bernstein3_mean(b, um, w), expectedMean, kTol)
+        << "b = " << b.x << " " << b.y << " " << b.z << " " << b.w << ", [" << lo << ", " << hi << "]";
+    const glm::vec4 p = fcc_bernstein3_primitive(b);
+    ASSERT_NEAR(fcc_primitive3_at(p, ua), simpson(glm::dvec4(b), 0.0, ua), kTol)
+        << "b = " << b.x << " " << b.y << " " << b.z << " " << b.w << ", u = " << ua;
+  }
+  // The whole interval: the mean of the Bernstein coefficients.
+  const glm::vec4 b(0.3f, -1.0f, 2.0f, 0.5f);
+  EXPECT_NEAR(fcc_primitive3_at(fcc_bernstein3_primitive(b), 1.0f), (0.3 - 1.0 + 2.0 + 0.5) / 4.0, kTol);
+  // A hump's mean is not its midpoint value (what the sub-steps used to take): 1/2 against 3/4.
+  const glm::vec4 hump(0.0f, 1.0f, 1.0f, 0.0f);
+  EXPECT_NEAR(fcc_bernstein3_mean(hump, 0.5f, 1.0f), 0.5f, 1e-7f);
+  EXPECT_NEAR(fcc_bernstein3(hump, 0.5f), 0.75f, 1e-7f);
+}
+
 // A random unit cell near the origin and a ray through it: the chord [ta, tb] from face to face, through
 // a random point inside the cell.
 struct CellChord {
