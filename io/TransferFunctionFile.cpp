@@ -23,7 +23,7 @@ constexpr long long kMaxFileBytes = 64ll << 20;
 
 const char* const kJsonValid =
     "valid: ParaView's colour-map JSON, a list of objects with \"Name\", \"RGBPoints\": [x, r, g, b, ...] and "
-    "optionally \"Points\": [x, alpha, 0.5, 0.0, ...]";
+    "optionally \"Points\": [x, alpha, midpoint, sharpness, ...] (midpoint and sharpness in [0, 1])";
 const char* const kTextValid =
     "valid: one control point a line, 'value r g b alpha' (colour and opacity in [0, 1], values non-decreasing), "
     "'#' comments";
@@ -120,15 +120,7 @@ TransferFunction colorMapFromJson(const Json& object, size_t index, const std::s
   std::vector<OpacityPoint> opacities;
   if (object.contains("Points")) {
     const std::vector<double> points = numbers(object, "Points", 4, map, path);
-    for (size_t i = 0; i < points.size(); i += 4) {
-      const double midpoint = points[i + 2], sharpness = points[i + 3];
-      if (std::abs(midpoint - 0.5) > 1e-9 || std::abs(sharpness) > 1e-9)
-        fail(path,
-             "colour map " + map + ": opacity point " + std::to_string(i / 4 + 1) + " has midpoint " + number(midpoint) +
-                 " and sharpness " + number(sharpness) + ", but only 0.5 and 0.0 (linear) are supported",
-             kJsonValid);
-      opacities.push_back({points[i], points[i + 1]});
-    }
+    for (size_t i = 0; i < points.size(); i += 4) opacities.push_back({points[i], points[i + 1], points[i + 2], points[i + 3]});
   } else {
     // ParaView's default opacity: a ramp from 0 to 1 over the colour map's range.
     double lo = colors.front().x, hi = colors.front().x;
@@ -247,8 +239,8 @@ std::string paraViewColorMapJson(const TransferFunction& tf, const std::string& 
   for (const OpacityPoint& p : tf.opacities()) {
     points.push_back(p.x);
     points.push_back(p.alpha);
-    points.push_back(0.5);  // midpoint and sharpness: ParaView's linear segments
-    points.push_back(0.0);
+    points.push_back(p.midpoint);
+    points.push_back(p.sharpness);
   }
   Json map = Json::object();
   map["Name"] = name;

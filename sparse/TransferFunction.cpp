@@ -45,6 +45,24 @@ bool inUnit(double v) { return std::isfinite(v) && v >= 0.0 && v <= 1.0; }
 
 }  // namespace
 
+double paraViewSegmentShape(double u, double midpoint, double sharpness) {
+  if (midpoint == 0.5 && sharpness == 0.0) return u;  // the straight line, exactly
+  // vtkPiecewiseFunction's curve: u moved so that the midpoint lands at 1/2 (the midpoint kept off
+  // the segment's ends, where the division degenerates, as VTK does), then ...
+  const double m = std::clamp(midpoint, 1e-5, 1.0 - 1e-5);
+  double s = u < m ? 0.5 * u / m : 0.5 + 0.5 * (u - m) / (1.0 - m);
+  if (sharpness > 0.99) return s < 0.5 ? 0.0 : 1.0;  // ... a step there,
+  if (sharpness < 0.01) return s;                   // ... a line through it,
+  // ... or a Hermite curve with both end slopes (1 - sharpness) of the line's, s first pushed towards
+  // the ends (the sharper, the flatter the curve there and the steeper about the midpoint).
+  const double power = 1.0 + 10.0 * sharpness;
+  if (s < 0.5) s = 0.5 * std::pow(2.0 * s, power);
+  else if (s > 0.5) s = 1.0 - 0.5 * std::pow(2.0 * (1.0 - s), power);
+  const double ss = s * s, sss = ss * s;
+  const double h2 = -2.0 * sss + 3.0 * ss, h34 = 2.0 * sss - 3.0 * ss + s;  // h3 + h4 of VTK's curve
+  return std::clamp(h2 + (1.0 - sharpness) * h34, 0.0, 1.0);
+}
+
 // --- Optics ---
 
 void validateOpticalScale(const OpticalScale& scale) {
@@ -112,6 +130,10 @@ TransferFunction::TransferFunction(std::vector<ColorPoint> colors, std::vector<O
     if (!inUnit(opacities_[i].alpha))
       throw ValueError("opacity point " + std::to_string(i + 1) + " (x = " + number(opacities_[i].x) + ") has an opacity " +
                        number(opacities_[i].alpha) + " outside [0, 1]");
+    if (!inUnit(opacities_[i].midpoint) || !inUnit(opacities_[i].sharpness))
+      throw ValueError("opacity point " + std::to_string(i + 1) + " (x = " + number(opacities_[i].x) + ") has midpoint " +
+                       number(opacities_[i].midpoint) + " and sharpness " + number(opacities_[i].sharpness) +
+                       "; each must lie in [0, 1]");
     alphas[i] = opacities_[i].alpha;
   }
   opacityQueries_ = RangeQueries(std::move(alphas));
@@ -121,7 +143,15 @@ double TransferFunction::domainMin() const { return std::min(colors_.front().x, 
 double TransferFunction::domainMax() const { return std::max(colors_.back().x, opacities_.back().x); }
 
 glm::dvec3 TransferFunction::color(double v) const { return piecewiseLinear(colors_, v, &ColorPoint::rgb); }
-double TransferFunction::opacity(double v) const { return piecewiseLinear(opacities_, v, &OpacityPoint::alpha); }
+double TransferFunction::opacity(double v) const {
+  const auto above = std::upper_bound(opacities_.begin(), opacities_.end(), v,
+                                      [](double a, const OpacityPoint& p) { return a < p.x; });
+  if (above == opacities_.begin()) return opacities_.front().alpha;
+  if (above == opacities_.end()) return opacities_.back().alpha;
+  const OpacityPoint& a = *(above - 1);
+  const OpacityPoint& b = *above;  // b.x > v >= a.x
+  return a.alpha + (b.alpha - a.alpha) * paraViewSegmentShape((v - a.x) / (b.x - a.x), a.midpoint, a.sharpness);
+}
 
 TransferFunction TransferFunction::stretchedTo(double lo, double hi) const {
   if (!std::isfinite(lo) || !std::isfinite(hi) || hi < lo)

@@ -24,10 +24,19 @@ struct ColorPoint {
   glm::dvec3 rgb;  // each in [0, 1]
 };
 
+// ParaView's opacity point: the midpoint and sharpness shape the segment from this point to the next
+// (vtkPiecewiseFunction's curve: docs/DVR.md, "Files"); 0.5 and 0 are a straight line.
 struct OpacityPoint {
-  double x;      // data value
-  double alpha;  // in [0, 1]: the opacity of a segment one unit distance long
+  double x;                 // data value
+  double alpha;             // in [0, 1]: the opacity of a segment one unit distance long
+  double midpoint = 0.5;    // in [0, 1]: where in the segment the opacity is halfway between the two
+  double sharpness = 0.0;   // in [0, 1]: 0 linear, up to 1 a step at the midpoint
 };
+
+// The shape of a segment from 0 to 1 under ParaView's midpoint and sharpness, at u in [0, 1] of it:
+// 0 at 0, 1 at 1, a half at the midpoint (below sharpness 0.99; a step there above), never
+// decreasing. Exactly u for midpoint 0.5 and sharpness 0.
+double paraViewSegmentShape(double u, double midpoint, double sharpness);
 
 // The largest opacity taken as such; above it alpha is clamped (alpha = 1 would be an infinite
 // extinction): a unit segment of it is 1 - 1e-6 opaque, sigma = ln(1e6) / unitDistance = 13.8 / unit.
@@ -68,12 +77,13 @@ class RangeQueries {
 };
 
 // Colour and opacity over data values, each piecewise linear between its control points (sorted by x;
-// points at one x make a step: the value at that x is the last one's); outside the points' range each
-// keeps its end value. Immutable once made.
+// points at one x make a step: the value at that x is the last one's), the opacity shaped by each
+// point's midpoint and sharpness as ParaView shapes it (linear by default); outside the points' range
+// each keeps its end value. Immutable once made.
 class TransferFunction {
  public:
-  // ValueError: no colour or no opacity point, x not finite or decreasing, a colour or opacity outside
-  // [0, 1] or not finite.
+  // ValueError: no colour or no opacity point, x not finite or decreasing, a colour, opacity, midpoint
+  // or sharpness outside [0, 1] or not finite.
   TransferFunction(std::vector<ColorPoint> colors, std::vector<OpacityPoint> opacities, std::string name = "",
                    bool normalized = false);
 
@@ -97,9 +107,10 @@ class TransferFunction {
   // there keep their order).
   TransferFunction stretchedTo(double lo, double hi) const;
 
-  // Exact range queries on the piecewise-linear opacity over the closed interval [lo, hi] (lo <= hi;
-  // swapped otherwise; a NaN bound: the whole function), O(log n): the largest opacity (at lo, at hi or
-  // at a control point inside: both sides of a step inside count), and whether it is zero everywhere.
+  // Exact range queries on the opacity over the closed interval [lo, hi] (lo <= hi; swapped otherwise;
+  // a NaN bound: the whole function), O(log n): the largest opacity (at lo, at hi or at a control point
+  // inside: both sides of a step inside count; each segment is monotone between its points, whatever
+  // its midpoint and sharpness), and whether it is zero everywhere.
   double maxOpacityOn(double lo, double hi) const;
   bool zeroOpacityOn(double lo, double hi) const { return maxOpacityOn(lo, hi) <= 0.0; }
   double maxExtinctionOn(double lo, double hi, const OpticalScale& scale) const {

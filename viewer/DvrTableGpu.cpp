@@ -91,6 +91,9 @@ DvrTableGpu::Prefixes DvrTableGpu::prefixes(const TransferTable& table) {
       p.sums[i].z = p.sums[i - 1].z + colours[i - 1];
     }
   }
+  // The next entry's kink sum beside each, so that dvrSteps reads both kink sums it needs from the two
+  // entries its colour sum reads (the last entry's: its own, never read).
+  for (std::size_t i = 0; i < p.sums.size(); ++i) p.sums[i].w = p.sums[i + 1 < p.sums.size() ? i + 1 : i].y;
   return p;
 }
 

@@ -29,7 +29,7 @@ class DvrTableGpu {
   static std::vector<glm::vec2> extinctionLevels(const TransferTable& table);
 
   // The prefix sums dvr.glsl's tfPrefix holds, size + 1 of them: (non-zero entries, kinks, colour
-  // steps, 0) among entries [0, i). The sums are in whole quanta (returned), each term rounded up, so
+  // steps, kinks of the next: i + 1) among entries [0, i). The sums are in whole quanta (returned), each term rounded up, so
   // a difference of two is exact in unsigned arithmetic and times its quantum at least the table's own
   // sum (within float rounding where the shader multiplies) and at most a quantum a term more; a
   // quantum is 2^-30 of the table's whole sum.

@@ -58,7 +58,8 @@ void TransferFunctionEditor::move(int i, double x, double alpha) {
   alpha = std::isnan(alpha) ? points_[std::size_t(i)].alpha : std::clamp(alpha, 0.0, 1.0);
   OpacityPoint& p = points_[std::size_t(i)];
   if (p.x == x && p.alpha == alpha) return;
-  p = {x, alpha};
+  p.x = x;  // its midpoint and sharpness (the shape of the segment to the next point) stay
+  p.alpha = alpha;
   ++revision_;
 }
 

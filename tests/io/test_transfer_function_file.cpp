@@ -111,8 +111,10 @@ TEST(TransferFunctionFile, BadJsonFilesAreOneClearLine) {
   expectBadFile(write(dir, "string.json", map("\"RGBPoints\": [0, \"red\", 0, 0]")), "entry 2 is not a number");
   expectBadFile(write(dir, "range.json", map("\"RGBPoints\": [0, 0, 0, 255]")), "outside [0, 1]");
   expectBadFile(write(dir, "alpha.json", map("\"RGBPoints\": [0, 0, 0, 0], \"Points\": [0, 2, 0.5, 0]")), "outside [0, 1]");
-  expectBadFile(write(dir, "midpoint.json", map("\"RGBPoints\": [0, 0, 0, 0], \"Points\": [0, 1, 0.3, 0]")),
-                "only 0.5 and 0.0 (linear) are supported");
+  expectBadFile(write(dir, "midpoint.json", map("\"RGBPoints\": [0, 0, 0, 0], \"Points\": [0, 1, 1.5, 0]")),
+                "opacity point 1 (x = 0) has midpoint 1.5 and sharpness 0; each must lie in [0, 1]");
+  expectBadFile(write(dir, "sharpness.json", map("\"RGBPoints\": [0, 0, 0, 0], \"Points\": [0, 1, 0.5, 0, 1, 0, 0.5, -2]")),
+                "opacity point 2 (x = 1) has midpoint 0.5 and sharpness -2; each must lie in [0, 1]");
   expectBadFile(write(dir, "space.json", map("\"ColorSpace\": \"CMYK\", \"RGBPoints\": [0, 0, 0, 0]")),
                 "unknown \"ColorSpace\" \"CMYK\"");
   expectBadFile(write(dir, "notlist.json", map("\"RGBPoints\": 3")), "\"RGBPoints\" is not a list of numbers");
@@ -220,10 +222,25 @@ TEST(TransferFunctionFile, AllMapsOfAFileLoad) {
 
 // What the viewer saves reads back as the same function, bit for bit (values a short decimal format
 // would round), through the same reader as --tf; ParaView's shape: RGBPoints and Points.
+// ParaView's midpoint and sharpness shape the opacity between points (vtkPiecewiseFunction's curve).
+TEST(TransferFunctionFile, ParaViewMidpointAndSharpnessShapeTheOpacity) {
+  TempDir dir;
+  const std::string path = write(
+      dir, "shaped.json",
+      R"([{"Name": "m", "RGBPoints": [0, 0, 0, 0, 4, 1, 1, 1], "Points": [0, 0, 0.25, 0.6, 4, 1, 0.5, 0]}])");
+  const TransferFunction tf = io::readTransferFunctionFile(path);
+  ASSERT_EQ(tf.opacities().size(), 2u);
+  EXPECT_EQ(tf.opacities()[0].midpoint, 0.25);
+  EXPECT_EQ(tf.opacities()[0].sharpness, 0.6);
+  EXPECT_NEAR(tf.opacity(1.0), 0.5, 1e-12);  // a half at the midpoint, a quarter of the way
+  EXPECT_EQ(tf.opacity(2.0), paraViewSegmentShape(0.5, 0.25, 0.6));
+  EXPECT_LT(tf.opacity(0.2), 0.05) << "sharpness flattens the start";
+}
+
 TEST(TransferFunctionFile, SavedParaViewJsonReadsBackBitForBit) {
   TempDir dir;
   const TransferFunction tf({{-1.0 / 3.0, {0.1, 0.2 / 3.0, 1.0}}, {0.7071067811865476, {1.0 / 7.0, 0.5, 0.0}}},
-                            {{-1.0 / 3.0, 0.0}, {0.1234567890123456789, 0.3 / 7.0}, {0.7071067811865476, 1.0}});
+                            {{-1.0 / 3.0, 0.0, 0.3 / 7.0, 2.0 / 3.0}, {0.1234567890123456789, 0.3 / 7.0}, {0.7071067811865476, 1.0}});
   const std::string path = dir / "saved.json";
   io::writeParaViewColorMap(path, tf, "my map", /*overwrite=*/false);
   const TransferFunction back = io::transferFunctionFromSpec(path);
@@ -237,6 +254,8 @@ TEST(TransferFunctionFile, SavedParaViewJsonReadsBackBitForBit) {
   for (std::size_t i = 0; i < tf.opacities().size(); ++i) {
     EXPECT_EQ(back.opacities()[i].x, tf.opacities()[i].x);
     EXPECT_EQ(back.opacities()[i].alpha, tf.opacities()[i].alpha);
+    EXPECT_EQ(back.opacities()[i].midpoint, tf.opacities()[i].midpoint);
+    EXPECT_EQ(back.opacities()[i].sharpness, tf.opacities()[i].sharpness);
   }
   const std::string text = io::paraViewColorMapJson(tf, "my map");
   EXPECT_NE(text.find("\"RGBPoints\""), std::string::npos);

@@ -14,7 +14,8 @@ namespace fcc {
 namespace {
 
 // A random function on [-3, 5]: n points each list, some opacity runs of zeros, some steps.
-TransferFunction randomFunction(std::mt19937_64& rng, int n) {
+// `shaped`: each opacity point also takes a random ParaView midpoint and sharpness (some a step).
+TransferFunction randomFunction(std::mt19937_64& rng, int n, bool shaped = false) {
   std::uniform_real_distribution<double> x(-3.0, 5.0), u(0.0, 1.0);
   std::vector<double> xs(static_cast<size_t>(n));
   for (double& v : xs) v = x(rng);
@@ -26,6 +27,10 @@ TransferFunction randomFunction(std::mt19937_64& rng, int n) {
   for (double v : xs) {
     colors.push_back({v, glm::dvec3(u(rng), u(rng), u(rng))});
     opacities.push_back({v, u(rng) < 0.5 ? 0.0 : u(rng)});
+    if (shaped) {
+      opacities.back().midpoint = u(rng);
+      opacities.back().sharpness = u(rng) < 0.2 ? 1.0 : u(rng);
+    }
   }
   return TransferFunction(colors, opacities, "random");
 }
@@ -70,6 +75,49 @@ TEST(TransferFunction, EqualValuesMakeAStepTakingTheLastPoint) {
   EXPECT_FALSE(tf.zeroOpacityOn(0.3, 3.0));
 }
 
+// ParaView's opacity segments (vtkPiecewiseFunction's midpoint and sharpness): the line by default,
+// bit for bit; otherwise from 0 to 1, a half at the midpoint, never decreasing, a step at sharpness 1,
+// flatter at the ends the sharper; one value of VTK's curve worked by hand.
+TEST(TransferFunction, ParaViewMidpointAndSharpnessShapeASegment) {
+  for (int i = 0; i <= 100; ++i) EXPECT_EQ(paraViewSegmentShape(i / 100.0, 0.5, 0.0), i / 100.0);
+  for (double midpoint : {0.0, 0.1, 0.3, 0.5, 0.8, 1.0})
+    for (double sharpness : {0.0, 0.005, 0.3, 0.7, 0.98}) {
+      SCOPED_TRACE("midpoint " + std::to_string(midpoint) + ", sharpness " + std::to_string(sharpness));
+      EXPECT_NEAR(paraViewSegmentShape(0.0, midpoint, sharpness), 0.0, 1e-12);
+      EXPECT_NEAR(paraViewSegmentShape(1.0, midpoint, sharpness), 1.0, 1e-12);
+      if (midpoint > 0.0 && midpoint < 1.0) {
+        EXPECT_NEAR(paraViewSegmentShape(midpoint, midpoint, sharpness), 0.5, 1e-12);
+      }
+      double previous = 0.0;
+      for (int i = 0; i <= 1000; ++i) {
+        const double shape = paraViewSegmentShape(i / 1000.0, midpoint, sharpness);
+        ASSERT_GE(shape, previous - 1e-12) << "at u = " << i / 1000.0;  // rounding aside
+        ASSERT_LE(shape, 1.0);
+        previous = shape;
+      }
+    }
+  // The midpoint alone moves the line's knee: 0.25 -> a half at u = 0.25, 0.75 at u = 0.625.
+  EXPECT_DOUBLE_EQ(paraViewSegmentShape(0.125, 0.25, 0.0), 0.25);
+  EXPECT_DOUBLE_EQ(paraViewSegmentShape(0.625, 0.25, 0.0), 0.75);
+  // Sharpness 1: a step at the midpoint.
+  EXPECT_EQ(paraViewSegmentShape(0.3 - 1e-9, 0.3, 1.0), 0.0);
+  EXPECT_EQ(paraViewSegmentShape(0.3, 0.3, 1.0), 1.0);
+  // Sharper: flatter near the ends.
+  EXPECT_LT(paraViewSegmentShape(0.1, 0.5, 0.7), paraViewSegmentShape(0.1, 0.5, 0.3));
+  EXPECT_LT(paraViewSegmentShape(0.1, 0.5, 0.3), 0.1);
+  // u = 0.25, midpoint 0.5, sharpness 0.5: s = 0.5 (2 u)^6 = 1/128, then the Hermite curve with end
+  // slopes half the line's: 3 s^2 - 2 s^3 + 0.5 (2 s^3 - 3 s^2 + s) = 0.0039973259.
+  EXPECT_NEAR(paraViewSegmentShape(0.25, 0.5, 0.5), 0.0039973259, 1e-10);
+
+  // In a function: the segment from the point that holds the shape.
+  const std::vector<ColorPoint> gray = {{0.0, glm::dvec3(0.0)}, {1.0, glm::dvec3(1.0)}};
+  const TransferFunction tf(gray, {{2.0, 0.2, 0.25, 0.6}, {6.0, 1.0}, {10.0, 0.0, 0.5, 1.0}, {12.0, 0.5}});
+  EXPECT_NEAR(tf.opacity(3.0), 0.6, 1e-12);  // a quarter of the way: halfway between 0.2 and 1
+  EXPECT_DOUBLE_EQ(tf.opacity(8.0), 0.5);     // the next segment is the line from 1 to 0
+  EXPECT_EQ(tf.opacity(10.999), 0.0);         // a step at 11
+  EXPECT_EQ(tf.opacity(11.0), 0.5);
+}
+
 TEST(TransferFunction, InvalidPointsAreValueErrors) {
   const std::vector<ColorPoint> gray = {{0.0, glm::dvec3(0.0)}, {1.0, glm::dvec3(1.0)}};
   EXPECT_THROW(TransferFunction({}, {{0.0, 1.0}}), ValueError);
@@ -78,6 +126,9 @@ TEST(TransferFunction, InvalidPointsAreValueErrors) {
   EXPECT_THROW(TransferFunction(gray, {{0.0, 1.5}}), ValueError);              // opacity > 1
   EXPECT_THROW(TransferFunction({{0.0, glm::dvec3(0.0, -0.1, 0.0)}}, {{0.0, 0.5}}), ValueError);
   EXPECT_THROW(TransferFunction(gray, {{std::nan(""), 0.5}}), ValueError);
+  EXPECT_THROW(TransferFunction(gray, {{0.0, 0.5, 1.5, 0.0}}), ValueError);           // midpoint > 1
+  EXPECT_THROW(TransferFunction(gray, {{0.0, 0.5, 0.5, -0.1}}), ValueError);          // sharpness < 0
+  EXPECT_THROW(TransferFunction(gray, {{0.0, 0.5, std::nan(""), 0.0}}), ValueError);  // midpoint NaN
   try {
     TransferFunction(gray, {{0.0, 0.1}, {2.0, 0.5}, {1.0, 0.5}});
     FAIL() << "no error";
@@ -186,7 +237,7 @@ TEST(TransferFunction, RangeQueriesAgreeWithBruteForceOnRandomRanges) {
   const OpticalScale scale{0.5, 1.0};
   int zeros = 0, nonZeros = 0;
   for (int f = 0; f < 40; ++f) {
-    const TransferFunction tf = randomFunction(rng, 2 + f % 12);
+    const TransferFunction tf = randomFunction(rng, 2 + f % 12, /*shaped=*/f % 2 == 1);
     for (int r = 0; r < 200; ++r) {
       double lo = x(rng), hi = x(rng);
       if (r % 4 == 0) hi = lo + 0.05 * (hi - lo);  // short ranges too

@@ -202,6 +202,11 @@ TEST(DvrTableGpu, QuantizedPrefixSumsBoundTheTablesSums) {
       const double kinkCount = std::max(kinkLast - kinkFirst + 1, 0), pairCount = double(last - first);
       const double gpuKinks = kinkLast < kinkFirst ? 0.0
           : double(p.sums[std::size_t(kinkLast) + 1].y - p.sums[std::size_t(kinkFirst)].y) * p.kinkQuantum;
+      // dvrSteps reads them from entries first and last alone: w holds the next entry's kink sum.
+      const bool below = lo < table.vmin(), beyond = hi > table.vmax();
+      const int shaderKinks = int(beyond ? p.sums[std::size_t(last)].w : p.sums[std::size_t(last)].y) -
+                              int(below ? p.sums[std::size_t(first)].y : p.sums[std::size_t(first)].w);
+      ASSERT_EQ(double(std::max(shaderKinks, 0)) * p.kinkQuantum, gpuKinks) << "size " << size << " on [" << lo << ", " << hi << "]";
       const double gpuColour = double(p.sums[std::size_t(last)].z - p.sums[std::size_t(first)].z) * p.colourQuantum;
       const double kinks = table.kinkSumOn(lo, hi), colour = table.colourVariationOn(lo, hi);
       ASSERT_GE(gpuKinks, kinks) << "size " << size << " on [" << lo << ", " << hi << "]";

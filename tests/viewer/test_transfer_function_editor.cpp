@@ -93,6 +93,20 @@ TEST(TransferFunctionEditor, MoveStaysBetweenTheNeighboursAndInsideTheRange) {
   EXPECT_THROW(e.move(-1, 0.0, 0.0), ValueError);
 }
 
+// A ParaView function's point keeps its midpoint and sharpness (the shape of its segment) when dragged.
+TEST(TransferFunctionEditor, MoveKeepsAPointsParaViewShape) {
+  const TransferFunction shaped({{0.0, glm::dvec3(0.0)}, {10.0, glm::dvec3(1.0)}},
+                                {{0.0, 0.0, 0.25, 0.6}, {10.0, 1.0}});
+  TransferFunctionEditor e(shaped, 0.0, 10.0);
+  e.move(0, 2.0, 0.1);
+  EXPECT_EQ(e.points()[0].midpoint, 0.25);
+  EXPECT_EQ(e.points()[0].sharpness, 0.6);
+  EXPECT_NEAR(e.function("edited").opacity(4.0), 0.55, 1e-12);  // halfway at the midpoint of [2, 10]
+  const int added = e.insert(5.0, 0.5);  // a new point is ParaView's line
+  EXPECT_EQ(e.points()[std::size_t(added)].midpoint, 0.5);
+  EXPECT_EQ(e.points()[std::size_t(added)].sharpness, 0.0);
+}
+
 TEST(TransferFunctionEditor, RemoveKeepsAtLeastOnePoint) {
   TransferFunctionEditor e(viridisOn(0.0, 1.0), 0.0, 1.0);
   const int i = e.insert(0.5, 1.0);
