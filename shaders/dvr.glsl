@@ -144,9 +144,6 @@ vec2 tfExtinctionOn(int first, int last) {
 #ifndef FCC_DVR_FIXED_STEPS
 #define FCC_DVR_FIXED_STEPS 0
 #endif
-#ifndef FCC_DVR_RULE_FOUR_READS
-#define FCC_DVR_RULE_FOUR_READS 0
-#endif
 #ifndef FCC_DVR_ENTRY_RULE
 #define FCC_DVR_ENTRY_RULE 0
 #endif
@@ -198,18 +195,11 @@ int dvrSteps(float lo, float hi, float len, int most, float bend) {
   // where lo lies below the table and to its last entry where hi lies past it (there the lookup is
   // constant: a kink at the end entry); the colour over the pairs first..last. Two reads: each entry
   // holds its own kink sum and the next's (none inside: a difference <= 0).
-#if FCC_DVR_RULE_FOUR_READS  // session 21's four reads (a measurement knob, session 22; to be removed)
-  float pl = clamp((lo - uTfMin) * uTfScale, -1.0, float(uTfSize)), ph = clamp((hi - uTfMin) * uTfScale, -1.0, float(uTfSize));
-  int kinkFirst = max(int(floor(pl)) + 1, 0), kinkLast = min(int(ceil(ph)) - 1, uTfSize - 1);
-  float kinks = kinkLast >= kinkFirst ? float(tfPrefix[kinkLast + 1].y - tfPrefix[kinkFirst].y) * uTfKinkQuantum : 0.0;
-  float colour = float(tfPrefix[last].z - tfPrefix[first].z) * uTfColourQuantum;
-#else
   uvec4 atFirst = tfPrefix[first], atLast = tfPrefix[last];
   bool below = (lo - uTfMin) * uTfScale < 0.0, beyond = (hi - uTfMin) * uTfScale > float(uTfSize - 1);
   int kinkSum = int(beyond ? atLast.w : atLast.y) - int(below ? atFirst.y : atFirst.w);
   float kinks = float(max(kinkSum, 0)) * uTfKinkQuantum;
   float colour = float(atLast.z - atFirst.z) * uTfColourQuantum;
-#endif
   float tau = sigma.x * len, entries = (hi - lo) * uTfScale;
   float q = hi > lo ? bend / (hi - lo) : 0.0, spread = (sigma.x - sigma.y) / sigma.x;
   float n2 = (kinks * entries / (8.0 * sigma.x) + colour * (tau + spread) / 12.0 + 0.25 * q * (spread + colour)) / kDvrTolerance;
