@@ -1,6 +1,7 @@
 // DVR's transfer-function editor in the panel (docs/VIEWER.md, "Transfer function"): the opacity
 // control points over the histogram (click to add, drag to move, right-click or Delete to remove),
-// the colour map, and the function saved to or loaded from a file (ParaView colour-map JSON, the
+// the shape of the segment after the last grabbed point (ParaView's midpoint and sharpness), the
+// colour map, and the function saved to or loaded from a file (ParaView colour-map JSON, the
 // reader of --tf). The edits go to a TransferFunctionEditor (viewer/TransferFunctionEditor.h); the
 // session rebuilds the GPU's table from it (ViewerSession::applyTransfer).
 #define GLFW_INCLUDE_NONE  // key codes only
@@ -50,6 +51,7 @@ void ViewerSession::editOpacityPoints(float x0, float x1, float yLo, float yHi, 
   if (hoveredItem && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
     // A point under the mouse is grabbed; elsewhere a new one is made there and grabbed.
     dragPoint_ = hovered >= 0 ? hovered : editor_->insert(mouseValue, mouseAlpha);
+    shapePoint_ = dragPoint_;
   } else if (active && dragPoint_ >= 0 && ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
              (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
     editor_->move(dragPoint_, mouseValue, mouseAlpha);  // clamped between its neighbours: it stays dragPoint_
@@ -59,7 +61,7 @@ void ViewerSession::editOpacityPoints(float x0, float x1, float yLo, float yHi, 
   if ((hovered >= 0 && ImGui::IsMouseClicked(ImGuiMouseButton_Right)) ||
       (target >= 0 && !io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_DELETE, false))) {
     editor_->remove(ImGui::IsMouseClicked(ImGuiMouseButton_Right) ? hovered : target);  // never the last point
-    dragPoint_ = -1;
+    dragPoint_ = shapePoint_ = -1;
   }
 
   // The points as handles: a light disc in a dark ring, the one under the mouse or held larger.
@@ -74,6 +76,22 @@ void ViewerSession::editOpacityPoints(float x0, float x1, float yLo, float yHi, 
     draw.AddCircleFilled(ImVec2(x, y), r + 1.5f * std::max(scale, 0.5f), IM_COL32(20, 20, 20, 255));
     draw.AddCircleFilled(ImVec2(x, y), r, hot ? IM_COL32(255, 210, 90, 255) : IM_COL32(240, 240, 240, 255));
   }
+}
+
+// Below the histogram, once a point was grabbed: the shape of the segment from it to the next point,
+// ParaView's midpoint (where the opacity is halfway) and sharpness (0 a line, 1 a step there).
+void ViewerSession::drawSegmentShape() {
+  const int count = int(editor_->points().size());
+  if (shapePoint_ < 0 || shapePoint_ + 1 >= count) return;  // no point chosen, or the last: no segment after it
+  const OpacityPoint& p = editor_->points()[std::size_t(shapePoint_)];
+  ImGui::TextDisabled("segment from %.5g to %.5g", p.x, editor_->points()[std::size_t(shapePoint_) + 1].x);
+  float midpoint = float(p.midpoint), sharpness = float(p.sharpness);
+  const bool midpointMoved = ImGui::SliderFloat("midpoint", &midpoint, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+  layout_.segmentMidpointSlider = lastRect();
+  const bool sharpnessMoved = ImGui::SliderFloat("sharpness", &sharpness, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+  layout_.segmentSharpnessSlider = lastRect();
+  if (midpointMoved || sharpnessMoved)
+    editor_->setShape(shapePoint_, midpointMoved ? double(midpoint) : p.midpoint, sharpnessMoved ? double(sharpness) : p.sharpness);
 }
 
 // Below the histogram: the colour map, and the function to or from a file.

@@ -63,6 +63,17 @@ void TransferFunctionEditor::move(int i, double x, double alpha) {
   ++revision_;
 }
 
+void TransferFunctionEditor::setShape(int i, double midpoint, double sharpness) {
+  checkIndex(i);
+  OpacityPoint& p = points_[std::size_t(i)];
+  midpoint = std::isnan(midpoint) ? p.midpoint : std::clamp(midpoint, 0.0, 1.0);
+  sharpness = std::isnan(sharpness) ? p.sharpness : std::clamp(sharpness, 0.0, 1.0);
+  if (p.midpoint == midpoint && p.sharpness == sharpness) return;
+  p.midpoint = midpoint;
+  p.sharpness = sharpness;
+  ++revision_;
+}
+
 bool TransferFunctionEditor::remove(int i) {
   checkIndex(i);
   if (points_.size() <= 1) return false;

@@ -34,6 +34,9 @@ class TransferFunctionEditor {
   // Point i to (x, alpha), clamped: x into [lo, hi] and between its neighbours' values (a drag never
   // reorders the points, so i stays the dragged point), alpha into [0, 1]. ValueError for a bad i.
   void move(int i, double x, double alpha);
+  // The shape of the segment from point i to the next (ParaView's midpoint and sharpness: docs/DVR.md,
+  // "Files"), each clamped into [0, 1] (NaN: unchanged). ValueError for a bad i.
+  void setShape(int i, double midpoint, double sharpness);
   // Removes point i, unless it is the last one (a function needs an opacity point): false then.
   // ValueError for a bad i.
   bool remove(int i);

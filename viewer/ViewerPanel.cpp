@@ -84,6 +84,7 @@ void ViewerSession::drawPanel(int windowHeight) {
   layout_.unitDistanceSlider = layout_.stopOpacitySlider = layout_.shadingCheckbox = {};
   layout_.colorMapCombo = layout_.transferPathField = layout_.transferLoad = layout_.transferSave = {};
   layout_.opacityPoints.clear();
+  layout_.segmentMidpointSlider = layout_.segmentSharpnessSlider = {};
   if (dvr()) {
     drawTransferSection();
   } else {
@@ -254,7 +255,8 @@ void ViewerSession::drawTransferSection() {
   ImGui::SliderFloat("stop opacity", &settings_.stopOpacity, 0.5f, 1.0f, "%.3f", ImGuiSliderFlags_NoRoundToFormat);
   layout_.stopOpacitySlider = lastItemRect();
   drawHistogram();  // with the opacity curve and the editor's points over it
-  drawTransferFiles();  // viewer/PanelTransfer.cpp
+  drawSegmentShape();   // viewer/PanelTransfer.cpp
+  drawTransferFiles();
 }
 
 void ViewerSession::drawCameraSection() {

@@ -77,6 +77,9 @@ struct PanelLayout {
   // a small square around each opacity point drawn over the histogram (the editor's order).
   ImRectF colorMapCombo, transferPathField, transferLoad, transferSave;
   std::vector<ImRectF> opacityPoints;
+  // The sliders of the segment from the last grabbed point to the next (ParaView's midpoint and
+  // sharpness; empty while no point is chosen or it is the last).
+  ImRectF segmentMidpointSlider, segmentSharpnessSlider;
   ImRectF addSurface, removeLastSurface;  // the Surfaces section's buttons (empty when not shown)
   // The Renderer section's reconstruction combo while closed (empty for FCC data: no choice), and its
   // items (name, where) while open.
@@ -261,6 +264,7 @@ class ViewerSession {
   void editOpacityPoints(float x0, float x1, float yLo, float yHi, float axisMin, float axisMax, bool hovered,
                          bool active);
   void drawTransferFiles();
+  void drawSegmentShape();
   TransferFunction baseFunction(const std::string& name) const;  // a preset, --tf's or a loaded one, fitted
   void addColorMapsOf(const std::string& spec);  // a ParaView file's maps, for the colour-map combo
   void updateCursor(int fbWidth, int fbHeight, int windowHeight);
@@ -289,6 +293,7 @@ class ViewerSession {
   std::optional<TransferFunctionEditor> editor_;
   uint64_t appliedRevision_ = 0, baseRevision_ = 0;  // baseRevision_: right after the last reset (unedited)
   int dragPoint_ = -1;
+  int shapePoint_ = -1;  // the point whose segment's shape the panel's sliders edit (-1: none)
   bool reloadBase_ = false;
   std::vector<std::pair<std::string, TransferFunction>> loadedFunctions_;
   std::vector<std::pair<std::string, std::vector<ColorPoint>>> colorMaps_;

@@ -107,6 +107,24 @@ TEST(TransferFunctionEditor, MoveKeepsAPointsParaViewShape) {
   EXPECT_EQ(e.points()[std::size_t(added)].sharpness, 0.0);
 }
 
+// The panel's shape sliders: a segment's midpoint and sharpness, clamped, NaN leaving one as it was.
+TEST(TransferFunctionEditor, SetShapeShapesTheSegmentToTheNextPoint) {
+  TransferFunctionEditor e(viridisOn(0.0, 10.0), 0.0, 10.0);  // points at 0 (opacity 0) and 10 (1)
+  const uint64_t r = e.revision();
+  e.setShape(0, 0.25, 0.0);
+  EXPECT_GT(e.revision(), r);
+  EXPECT_NEAR(e.function("shaped").opacity(2.5), 0.5, 1e-12);  // halfway at a quarter of the way
+  e.setShape(0, std::nan(""), 2.0);
+  EXPECT_EQ(e.points()[0].midpoint, 0.25);
+  EXPECT_EQ(e.points()[0].sharpness, 1.0);
+  EXPECT_EQ(e.function("step").opacity(2.4), 0.0);
+  EXPECT_EQ(e.function("step").opacity(2.5), 1.0);
+  const uint64_t same = e.revision();
+  e.setShape(0, 0.25, 1.0);
+  EXPECT_EQ(e.revision(), same) << "no change, no revision";
+  EXPECT_THROW(e.setShape(2, 0.5, 0.0), ValueError);
+}
+
 TEST(TransferFunctionEditor, RemoveKeepsAtLeastOnePoint) {
   TransferFunctionEditor e(viridisOn(0.0, 1.0), 0.0, 1.0);
   const int i = e.insert(0.5, 1.0);

@@ -799,8 +799,8 @@ void drag(SessionHarness& h, float x0, float y0, float x1, float y1) {
 }
 
 // DVR's editor: a click on the histogram adds an opacity point there (the function passes through
-// it), dragging it moves it and changes the table and the image, a right-click removes it and gives
-// the first image back, bit for bit (the same table).
+// it), dragging it moves it and changes the table and the image, the shape sliders make its segment a
+// step, a right-click removes it and gives the first image back, bit for bit (the same table).
 TEST_F(ViewerSession, DvrEditorAddsDragsAndRemovesOpacityPoints) {
   TempDir dir;
   SessionHarness h(test::writeSmallBlobs(dir), "grayscale");
@@ -837,7 +837,27 @@ TEST_F(ViewerSession, DvrEditorAddsDragsAndRemovesOpacityPoints) {
   EXPECT_LT(moved.alpha, 0.3);
   EXPECT_EQ(h.session->transfer()->function.opacity(moved.x), moved.alpha);
   ASSERT_TRUE(settleAway(h));
-  EXPECT_GT(differingChannels(withPoint, h.pixels(), panel), 0) << "dragging the point must change the image";
+  const std::vector<unsigned char> dragged = h.pixels();
+  EXPECT_GT(differingChannels(withPoint, dragged, panel), 0) << "dragging the point must change the image";
+
+  // The grabbed point's segment to the next: sharpness 1 (typed after ctrl + click on its slider)
+  // makes it a step at its midpoint (ParaView's curve); the table and the image change.
+  const render::ImRectF sharpness = h.session->panelLayout().segmentSharpnessSlider;
+  ASSERT_FALSE(sharpness.empty()) << "no shape sliders for the grabbed point";
+  EXPECT_FALSE(h.session->panelLayout().segmentMidpointSlider.empty());
+  h.click(sharpness.x0 + 5.0f, sharpness.centreY(), /*ctrl=*/true);
+  h.type("1");
+  h.press(GLFW_KEY_ENTER);
+  h.frame();
+  ASSERT_EQ(editor.points().size(), 3u);
+  EXPECT_EQ(editor.points()[1].sharpness, 1.0);
+  EXPECT_EQ(editor.points()[1].midpoint, 0.5);
+  const OpacityPoint from = editor.points()[1], to = editor.points()[2];
+  const TransferFunction& inUse = h.session->transfer()->function;
+  EXPECT_EQ(inUse.opacity(from.x + 0.49 * (to.x - from.x)), from.alpha) << "a step at the midpoint";
+  EXPECT_EQ(inUse.opacity(from.x + 0.51 * (to.x - from.x)), to.alpha);
+  ASSERT_TRUE(settleAway(h));
+  EXPECT_GT(differingChannels(dragged, h.pixels(), panel), 0) << "the segment's shape must change the image";
 
   // Right-click on it: gone; the function, the table and the image are the first ones again.
   const render::ImRectF now = h.session->panelLayout().opacityPoints[1];
