@@ -123,9 +123,25 @@ vec4 tfLookup(float v) {
   return mix(tfEntries[i], tfEntries[i + 1], p - float(i));
 }
 
-// Whether every lookup in [lo, hi] has zero extinction (TransferTable::zeroOn).
+// The entries [uTfNonZeroFirst, uTfNonZeroEnd) hold every non-zero one; uTfInteriorZeros: a zero entry
+// lies among them (viewer/DvrTableGpu.h's nonZeroSpan).
+uniform int uTfNonZeroFirst, uTfNonZeroEnd, uTfInteriorZeros;
+#ifndef FCC_TF_ZERO_SPAN
+#define FCC_TF_ZERO_SPAN 1
+#endif
+
+// Whether every lookup in [lo, hi] has zero extinction (TransferTable::zeroOn): the entries first..last
+// those lookups read miss the non-zero span, or (only where zeros lie inside it: no memory read
+// otherwise, so a cell's skip waits for its bounds alone) the prefix counts say they hold none.
+// FCC_TF_ZERO_SPAN=0 (a measurement knob): the prefix counts always. A NaN bound (a damaged file's
+// samples, which lookups take as entry 0) stands for the whole table.
 bool tfZeroOn(float lo, float hi) {
-  int first = int(floor(tfPosition(lo))), last = int(ceil(tfPosition(hi)));
+  bool ordered = lo <= hi;
+  int first = ordered ? int(floor(tfPosition(lo))) : 0, last = ordered ? int(ceil(tfPosition(hi))) : uTfSize - 1;
+#if FCC_TF_ZERO_SPAN
+  if (last < uTfNonZeroFirst || first >= uTfNonZeroEnd) return true;
+  if (uTfInteriorZeros == 0) return false;
+#endif
   return tfPrefix[last + 1].x == tfPrefix[first].x;
 }
 

@@ -27,6 +27,7 @@ void DvrTableGpu::upload(const TransferTable& table) {
   kinkQuantum_ = sums.kinkQuantum;
   colourQuantum_ = sums.colourQuantum;
   maxLevels_->write(maxLevels.data(), maxLevels.size() * sizeof(glm::vec2));
+  nonZero_ = nonZeroSpan(table);
   size_ = table.size();
   vmin_ = float(table.vmin());
   scale_ = float((size_ - 1) / (table.vmax() - table.vmin()));
@@ -38,6 +39,10 @@ void DvrTableGpu::setUniforms(const GlProgram& program, float stopTransmittance)
   glProgramUniform1f(p, program.uniformLocation("uTfScale"), scale_);
   glProgramUniform1i(p, program.uniformLocation("uTfSize"), size_);
   glProgramUniform1f(p, program.uniformLocation("uStopTransmittance"), stopTransmittance);
+  // tfZeroOn's (not every program calls it: -1 is ignored).
+  glProgramUniform1i(p, glGetUniformLocation(p, "uTfNonZeroFirst"), nonZero_.first);
+  glProgramUniform1i(p, glGetUniformLocation(p, "uTfNonZeroEnd"), nonZero_.end);
+  glProgramUniform1i(p, glGetUniformLocation(p, "uTfInteriorZeros"), nonZero_.interiorZeros ? 1 : 0);
   // Only the sub-step rule reads these: a shader built with a fixed count (FCC_DVR_FIXED_STEPS, a
   // measurement knob) has them inactive, and GL ignores location -1.
   glProgramUniform1f(p, glGetUniformLocation(p, "uTfKinkQuantum"), kinkQuantum_);
@@ -48,6 +53,19 @@ void DvrTableGpu::bind() const {
   entries_->bindBase(GL_SHADER_STORAGE_BUFFER, 12);
   prefix_->bindBase(GL_SHADER_STORAGE_BUFFER, 13);
   maxLevels_->bindBase(GL_SHADER_STORAGE_BUFFER, 14);
+}
+
+DvrTableGpu::NonZeroSpan DvrTableGpu::nonZeroSpan(const TransferTable& table) {
+  const std::vector<int>& count = table.nonZeroPrefix();  // among entries [0, i)
+  const int size = table.size(), total = count[std::size_t(size)];
+  NonZeroSpan span{size, 0, false};
+  if (total == 0) return span;
+  span.first = 0;
+  while (count[std::size_t(span.first) + 1] == count[std::size_t(span.first)]) ++span.first;
+  span.end = size;
+  while (count[std::size_t(span.end) - 1] == count[std::size_t(span.end)]) --span.end;
+  span.interiorZeros = span.end - span.first != total;
+  return span;
 }
 
 std::vector<glm::vec2> DvrTableGpu::extinctionLevels(const TransferTable& table) {

@@ -39,9 +39,20 @@ class DvrTableGpu {
   };
   static Prefixes prefixes(const TransferTable& table);
 
+  // Where the table's non-zero entries lie: [first, end) holds them all (first = size, end = 0 where
+  // there are none), and whether a zero entry lies between two of them. dvr.glsl's tfZeroOn answers
+  // from these alone where it can (uniforms: no reads), from the prefix counts where a zero run lies
+  // inside (docs/DVR.md, "Skipping").
+  struct NonZeroSpan {
+    int first = 0, end = 0;
+    bool interiorZeros = false;
+  };
+  static NonZeroSpan nonZeroSpan(const TransferTable& table);
+
  private:
   std::unique_ptr<GlBuffer> entries_, prefix_, maxLevels_;
   float vmin_ = 0.0f, scale_ = 1.0f, kinkQuantum_ = 0.0f, colourQuantum_ = 0.0f;
+  NonZeroSpan nonZero_;
   int size_ = 0;
 };
 

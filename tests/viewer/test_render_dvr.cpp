@@ -217,6 +217,56 @@ TEST(DvrTableGpu, QuantizedPrefixSumsBoundTheTablesSums) {
   }
 }
 
+// A function with zero runs below, inside and above its non-zero entries (each a step, so that the
+// table's entries hold exact zeros there).
+TransferTable zeroRunsTable(double lo, double hi) {
+  const double w = hi - lo;
+  const TransferFunction tf({{lo, {0.2, 0.4, 0.9}}, {hi, {1.0, 0.8, 0.2}}},
+                            {{lo, 0.0}, {lo + 0.2 * w, 0.0}, {lo + 0.2 * w, 0.5}, {lo + 0.45 * w, 0.5}, {lo + 0.45 * w, 0.0},
+                             {lo + 0.55 * w, 0.0}, {lo + 0.55 * w, 0.7}, {lo + 0.8 * w, 0.7}, {lo + 0.8 * w, 0.0}});
+  return TransferTable(tf, lo, hi, 256, OpticalScale{1.0, 1.0});
+}
+
+// viewer/DvrTableGpu's span of non-zero entries, read as dvr.glsl's tfZeroOn reads it (the span alone,
+// the prefix counts only where zeros lie inside it), is TransferTable::zeroOn on random ranges, with
+// and without interior zeros. No GL needed.
+TEST(DvrTableGpu, NonZeroSpanAnswersAsThePrefixCounts) {
+  std::mt19937_64 rng(5);
+  const TransferTable tables[] = {rampTable(0.2, 0.7, 1.0), rampTable(0.2, 0.7, 1.0, 0.85), zeroRunsTable(0.0, 1.0),
+                                  TransferTable(TransferFunction({{0.0, glm::dvec3(1.0)}}, {{0.0, 0.0}}), 0.0, 1.0, 16,
+                                                OpticalScale{1.0, 1.0})};
+  for (int k = 0; k < 4; ++k) {
+    const TransferTable& table = tables[k];
+    const render::DvrTableGpu::NonZeroSpan span = render::DvrTableGpu::nonZeroSpan(table);
+    EXPECT_EQ(span.interiorZeros, k == 2) << "table " << k;
+    if (k == 3) {
+      EXPECT_EQ(span.end, 0) << "an all-zero table has an empty span";
+    }
+    std::uniform_real_distribution<double> x(-0.2, 1.2);
+    int spanAnswers = 0;
+    for (int r = 0; r < 4000; ++r) {
+      double lo = x(rng), hi = r % 3 == 0 ? lo + 0.01 * x(rng) : x(rng);
+      if (hi < lo) std::swap(lo, hi);
+      int first, last;
+      table.entriesOn(lo, hi, first, last);
+      bool zero;
+      if (last < span.first || first >= span.end) {
+        zero = true;
+        ++spanAnswers;
+      } else if (!span.interiorZeros) {
+        zero = false;
+        ++spanAnswers;
+      } else {
+        zero = table.nonZeroPrefix()[std::size_t(last) + 1] == table.nonZeroPrefix()[std::size_t(first)];
+      }
+      ASSERT_EQ(zero, table.zeroOn(lo, hi)) << "table " << k << " on [" << lo << ", " << hi << "]";
+    }
+    if (k != 2) {
+      EXPECT_EQ(spanAnswers, 4000) << "without interior zeros the span answers alone";
+    }
+  }
+}
+
 class RenderDvr : public GlSuite {};
 
 // The sphere field f = |x - c|^2 / R^2 (quadratic: the prefiltered box spline reproduces it) with a
@@ -569,6 +619,27 @@ TEST_F(RenderDvr, SkippingAndSmallCachesChangeNothing) {
     visible += i % 4 == 3 && reference.rgba[i] > 0.05f;
   }
   EXPECT_GT(visible, w * h / 10);
+}
+
+// tfZeroOn's span of non-zero entries (no memory read where the table has no zero run inside it) gives
+// the image of the prefix counts alone (FCC_TF_ZERO_SPAN=0), bit for bit, with zero runs at the ends
+// and inside.
+TEST_F(RenderDvr, ZeroSpanSkipsAsThePrefixCounts) {
+  const SmallBlobs blobs;
+  const int w = 48, h = 48;
+  for (const TransferTable& table : {rampTable(0.2, 1.0, 2.0, 1.1), zeroRunsTable(0.0, 1.2)}) {
+    const render::FrameImages span = renderSource(blobs.source, blobs.camera, w, h, dvrOptions(table));
+    render::FrameImages counts;
+    {
+      const test::ScopedEnv env("FCCVDB_SHADER_DEFINES", "FCC_TF_ZERO_SPAN=0");
+      counts = renderSource(blobs.source, blobs.camera, w, h, dvrOptions(table));
+    }
+    EXPECT_EQ(span.rgba, counts.rgba);
+    EXPECT_EQ(span.normalDepth, counts.normalDepth);
+    int visible = 0;
+    for (std::size_t i = 3; i < span.rgba.size(); i += 4) visible += span.rgba[i] > 0.02f;
+    EXPECT_GT(visible, w * h / 20);
+  }
 }
 
 // The DVR walk's schedules (docs/DVR.md, "The walk in rounds": a round finds a cell, then integrates
