@@ -35,7 +35,8 @@ TransferFunction parseTransferFunctionText(const std::string& text, const std::s
 std::vector<TransferFunction> readParaViewColorMaps(const std::string& path);
 
 // `tf` as ParaView's colour-map JSON: a list of one map {"Name", "ColorSpace": "RGB", "RGBPoints",
-// "Points" (midpoint 0.5, sharpness 0.0: linear)}, numbers written so that they read back bit for bit.
+// "Points" (each opacity point's midpoint and sharpness as tf holds them)}, numbers written so that
+// they read back bit for bit.
 std::string paraViewColorMapJson(const TransferFunction& tf, const std::string& name);
 // The same written to `path` atomically (io/AtomicOutput.h; OutputError as writeTextFile's).
 void writeParaViewColorMap(const std::string& path, const TransferFunction& tf, const std::string& name,

@@ -195,8 +195,31 @@ def raw_seeds():
     save("raw", "bad_header_beyond.raw", raw((1, 1, 1), 0, 16, 0, b"\0"))
 
 
+# --- transfer functions --------------------------------------------------------------------------------
+# The first byte: 1 for a .json file, 0 for the text format.
+
+def transfer_function_seeds():
+    json = lambda text: b"\x01" + text.encode()
+    txt = lambda text: b"\x00" + text.encode()
+    save("transfer_function", "paraview.json", json(
+        '[{"ColorSpace": "Diverging", "Name": "Two Tone", "NanColor": [1, 1, 0],\n'
+        ' "Points": [-1, 0, 0.5, 0, 0.5, 0.25, 0.25, 0.6, 2, 0.75, 0.5, 1],\n'
+        ' "RGBPoints": [-1, 0, 0, 1, 0.5, 1, 1, 1, 2, 1, 0, 0]},\n'
+        ' {"Name": "No Opacity", "RGBPoints": [10, 0, 0, 0, 20, 1, 1, 1]}]\n'))
+    save("transfer_function", "one_map.json", json('{"Name": "x", "RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1]}'))
+    save("transfer_function", "step.json", json('[{"RGBPoints": [0, 0, 0, 0, 0, 1, 1, 1], "Points": [0, 0, 0.5, 0, 0, 1, 0.5, 0]}]'))
+    save("transfer_function", "bad_midpoint.json", json('[{"RGBPoints": [0, 0, 0, 0], "Points": [0, 1, 1.5, 0]}]'))
+    save("transfer_function", "bad_space.json", json('[{"ColorSpace": "CMYK", "RGBPoints": [0, 0, 0, 0]}]'))
+    save("transfer_function", "bad_odd.json", json('[{"RGBPoints": [0, 0, 0, 0, 1, 1, 1]}]'))
+    save("transfer_function", "bad_cut.json", json('[{"Name": "m", "RGBPoints": [0, 0, 0'))
+    save("transfer_function", "ramp.txt", txt("# value r g b alpha\n\n0 0 0 0 0\n100 1 0.5 0 0.2 # warm\n100 1 1 1 0\n250 1 1 1 1\n"))
+    save("transfer_function", "bad_order.txt", txt("1 0 0 0 0\n0 1 1 1 1\n"))
+    save("transfer_function", "bad_fields.txt", txt("0 0 0 0\n"))
+
+
 def main():
     nrrd_seeds()
+    transfer_function_seeds()
     nifti_seeds()
     raw_seeds()
     cartesian_range_cache_seeds()

@@ -5,7 +5,7 @@
 # cap, prints the end of its log and exits 1, leaving the log and the input in the work folder.
 #
 #   tests/fuzz/run_fuzzers.sh BUILD_DIR SECONDS [TARGET...]
-#       (targets: vdb_leaf_reader nrrd nifti raw cartesian_range_cache)
+#       (targets: vdb_leaf_reader nrrd nifti raw cartesian_range_cache transfer_function)
 #
 # FCC_FUZZ_SEED (default 1) seeds libFuzzer's mutations: with a fixed seed the same binary and corpus try
 # the same inputs in the same order, so a run is reproducible and CI's verdict does not depend on luck
@@ -20,7 +20,7 @@ build=$1
 seconds=$2
 shift 2
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(vdb_leaf_reader nrrd nifti raw cartesian_range_cache)
+[ ${#targets[@]} -gt 0 ] || targets=(vdb_leaf_reader nrrd nifti raw cartesian_range_cache transfer_function)
 seed=${FCC_FUZZ_SEED:-1}
 here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d "${TMPDIR:-/tmp}/fccvdb-fuzz.XXXXXX")
