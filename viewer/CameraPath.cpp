@@ -58,7 +58,7 @@ CameraPath parseCameraPathJson(const std::string& text, const std::string& name)
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // a parse error, or a number beyond a double
     fail(name, std::string("not JSON (") + e.what() + ")");
   }
   if (!doc.is_object()) fail(name, "not a JSON object");

@@ -97,6 +97,8 @@ TEST(TransferFunctionFile, BadJsonFilesAreOneClearLine) {
   expectBadFile(write(dir, "blank.json", "  \n\t\n"), "is empty");
   expectBadFile(write(dir, "text.json", "value r g b alpha\n"), "not JSON");
   expectBadFile(write(dir, "cut.json", "[{\"Name\": \"m\", \"RGBPoints\": [0, 0, 0"), "not JSON");
+  // A number beyond a double: nlohmann-json's out_of_range, not a parse_error (found by fuzz_transfer_function).
+  expectBadFile(write(dir, "overflow.json", "[{\"Name\": \"m\", \"RGBPoints\": [0, 0, 0, 2E222222]}]"), "not JSON");
   expectBadFile(write(dir, "list.json", "[]"), "no colour map");
   expectBadFile(write(dir, "number.json", "42"), "not a list of colour maps");
   expectBadFile(write(dir, "entry.json", "[3]"), "entry 1 is not an object");

@@ -81,6 +81,7 @@ TEST(CameraPath, BadFilesAreOneLineNamingThem) {
       "{\"fccvdb_camera_path\": 1, \"frames\": [{\"t\": 0, \"eye\": [0, 0, 0], \"lookat\": [0, 0, 0]}]}",
       "{\"fccvdb_camera_path\": 1, \"frames\": [{\"t\": 1, \"eye\": [1, 2, 3], \"lookat\": [0, 0, 0]}, " + frame + "]}",
       "{\"fccvdb_camera_path\": 1, \"frames\": [{\"t\": 0, \"eye\": [1, 2, 3], \"lookat\": [0, 0, 0], \"roll\": 1}]}",
+      "{\"fccvdb_camera_path\": 1, \"frames\": [{\"t\": 1e999, \"eye\": [1, 2, 3], \"lookat\": [0, 0, 0]}]}",  // beyond a double
   };
   for (const std::string& text : bad) {
     try {
