@@ -16,17 +16,17 @@ std::string number(double v) {
   return text;
 }
 
-// The piecewise-linear function through points (x(i), y(i)), i < n, sorted by x: constant beyond the
-// ends; at a step (equal x) the last point's value.
-template <typename Point, typename Value>
-Value piecewiseLinear(const std::vector<Point>& points, double v, Value Point::*y) {
+// The function through points (x(i), y(i)), i < n, sorted by x: constant beyond the ends; at a step
+// (equal x) the last point's value; between points a and b, a.y + (b.y - a.y) shape(a, u) at u in
+// [0, 1] of the segment (u itself: piecewise linear).
+template <typename Point, typename Value, typename Shape>
+Value piecewise(const std::vector<Point>& points, double v, Value Point::*y, Shape shape) {
   const auto above = std::upper_bound(points.begin(), points.end(), v, [](double a, const Point& p) { return a < p.x; });
   if (above == points.begin()) return points.front().*y;
   if (above == points.end()) return points.back().*y;
   const Point& a = *(above - 1);
   const Point& b = *above;  // b.x > v >= a.x
-  const double u = (v - a.x) / (b.x - a.x);
-  return a.*y + (b.*y - a.*y) * u;
+  return a.*y + (b.*y - a.*y) * shape(a, (v - a.x) / (b.x - a.x));
 }
 
 template <typename Point>
@@ -142,15 +142,12 @@ TransferFunction::TransferFunction(std::vector<ColorPoint> colors, std::vector<O
 double TransferFunction::domainMin() const { return std::min(colors_.front().x, opacities_.front().x); }
 double TransferFunction::domainMax() const { return std::max(colors_.back().x, opacities_.back().x); }
 
-glm::dvec3 TransferFunction::color(double v) const { return piecewiseLinear(colors_, v, &ColorPoint::rgb); }
+glm::dvec3 TransferFunction::color(double v) const {
+  return piecewise(colors_, v, &ColorPoint::rgb, [](const ColorPoint&, double u) { return u; });
+}
 double TransferFunction::opacity(double v) const {
-  const auto above = std::upper_bound(opacities_.begin(), opacities_.end(), v,
-                                      [](double a, const OpacityPoint& p) { return a < p.x; });
-  if (above == opacities_.begin()) return opacities_.front().alpha;
-  if (above == opacities_.end()) return opacities_.back().alpha;
-  const OpacityPoint& a = *(above - 1);
-  const OpacityPoint& b = *above;  // b.x > v >= a.x
-  return a.alpha + (b.alpha - a.alpha) * paraViewSegmentShape((v - a.x) / (b.x - a.x), a.midpoint, a.sharpness);
+  return piecewise(opacities_, v, &OpacityPoint::alpha,
+                   [](const OpacityPoint& a, double u) { return paraViewSegmentShape(u, a.midpoint, a.sharpness); });
 }
 
 TransferFunction TransferFunction::stretchedTo(double lo, double hi) const {

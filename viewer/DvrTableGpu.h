@@ -29,10 +29,10 @@ class DvrTableGpu {
   static std::vector<glm::vec2> extinctionLevels(const TransferTable& table);
 
   // The prefix sums dvr.glsl's tfPrefix holds, size + 1 of them: (non-zero entries, kinks, colour
-  // steps, kinks of the next: i + 1) among entries [0, i). The sums are in whole quanta (returned), each term rounded up, so
-  // a difference of two is exact in unsigned arithmetic and times its quantum at least the table's own
-  // sum (within float rounding where the shader multiplies) and at most a quantum a term more; a
-  // quantum is 2^-30 of the table's whole sum.
+  // steps) among entries [0, i), and in w the kinks among [0, i + 1). The sums are in whole quanta
+  // (returned), each term rounded up, so a difference of two is exact in unsigned arithmetic and times
+  // its quantum at least the table's own sum (within float rounding where the shader multiplies) and
+  // at most a quantum a term more; a quantum is 2^-30 of the table's whole sum.
   struct Prefixes {
     std::vector<glm::uvec4> sums;
     float kinkQuantum = 0.0f, colourQuantum = 0.0f;
