@@ -115,7 +115,22 @@ void dvrBeginCell(ivec3 cell, vec3 o, vec3 d) {
 #endif
 }
 
-float tfPosition(float v) { return clamp((v - uTfMin) * uTfScale, 0.0, float(uTfSize - 1)); }
+// A value's place in the table, in entries. NaN (a damaged file's samples) is entry 0, as on the CPU
+// (TransferTable::position): GLSL's clamp promises nothing for NaN, and NVIDIA's gave the last entry
+// (RenderDvr.NanSamplesAreTheTablesFirstEntryAsOnTheCpu on the H200, 43.3 dB). The check costs the
+// H200 3-4 % of a DVR frame (docs/BENCHMARKS.md, session 23); FCC_TF_NAN=0, a measurement knob
+// (docs/RENDERER.md), is the clamp alone.
+#ifndef FCC_TF_NAN
+#define FCC_TF_NAN 1
+#endif
+float tfPosition(float v) {
+  float p = (v - uTfMin) * uTfScale;
+#if FCC_TF_NAN
+  return isnan(p) ? 0.0 : clamp(p, 0.0, float(uTfSize - 1));
+#else
+  return clamp(p, 0.0, float(uTfSize - 1));
+#endif
+}
 
 vec4 tfLookup(float v) {
   float p = tfPosition(v);

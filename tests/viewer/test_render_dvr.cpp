@@ -402,8 +402,8 @@ TEST_F(RenderDvr, MatchesTheCpuReferenceOnEveryLattice) {
 
 // A Cartesian grid with a ball of NaN samples (a damaged simulation's output): where the field is NaN
 // the medium is the transfer function's first entry, as the CPU reference's TransferTable::position
-// takes it (on the GPU dvr.glsl's clamp to the table gives 0 for NaN, and a NaN range reads entry 0
-// alone: the drivers' min and max return the number, which GLSL does not promise), and
+// takes it (on the GPU dvr.glsl's tfPosition says so itself: GLSL's clamp promises nothing for NaN,
+// llvmpipe's gave entry 0 and NVIDIA's the last one), and
 // the image is the reference's (within kNanPsnrDb, tighter than the bound: both integrate the
 // same medium, 69 and 75 dB; NaN taken as the table's last entry gives 43 dB); no NaN reaches a
 // pixel. Two tables: the first entry transparent (the ball a hole), and opaque enough to show it.
