@@ -7,14 +7,9 @@
 #   ../shared/tools/device-bundle build/bin/fccvdb build/bin/fccvdb-guard ../shared/data/engine_256x256x128_uint8.raw.gz
 #   source .devbundle/env.sh && bash tools/device/measure_session22_call1.sh        (SMALL=1: toy sizes)
 set -u
-W=${W:-/tmp/m22}; mkdir -p "$W"; cd "$W"
-if [ "${SMALL:-0}" = 1 ]; then RES=64x64; ML=40; MLC=32; FR=5; else RES=1920x1080; ML=320; MLC=254; FR=200; fi
-[ -s ml.vdb ] || fccvdb synth marschner-lobb ml.vdb --dims $ML,$ML,$ML --force --quiet
+W=${W:-/tmp/m22}; source "$(dirname "$0")/bench_data.sh"
+if [ "${SMALL:-0}" = 1 ]; then MLC=32; else MLC=254; fi
 [ -s ml_cc.vdb ] || fccvdb synth marschner-lobb ml_cc.vdb --dims $MLC,$MLC,$MLC --lattice cc --force --quiet
-ENGINE=$(cd "${FCC_DATA:-/nonexistent}" 2>/dev/null && pwd)/engine_256x256x128_uint8.raw.gz
-[ -s engine.vdb ] || fccvdb convert "$ENGINE" engine.vdb --dims 256,256,128 --type u8 --force --quiet
-D=(--variants skip+analytic --layout auto --res $RES --frames $FR --warmup 20 --json)
-fps() { grep -oE '"fps": [0-9.e+]+|fccvdb:.*' | tr '\n' ' '; echo; }
 for round in 1 2 3; do
   for v in "" "FCC_DVR_MIDPOINT=1"; do
     echo "-- round $round [${v:-main: mean values}] engine DVR inferno"; FCCVDB_SHADER_DEFINES="$v" fccvdb bench render engine.vdb --mode dvr --tf inferno "${D[@]}" | fps

@@ -7,13 +7,8 @@
 #   ../shared/tools/device-bundle build/bin/fccvdb build/bin/fccvdb-guard ../shared/data/engine_256x256x128_uint8.raw.gz
 #   source .devbundle/env.sh && bash tools/device/measure_session22_call2.sh        (SMALL=1: toy sizes)
 set -u
-W=${W:-/tmp/m22}; mkdir -p "$W"; cd "$W"
-if [ "${SMALL:-0}" = 1 ]; then RES=64x64; ML=40; FR=5; N=128; else RES=1920x1080; ML=320; FR=200; N=2048; fi
-[ -s ml.vdb ] || fccvdb synth marschner-lobb ml.vdb --dims $ML,$ML,$ML --force --quiet
-ENGINE=$(cd "${FCC_DATA:-/nonexistent}" 2>/dev/null && pwd)/engine_256x256x128_uint8.raw.gz
-[ -s engine.vdb ] || fccvdb convert "$ENGINE" engine.vdb --dims 256,256,128 --type u8 --force --quiet
-D=(--variants skip+analytic --layout auto --res $RES --frames $FR --warmup 20 --json)
-fps() { grep -oE '"fps": [0-9.e+]+|fccvdb:.*' | tr '\n' ' '; echo; }
+W=${W:-/tmp/m22}; source "$(dirname "$0")/bench_data.sh"
+if [ "${SMALL:-0}" = 1 ]; then N=128; else N=2048; fi
 for round in 1 2; do
   for wg in 4x8 16x32 32x24 32x32; do
     echo "-- round $round [work group $wg] engine DVR inferno"; fccvdb bench render engine.vdb --mode dvr --tf inferno --work-group $wg "${D[@]}" | fps
