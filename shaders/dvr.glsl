@@ -116,16 +116,21 @@ void dvrBeginCell(ivec3 cell, vec3 o, vec3 d) {
 }
 
 // A value's place in the table, in entries. NaN (a damaged file's samples) is entry 0, as on the CPU
-// (TransferTable::position): GLSL's clamp promises nothing for NaN, and NVIDIA's gave the last entry
-// (RenderDvr.NanSamplesAreTheTablesFirstEntryAsOnTheCpu on the H200, 43.3 dB). The check costs the
-// H200 3-4 % of a DVR frame (docs/BENCHMARKS.md, session 23); FCC_TF_NAN=0, a measurement knob
-// (docs/RENDERER.md), is the clamp alone.
+// (TransferTable::position). GLSL promises nothing for NaN in clamp, min or max: NVIDIA's clamp gave
+// the last entry (RenderDvr.NanSamplesAreTheTablesFirstEntryAsOnTheCpu on the H200, 43.3 dB). Max
+// first, then min: both drivers' min and max return the number where one operand is NaN (IEEE 754's
+// minNum and maxNum: PTX's min/max.f32, LLVM's minnum/maxnum in llvmpipe), so NaN becomes 0, the max's
+// number, at no cost; the NaN test holds it on both (docs/BENCHMARKS.md, session 24: an isnan cost the
+// H200 5 % of a DVR frame). Measurement knobs (docs/RENDERER.md): FCC_TF_NAN=1 that isnan and the
+// clamp, 0 the clamp alone.
 #ifndef FCC_TF_NAN
-#define FCC_TF_NAN 1
+#define FCC_TF_NAN 2
 #endif
 float tfPosition(float v) {
   float p = (v - uTfMin) * uTfScale;
-#if FCC_TF_NAN
+#if FCC_TF_NAN == 2
+  return min(max(p, 0.0), float(uTfSize - 1));
+#elif FCC_TF_NAN
   return isnan(p) ? 0.0 : clamp(p, 0.0, float(uTfSize - 1));
 #else
   return clamp(p, 0.0, float(uTfSize - 1));

@@ -402,8 +402,9 @@ TEST_F(RenderDvr, MatchesTheCpuReferenceOnEveryLattice) {
 
 // A Cartesian grid with a ball of NaN samples (a damaged simulation's output): where the field is NaN
 // the medium is the transfer function's first entry, as the CPU reference's TransferTable::position
-// takes it (on the GPU dvr.glsl's tfPosition says so itself: GLSL's clamp promises nothing for NaN,
-// llvmpipe's gave entry 0 and NVIDIA's the last one), and
+// takes it (on the GPU dvr.glsl's tfPosition takes the max with 0 before the min: GLSL promises nothing
+// for NaN, llvmpipe's clamp gave entry 0 and NVIDIA's the last one, and both drivers' max returns the
+// number), and
 // the image is the reference's (within kNanPsnrDb, tighter than the bound: both integrate the
 // same medium, 69 and 75 dB; NaN taken as the table's last entry gives 43 dB); no NaN reaches a
 // pixel. Two tables: the first entry transparent (the ball a hole), and opaque enough to show it.
@@ -593,8 +594,13 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
   glDisable(GL_DEPTH_TEST);
 }
 
-// Skipping (bricks, nodes, cells, segments the transfer function maps to zero) and a pool of a few
-// slots change no pixel: bit for bit.
+// A pool of a few slots changes no pixel, bit for bit. Skipping (bricks, nodes, cells, segments the
+// transfer function maps to zero) changes none beyond kSkipTolerance: it integrates the same cells,
+// but a cell passed over ends the chain of pieces (march_fcc.glsl), so the next cell's entry piece is
+// gathered rather than carried across the face, the same cubic rounded another way (bit for bit on
+// llvmpipe; NVIDIA's 580 driver differs in the last bits, docs/BENCHMARKS.md, session 23).
+constexpr float kSkipTolerance = 1e-5f;
+
 TEST_F(RenderDvr, SkippingAndSmallCachesChangeNothing) {
   const SmallBlobs blobs;
   const int w = 48, h = 48;
@@ -612,13 +618,17 @@ TEST_F(RenderDvr, SkippingAndSmallCachesChangeNothing) {
               (unsigned long long)bigStats.bricksUploaded, smallStats.passes, (unsigned long long)smallStats.bricksUploaded);
   EXPECT_GT(smallStats.bricksUploaded, bigStats.bricksUploaded) << "the small pool must have evicted bricks";
   int visible = 0;
+  float skipDifference = 0.0f;
   for (std::size_t i = 0; i < reference.rgba.size(); ++i) {
-    ASSERT_EQ(reference.rgba[i], unskipped.rgba[i]) << "skipping changed component " << i;
+    skipDifference = std::max(skipDifference, std::abs(reference.rgba[i] - unskipped.rgba[i]));
+    ASSERT_LE(std::abs(reference.rgba[i] - unskipped.rgba[i]), kSkipTolerance)
+        << "skipping changed component " << i << ": " << reference.rgba[i] << " against " << unskipped.rgba[i];
     ASSERT_EQ(reference.rgba[i], limited.rgba[i]) << "the small pool changed component " << i;
     ASSERT_EQ(reference.normalDepth[i], limited.normalDepth[i]) << "the small pool changed depth component " << i;
     visible += i % 4 == 3 && reference.rgba[i] > 0.05f;
   }
   EXPECT_GT(visible, w * h / 10);
+  std::printf("skipping changed a component by at most %g\n", double(skipDifference));
 }
 
 // tfZeroOn's span of non-zero entries (no memory read where the table has no zero run inside it) gives
