@@ -254,9 +254,9 @@ float dvrBend(vec4 b) { return max(abs(b.x - 2.0 * b.y + b.z), abs(b.y - 2.0 * b
 // opacity.
 float dvrOpacity(float x) { return x < 0.015625 ? x * (1.0 - x * (0.5 - x * (1.0 / 6.0))) : 1.0 - exp(-x); }
 
-// One sub-step [ta, ta + h] of medium e (a table lookup): composited exactly for the medium held
-// constant.
-void dvrCompositeMedium(vec4 e, float ta, float h, inout DvrState st) {
+// One sub-step [ta, ta + h] at value v: composited exactly for the medium held constant.
+void dvrComposite(float v, float ta, float h, inout DvrState st) {
+  vec4 e = tfLookup(v);
 #if FCC_DVR_COUNT == 1
   st.color.b += 1.0;
 #endif
@@ -272,9 +272,6 @@ void dvrCompositeMedium(vec4 e, float ta, float h, inout DvrState st) {
   st.transmittance -= st.transmittance * a;  // not T (1 - a): 1 - a would round a thin sub-step's a
   if (isinf(st.depthHalf) && st.transmittance <= 0.5) st.depthHalf = ta + log(2.0 * before) / e.a;
 }
-
-// The same at value v.
-void dvrComposite(float v, float ta, float h, inout DvrState st) { dvrCompositeMedium(tfLookup(v), ta, h, st); }
 
 // The segment [s0, s1] of the ray where the field is the cubic with Bernstein coefficients bz. Returns
 // true once the ray is opaque enough to stop.
@@ -299,37 +296,8 @@ float dvrSpanParameter(float tm, float a, float b) { return b > a ? clamp((tm - 
 // empty ones allowed) as one for the sub-step rule: their union's hull and the whole length
 // (march_fcc.glsl: a unit cell's chord of the box spline). A sub-step's value is the mean of the
 // piecewise cubic over it, from its primitive at the sub-step's ends, whatever pieces it spans.
-// 1: dvrChord3 looks up the medium of one sub-step over the whole chord before dvrSteps' reads come
-// back, so that the two reads overlap (most chords take one sub-step, docs/DVR.md); its first
-// sub-step takes it where the rule asks for one. The same arithmetic: the image bit for bit the same.
-// 0, a measurement knob (docs/RENDERER.md): the lookup after the rule, as until session 24.
-#ifndef FCC_DVR_SPECULATE
-#define FCC_DVR_SPECULATE 1
-#endif
-
-// dvrChord3's V(te): the primitive of the piecewise cubic (each piece's primitive p0, p1, p2 in power
-// form, of value - vRef) from t0 to te; vA = V(ta), vB = V(tb).
-float dvrChordPrimitive(float te, vec4 p0, vec4 p1, vec4 p2, float t0, float ta, float tb, float t1, float vA, float vB) {
-  bool first = te < ta, second = te < tb;
-  vec4 p = first ? p0 : (second ? p1 : p2);
-  float sa = first ? t0 : (second ? ta : tb), sb = first ? ta : (second ? tb : t1), base = first ? 0.0 : (second ? vA : vB);
-  return base + (sb - sa) * fcc_primitive3_at(p, dvrSpanParameter(te, sa, sb));
-}
-
 bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1, inout DvrState st) {
   vec4 lo4 = min(min(b0, b1), b2), hi4 = max(max(b0, b1), b2);
-#if !FCC_DVR_MIDPOINT
-  // The primitive V(t) of (value - vRef) from t0, per piece in power form (vRef, the entry value, keeps
-  // V's differences free of a large offset); vA = V(ta), vB = V(tb).
-  float vRef = b0.x;
-  vec4 p0 = fcc_bernstein3_primitive(b0 - vRef), p1 = fcc_bernstein3_primitive(b1 - vRef),
-       p2 = fcc_bernstein3_primitive(b2 - vRef);
-  float vA = (ta - t0) * fcc_primitive3_at(p0, 1.0), vB = vA + (tb - ta) * fcc_primitive3_at(p1, 1.0);
-#if FCC_DVR_SPECULATE
-  // The loop's value for n = 1 (te = t1, ts = t0, vBefore = 0), the same expression.
-  vec4 eWhole = tfLookup(vRef + (t1 > t0 ? (dvrChordPrimitive(t1, p0, p1, p2, t0, ta, tb, t1, vA, vB) - 0.0) / (t1 - t0) : 0.0));
-#endif
-#endif
   int n = dvrSteps(min(min(lo4.x, lo4.y), min(lo4.z, lo4.w)), max(max(hi4.x, hi4.y), max(hi4.z, hi4.w)), t1 - t0,
                    FCC_DVR_CHORD_MAX_STEPS, kDvrBendTerm ? max(max(dvrBend(b0), dvrBend(b1)), dvrBend(b2)) : 0.0);
   if (n == 0 || !(t1 > t0)) return false;
@@ -343,16 +311,19 @@ bool dvrChord3(vec4 b0, vec4 b1, vec4 b2, float t0, float ta, float tb, float t1
     if (st.transmittance <= uStopTransmittance) return true;
   }
 #else
-#if FCC_DVR_SPECULATE
-  if (n == 1) {
-    dvrCompositeMedium(eWhole, t0, h, st);
-    return st.transmittance <= uStopTransmittance;
-  }
-#endif
+  // The primitive V(t) of (value - vRef) from t0, per piece in power form (vRef, the entry value, keeps
+  // V's differences free of a large offset); vA = V(ta), vB = V(tb).
+  float vRef = b0.x;
+  vec4 p0 = fcc_bernstein3_primitive(b0 - vRef), p1 = fcc_bernstein3_primitive(b1 - vRef),
+       p2 = fcc_bernstein3_primitive(b2 - vRef);
+  float vA = (ta - t0) * fcc_primitive3_at(p0, 1.0), vB = vA + (tb - ta) * fcc_primitive3_at(p1, 1.0);
   float ts = t0, vBefore = 0.0;  // the sub-step's start and V there
   for (int i = 0; i < n; ++i) {
     float te = i + 1 < n ? t0 + float(i + 1) * h : t1;
-    float vAfter = dvrChordPrimitive(te, p0, p1, p2, t0, ta, tb, t1, vA, vB);
+    bool first = te < ta, second = te < tb;
+    vec4 p = first ? p0 : (second ? p1 : p2);
+    float sa = first ? t0 : (second ? ta : tb), sb = first ? ta : (second ? tb : t1), base = first ? 0.0 : (second ? vA : vB);
+    float vAfter = base + (sb - sa) * fcc_primitive3_at(p, dvrSpanParameter(te, sa, sb));
     // (A sub-step shorter than float can tell, te = ts: the entry value, not 0 / 0.)
     dvrComposite(vRef + (te > ts ? (vAfter - vBefore) / (te - ts) : 0.0), ts, h, st);
     ts = te;

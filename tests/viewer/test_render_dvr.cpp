@@ -631,27 +631,6 @@ TEST_F(RenderDvr, SkippingAndSmallCachesChangeNothing) {
   std::printf("skipping changed a component by at most %g\n", double(skipDifference));
 }
 
-// dvrChord3's medium looked up before the sub-step rule (FCC_DVR_SPECULATE, for the one sub-step most
-// chords take) gives the image of the lookup after it, bit for bit: with a gentle ramp (one sub-step a
-// chord nearly everywhere) and a steep one with a step (several where the chord crosses it).
-TEST_F(RenderDvr, SpeculativeLookupGivesTheSameImage) {
-  const SmallBlobs blobs;
-  const int w = 48, h = 48;
-  for (const TransferTable& table : {rampTable(0.2, 1.0, 2.0), rampTable(0.0, 0.8, 0.5, 1.1)}) {
-    const render::FrameImages speculated = renderSource(blobs.source, blobs.camera, w, h, dvrOptions(table));
-    render::FrameImages after;
-    {
-      const test::ScopedEnv env("FCCVDB_SHADER_DEFINES", "FCC_DVR_SPECULATE=0");
-      after = renderSource(blobs.source, blobs.camera, w, h, dvrOptions(table));
-    }
-    EXPECT_EQ(speculated.rgba, after.rgba);
-    EXPECT_EQ(speculated.normalDepth, after.normalDepth);
-    int visible = 0;
-    for (std::size_t i = 3; i < speculated.rgba.size(); i += 4) visible += speculated.rgba[i] > 0.02f;
-    EXPECT_GT(visible, w * h / 20);
-  }
-}
-
 // tfZeroOn's span of non-zero entries (no memory read where the table has no zero run inside it) gives
 // the image of the prefix counts alone (FCC_TF_ZERO_SPAN=0), bit for bit, with zero runs at the ends
 // and inside.
