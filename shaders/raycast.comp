@@ -72,18 +72,7 @@
 #define FCC_GROUP_X 8
 #define FCC_GROUP_Y 8
 #endif
-// A measurement knob (FCCVDB_GROUP_TILES, docs/RENDERER.md): a work group of FCC_GROUP_TILES tiles of
-// FCC_GROUP_X x FCC_GROUP_Y pixels, one after the other along a row of tiles, so that its size (which
-// caps a thread's registers: the driver must fit the whole group on an SM) changes and its warps' rays
-// do not (each warp is one tile, as with one tile a group).
-#ifndef FCC_GROUP_TILES
-#define FCC_GROUP_TILES 1
-#endif
-#if FCC_GROUP_TILES > 1
-layout(local_size_x = FCC_GROUP_X * FCC_GROUP_Y * FCC_GROUP_TILES) in;
-#else
 layout(local_size_x = FCC_GROUP_X, local_size_y = FCC_GROUP_Y) in;
-#endif
 
 // A measurement knob (docs/RENDERER.md): FCC_OCCUPANCY_PAD floats of shared memory a work group holds
 // and touches, to lower how many groups an SM runs at once (how much the frame depends on occupancy).
@@ -479,16 +468,7 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
 #endif
 
 void main() {
-#if FCC_GROUP_TILES > 1
-  const int kTilePixels = FCC_GROUP_X * FCC_GROUP_Y;
-  int tile = int(gl_WorkGroupID.x) * FCC_GROUP_TILES + int(gl_LocalInvocationID.x) / kTilePixels;
-  int lane = int(gl_LocalInvocationID.x) % kTilePixels;
-  int tilesX = (uResolution.x - uColumnOffset + FCC_GROUP_X - 1) / FCC_GROUP_X;
-  ivec2 pixel = ivec2(tile % tilesX, tile / tilesX) * ivec2(FCC_GROUP_X, FCC_GROUP_Y) + ivec2(lane % FCC_GROUP_X, lane / FCC_GROUP_X) +
-                ivec2(uColumnOffset, 0);
-#else
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(uColumnOffset, 0);
-#endif
 #if FCC_OCCUPANCY_PAD > 0
   gOccupancyPad[gl_LocalInvocationIndex % uint(FCC_OCCUPANCY_PAD)] = float(pixel.x);
 #endif

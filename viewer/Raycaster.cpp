@@ -48,18 +48,6 @@ std::string shaderDefinesFromEnvironment() {
   return out;
 }
 
-// FCCVDB_GROUP_TILES=K, a measurement knob (docs/RENDERER.md): work groups of K tiles (raycast.comp's
-// FCC_GROUP_TILES); 1 without it.
-int groupTilesFromEnvironment() {
-  const char* knob = std::getenv("FCCVDB_GROUP_TILES");
-  if (!knob) return 1;
-  char* end = nullptr;
-  const long k = std::strtol(knob, &end, 10);
-  if (end == knob || *end != '\0' || k < 1 || k > 32)
-    throw ValueError(std::string("FCCVDB_GROUP_TILES: '") + knob + "' is not a count of tiles; valid: 1 to 32");
-  return int(k);
-}
-
 }  // namespace
 
 std::string renderModeName(RenderMode mode) { return mode == RenderMode::Dvr ? "dvr" : "iso"; }
@@ -207,8 +195,7 @@ void Raycaster::buildRaycastProgram() {
                 (options.dvrGatherCentral ? "#define FCC_DVR_GATHER_CENTRAL 1\n" : "")
           : "";
   const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
-                                   "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n" +
-                                   "#define FCC_GROUP_TILES " + std::to_string(groupTilesFromEnvironment()) + "\n";
+                                   "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
   std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source_.reconstruction().deviceId) +
                         "\n" + modeDefines + groupDefines + shaderDefinesFromEnvironment();
   // Both compiled before either replaces the one in use: a program that fails to build changes nothing.
@@ -701,13 +688,7 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   program.use();
   if (passTimer_) passTimer_->begin();
   const int columns = width - columnOffset;
-  const int groupTiles = groupTilesFromEnvironment();
-  if (groupTiles > 1) {
-    const long tiles = long((columns + group.x - 1) / group.x) * long((height + group.y - 1) / group.y);
-    glDispatchCompute(GLuint((tiles + groupTiles - 1) / groupTiles), 1, 1);
-  } else {
-    glDispatchCompute(GLuint((columns + group.x - 1) / group.x), GLuint((height + group.y - 1) / group.y), 1);
-  }
+  glDispatchCompute(GLuint((columns + group.x - 1) / group.x), GLuint((height + group.y - 1) / group.y), 1);
   if (passTimer_) passTimer_->end();
   firstPass_ = false;
   // For the read-backs (buffer update, texture update) and the viewer's presenter, which reads the
