@@ -467,8 +467,8 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
 }
 #endif
 
-// The ray of one pixel: shaded, or stopped for a missing brick (it resumes in the next pass).
-void shadePixel(ivec2 pixel) {
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(uColumnOffset, 0);
 #if FCC_OCCUPANCY_PAD > 0
   gOccupancyPad[gl_LocalInvocationIndex % uint(FCC_OCCUPANCY_PAD)] = float(pixel.x);
 #endif
@@ -810,24 +810,3 @@ void shadePixel(ivec2 pixel) {
   imageStore(uNormalDepth, pixel, vec4(n, hit.t));
   noteSurfacePixel(pixel);
 }
-
-// 1: persistent work groups (RenderOptions::persistentGroups; docs/RENDERER.md): G groups, group g drawing
-// the dispatch's tiles g, g + G, g + 2G, ... in rows of uTileGrid.x, instead of one group a tile. The
-// GPU then launches G groups instead of one a tile (64 800 at 1080p). Tiles are dealt out, not taken
-// from a queue: session 23's queue (an atomic counter, the tile handed to the group through shared
-// memory and barriers) lost isosurface pixels on NVIDIA (docs/BENCHMARKS.md, session 24).
-#ifndef FCC_PERSISTENT_GROUPS
-#define FCC_PERSISTENT_GROUPS 0
-#endif
-#if FCC_PERSISTENT_GROUPS
-uniform ivec2 uTileGrid;  // the dispatch's tiles per row and per column
-void main() {
-  int tiles = uTileGrid.x * uTileGrid.y;
-  for (int tile = int(gl_WorkGroupID.x); tile < tiles; tile += int(gl_NumWorkGroups.x)) {
-    ivec2 first = ivec2(tile % uTileGrid.x, tile / uTileGrid.x) * ivec2(FCC_GROUP_X, FCC_GROUP_Y);
-    shadePixel(first + ivec2(gl_LocalInvocationID.xy) + ivec2(uColumnOffset, 0));
-  }
-}
-#else
-void main() { shadePixel(ivec2(gl_GlobalInvocationID.xy) + ivec2(uColumnOffset, 0)); }
-#endif

@@ -86,7 +86,6 @@ Command addBenchRenderCommand(CLI::App& bench) {
     int frames = 60, warmup = 5;
     double arc = 360.0;
     std::string workGroup = "4x8";
-    int persistentGroups = render::RenderOptions::kPersistentAuto;
     std::vector<std::string> variants = {"skip+analytic", "skip+fd", "noskip+analytic", "noskip+fd"};
     bool json = false;
     bool gpuTime = false;
@@ -103,10 +102,6 @@ Command addBenchRenderCommand(CLI::App& bench) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 3600.0));
   app->add_option("--work-group", args->workGroup, "Pixels per raycasting work group WxH (tuning)")->capture_default_str();
-  app->add_option("--persistent-groups", args->persistentGroups,
-                  "Work groups that draw the image's tiles in turn; 0: one group a tile; -1: automatic (tuning; docs/RENDERER.md)")
-      ->capture_default_str()
-      ->check(CLI::Range(-1, 1 << 30));
   app->add_option("--variants", args->variants, "Variants to time (default: all four)")
       ->check(CLI::IsMember({"skip+analytic", "skip+fd", "noskip+analytic", "noskip+fd"}));
   args->flags.layout = "all";
@@ -184,7 +179,6 @@ Command addBenchRenderCommand(CLI::App& bench) {
             options.timeGpu = args->gpuTime;
             options.countBricksDrawn = true;  // the first frame's level mix (timed frames: with levels only)
             resolutionFromFlags(args->workGroup, options.workGroup.x, options.workGroup.y, "--work-group");
-            options.persistentGroups = args->persistentGroups;
 
             // Frames to render: per layout one cold frame, then warm-up and timed frames per variant.
             const long totalFrames = args->flags.dvrMethod == "tetrahedra"

@@ -10,7 +10,6 @@
 #include <string>
 
 #include "FccBrickSource.h"
-#include "GpuShape.h"
 #include "embedded_shaders.h"
 #include "sparse/BccShearedTrilinear.h"
 #include "sparse/Error.h"
@@ -47,27 +46,6 @@ std::string shaderDefinesFromEnvironment() {
     }
   }
   return out;
-}
-
-// RenderOptions::persistentGroups resolved: FCCVDB_PERSISTENT_GROUPS=N, a measurement knob
-// (docs/RENDERER.md), before the options; kPersistentAuto from the GPU's shape.
-int persistentGroupsFor(const RenderOptions& options) {
-  int groups = options.persistentGroups;
-  if (const char* knob = std::getenv("FCCVDB_PERSISTENT_GROUPS")) {
-    char* end = nullptr;
-    const long n = std::strtol(knob, &end, 10);
-    if (end == knob || *end != '\0' || n < 0 || n > (1L << 30))
-      throw ValueError(std::string("FCCVDB_PERSISTENT_GROUPS: '") + knob + "' is not a count of work groups; valid: 0 (one group a tile) or more");
-    groups = int(n);
-  }
-  if (groups == RenderOptions::kPersistentAuto) {
-    const GpuShape gpu = currentGpuShape();
-    const int warpsPerGroup = (options.workGroup.x * options.workGroup.y + 31) / 32;
-    groups = gpu.sms > 0 ? std::max(gpu.sms, gpu.sms * gpu.warpsPerSm / warpsPerGroup) : 0;
-  }
-  if (groups < 0)
-    throw ValueError("persistent work groups: " + std::to_string(groups) + "; valid are 0 (one group a tile), more, or automatic");
-  return groups;
 }
 
 }  // namespace
@@ -140,7 +118,6 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   if (options.workGroup.x < 1 || options.workGroup.y < 1 || options.workGroup.x * options.workGroup.y > 1024)
     throw ValueError("work group " + std::to_string(options.workGroup.x) + "x" + std::to_string(options.workGroup.y) +
                      ": valid are 1 to 1024 invocations");
-  options_.persistentGroups = persistentGroupsFor(options_);
   // The reconstruction the shaders evaluate (sparse/ReconDispatch.h's FCC_RECON_* ids).
   std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source.reconstruction().deviceId) + "\n";
   const bool dvr = options.mode == RenderMode::Dvr;
@@ -207,8 +184,7 @@ Raycaster::Uniforms Raycaster::uniformsOf(const GlProgram& program, bool lenient
                   at("uPass"), at("uFirstPass"), at("uFirstColumn"), at("uColumnOffset"),
                   at("uRequestCapacity"), at("uLookahead"), at("uSkipEmpty"), at("uFiniteDifferenceNormals"),
                   at("uSurfaceColor"), at("uLightDir"), at("uClipLo"), at("uClipHi"),
-                  glGetUniformLocation(program.id(), "uBccParams"),  // BCC programs only (-1 elsewhere)
-                  glGetUniformLocation(program.id(), "uTileGrid")};   // persistent groups only
+                  glGetUniformLocation(program.id(), "uBccParams")};  // BCC programs only (-1 elsewhere)
 }
 
 void Raycaster::buildRaycastProgram() {
@@ -219,8 +195,7 @@ void Raycaster::buildRaycastProgram() {
                 (options.dvrGatherCentral ? "#define FCC_DVR_GATHER_CENTRAL 1\n" : "")
           : "";
   const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
-                                   "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n" +
-                                   (options.persistentGroups > 0 ? "#define FCC_PERSISTENT_GROUPS 1\n" : "");
+                                   "\n#define FCC_GROUP_Y " + std::to_string(options.workGroup.y) + "\n";
   std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source_.reconstruction().deviceId) +
                         "\n" + modeDefines + groupDefines + shaderDefinesFromEnvironment();
   // Both compiled before either replaces the one in use: a program that fails to build changes nothing.
@@ -710,13 +685,10 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   resume_.bindImage(2, GL_READ_WRITE);
   if (composite) transmittance_.bindImage(3, GL_READ_WRITE);
 
-  const int columns = width - columnOffset;
-  const glm::ivec2 tiles((columns + group.x - 1) / group.x, (height + group.y - 1) / group.y);
-  if (options_.persistentGroups > 0) glProgramUniform2iv(p, u.tileGrid, 1, &tiles.x);
   program.use();
   if (passTimer_) passTimer_->begin();
-  if (options_.persistentGroups > 0) glDispatchCompute(GLuint(std::min(long(options_.persistentGroups), long(tiles.x) * tiles.y)), 1, 1);
-  else glDispatchCompute(GLuint(tiles.x), GLuint(tiles.y), 1);
+  const int columns = width - columnOffset;
+  glDispatchCompute(GLuint((columns + group.x - 1) / group.x), GLuint((height + group.y - 1) / group.y), 1);
   if (passTimer_) passTimer_->end();
   firstPass_ = false;
   // For the read-backs (buffer update, texture update) and the viewer's presenter, which reads the

@@ -77,15 +77,6 @@ struct RenderOptions {
   std::optional<BrickLayout> layout;
   // Pixels per raycasting work group: 4x8 (one warp) measured fastest on the H200 (docs/BENCHMARKS.md).
   glm::ivec2 workGroup{4, 8};
-  // Work groups that stay and draw the dispatch's tiles (a work group's pixels each) in turn, group g
-  // tiles g, g + G, g + 2G, ... (shaders/raycast.comp, FCC_PERSISTENT_GROUPS), instead of one group a
-  // tile; 0: one group a tile. The image is the same bit for bit either way. kPersistentAuto: where the
-  // driver tells the GPU's shape (NVIDIA), as many groups as fill every warp slot once; elsewhere one
-  // group a tile (llvmpipe ends an invocation's loops after 65 535 iterations in all, which would cut
-  // short the later rays of an invocation that draws many pixels). docs/RENDERER.md, "Persistent work
-  // groups".
-  static constexpr int kPersistentAuto = -1;
-  int persistentGroups = kPersistentAuto;
   bool skipEmpty = true;   // skip nodes and bricks whose bounds exclude the isovalue
   // Bricks a stopped ray requests beyond its first missing one; kLookaheadAuto: none for render()'s
   // complete frames of one opaque isosurface at full resolution (a pass is cheaper than the file reads
@@ -370,7 +361,7 @@ class Raycaster {
   struct Uniforms {
     GLint resolution, eye, forward, right, up, indexFromWorld, normalFromIndex, iso, brickMin, brickDims, nodeDims,
         pass, firstPass, firstColumn, columnOffset, requestCapacity, lookahead, skipEmpty, finiteDifferenceNormals, surfaceColor, lightDir, clipLo, clipHi,
-        bccParams, tileGrid;
+        bccParams;
   } uniforms_{}, surfacesUniforms_{};
   Uniforms uniformsOf(const GlProgram& program, bool dvr, bool anyInactive = false) const;
   std::unique_ptr<GlReadbackBuffer> passResultsReadback_;

@@ -693,66 +693,6 @@ TEST_F(RenderDvr, WalkSchedulesGiveTheSameImage) {
   EXPECT_GT(stats[1].bricksUploaded, stats[0].bricksUploaded) << "the small pool must have evicted bricks";
 }
 
-// Persistent work groups (RenderOptions::persistentGroups) change which work group draws a tile and
-// when, not what its rays compute: the grid dispatch's images bit for bit, for DVR with a pool that
-// must evict (rays resuming in later passes), the isosurface, and tricubic DVR (many loops a ray), with
-// fewer groups than tiles (each draws several) and more (as many groups as tiles). Small: llvmpipe
-// ends an invocation's loops after 65 535 iterations in all, so an invocation may draw only a few
-// pixels' rays (why the groups are not automatic there).
-TEST_F(RenderDvr, PersistentGroupsGiveTheGridDispatchsImage) {
-  const SmallBlobs blobs;
-  const int w = 18, h = 13;  // 4x8 tiles: the last row and column of tiles partly outside
-  struct Case {
-    render::RenderMode mode;
-    std::size_t poolBytes;
-    std::vector<int> groups;
-  };
-  const Case cases[] = {{render::RenderMode::Dvr, test::kSmallPoolBytes, {2, 1000}},
-                        {render::RenderMode::Iso, std::size_t(64) << 20, {2}}};
-  for (const Case& c : cases) {
-    render::RenderOptions options = dvrOptions(rampTable(0.2, 1.0, 2.0));
-    options.mode = c.mode;
-    options.iso = 0.5f;
-    options.persistentGroups = 0;
-    options.gpuCacheBytes = options.hostCacheBytes = c.poolBytes;
-    render::FrameStats gridStats;
-    const render::FrameImages grid = renderSource(render::FccBrickSource(blobs.store, c.poolBytes), blobs.camera, w, h, options, &gridStats);
-    int visible = 0;
-    for (std::size_t i = 3; i < grid.rgba.size(); i += 4) visible += grid.rgba[i] > 0.05f;
-    EXPECT_GT(visible, w * h / 10);
-    if (c.mode == render::RenderMode::Dvr) {
-      EXPECT_GT(gridStats.passes, 1) << "the small pool must take several passes";
-    }
-    for (const int groups : c.groups) {
-      render::RenderOptions persistent = options;
-      persistent.persistentGroups = groups;
-      const render::FrameImages image = renderSource(render::FccBrickSource(blobs.store, c.poolBytes), blobs.camera, w, h, persistent);
-      const std::string what = render::renderModeName(c.mode) + ", " + std::to_string(groups) + " groups";
-      EXPECT_EQ(grid.rgba, image.rgba) << what;
-      EXPECT_EQ(grid.normalDepth, image.normalDepth) << what;
-    }
-  }
-  // Tricubic DVR (session 23's queue lost opacity here on both drivers), with a pool that evicts.
-  TempDir dir;
-  const std::string ccPath = dir / "wavy.vdb";
-  test::writeCartesianFile(ccPath, test::wavy, 0.5, openvdb::Vec3d(-3.0, 1.0, 2.0));
-  const io::CartesianBrickStore ccStore(ccPath);
-  const render::Camera camera = cartesianTestCamera(ccStore.worldFromIndex());
-  const render::CartesianBrickSource source(ccStore, findReconstruction("tricubic"));
-  render::RenderOptions options = dvrOptions(rampTable(0.0, 1.5, 4.0, 1.95));
-  options.persistentGroups = 0;
-  options.gpuCacheBytes = options.hostCacheBytes = test::kSmallPoolBytes;
-  const int cw = 24, ch = 16;  // 12 tiles
-  render::FrameStats gridStats;
-  const render::FrameImages grid = renderSource(source, camera, cw, ch, options, &gridStats);
-  EXPECT_GT(gridStats.passes, 1);
-  render::RenderOptions persistent = options;
-  persistent.persistentGroups = 6;
-  const render::FrameImages image = renderSource(source, camera, cw, ch, persistent);
-  EXPECT_EQ(grid.rgba, image.rgba) << "tricubic, 6 groups";
-  EXPECT_EQ(grid.normalDepth, image.normalDepth) << "tricubic, 6 groups";
-}
-
 // The sub-step rule (shaders/dvr.glsl's dvrSteps) counted through the FCC_DVR_COUNT knob (colour =
 // cells visited, cells integrated, sub-steps): a constant medium (one colour, one extinction: no kink,
 // no colour change, nothing for the value's curving to change) takes one sub-step a chord, as the
