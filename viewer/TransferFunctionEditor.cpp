@@ -96,6 +96,73 @@ int TransferFunctionEditor::pick(double x, double alpha, double xScale, double a
   return best;
 }
 
+void TransferFunctionEditor::checkColorIndex(int i) const {
+  if (i < 0 || i >= int(colors_.size()))
+    throw ValueError("transfer function editor: no colour point " + std::to_string(i) + " (there are " +
+                     std::to_string(colors_.size()) + ")");
+}
+
+void TransferFunctionEditor::colorsEdited() {
+  static const std::string kEdited = " (edited)";
+  const bool marked = colorMapName_.size() >= kEdited.size() &&
+                      colorMapName_.compare(colorMapName_.size() - kEdited.size(), kEdited.size(), kEdited) == 0;
+  if (!marked) colorMapName_ += kEdited;
+  ++revision_;
+}
+
+int TransferFunctionEditor::insertColor(double x) {
+  x = clampX(x);
+  const glm::dvec3 rgb = function("").color(x);
+  const auto at = std::upper_bound(colors_.begin(), colors_.end(), x, [](double v, const ColorPoint& p) { return v < p.x; });
+  const int index = int(at - colors_.begin());
+  colors_.insert(at, ColorPoint{x, rgb});
+  colorsEdited();
+  return index;
+}
+
+void TransferFunctionEditor::moveColor(int i, double x) {
+  checkColorIndex(i);
+  const double below = i > 0 ? colors_[std::size_t(i) - 1].x : lo_;
+  const double above = i + 1 < int(colors_.size()) ? colors_[std::size_t(i) + 1].x : hi_;
+  x = std::clamp(clampX(x), below, above);
+  ColorPoint& p = colors_[std::size_t(i)];
+  if (p.x == x) return;
+  p.x = x;
+  colorsEdited();
+}
+
+void TransferFunctionEditor::setColor(int i, const glm::dvec3& rgb) {
+  checkColorIndex(i);
+  ColorPoint& p = colors_[std::size_t(i)];
+  glm::dvec3 clamped = p.rgb;
+  for (int c = 0; c < 3; ++c)
+    if (!std::isnan(rgb[c])) clamped[c] = std::clamp(rgb[c], 0.0, 1.0);
+  if (clamped == p.rgb) return;
+  p.rgb = clamped;
+  colorsEdited();
+}
+
+bool TransferFunctionEditor::removeColor(int i) {
+  checkColorIndex(i);
+  if (colors_.size() <= 1) return false;
+  colors_.erase(colors_.begin() + i);
+  colorsEdited();
+  return true;
+}
+
+int TransferFunctionEditor::pickColor(double x, double xScale, double radius) const {
+  int best = -1;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < colors_.size(); ++k) {
+    const double d = std::abs(colors_[k].x - x) * xScale;
+    if (d <= radius && d <= bestDistance) {  // ties to the later point, drawn on top
+      best = int(k);
+      bestDistance = d;
+    }
+  }
+  return best;
+}
+
 void TransferFunctionEditor::setColors(std::vector<ColorPoint> colors, std::string name) {
   if (colors.empty()) throw ValueError("transfer function editor: a colour map without points");
   colors_ = std::move(colors);

@@ -1,7 +1,8 @@
 // The edit model behind the viewer's transfer-function editor (docs/VIEWER.md, "Transfer function"),
 // free of any GUI so that it is tested on its own: the opacity control points (sorted by value, each
-// inside the editor's value range, opacities in [0, 1]) with insert, move and remove, and the colour
-// map the function takes its colours from. The panel (viewer/PanelTransfer.cpp) turns mouse events
+// inside the editor's value range, opacities in [0, 1]) with insert, move and remove, the colour map
+// the function takes its colours from, and that map's colour points edited one by one (the same
+// invariants: sorted, inside the range, components in [0, 1]; at least one). The panel (viewer/PanelTransfer.cpp) turns mouse events
 // into these calls; the session rebuilds the GPU's table when revision() changes.
 #pragma once
 
@@ -47,6 +48,19 @@ class TransferFunctionEditor {
   // Another colour map (data values, e.g. a preset fitted to the source, or a ParaView file's map);
   // the opacity points stay. ValueError for an empty list.
   void setColors(std::vector<ColorPoint> colors, std::string name);
+  // The colour points one by one. insertColor: a new point at x (clamped into [lo, hi]) in the colour
+  // the function has there, so that it changes nothing until moved or recoloured; after the points at
+  // its value. Returns its index. moveColor: point i to x, clamped into [lo, hi] and between its
+  // neighbours. setColor: point i's colour (linear, as the function's), each component clamped into
+  // [0, 1] (NaN: unchanged). removeColor: false for the last one. pickColor: the point nearest x
+  // within `radius` (|dx| * xScale), -1 if none. A bad i: ValueError. Each edit that changes the
+  // colours marks the map's name " (edited)".
+  int insertColor(double x);
+  void moveColor(int i, double x);
+  void setColor(int i, const glm::dvec3& rgb);
+  bool removeColor(int i);
+  int pickColor(double x, double xScale, double radius) const;
+
   // Everything from `tf` again (a preset or a file chosen as the starting point).
   void reset(const TransferFunction& tf);
 
@@ -55,6 +69,8 @@ class TransferFunctionEditor {
 
  private:
   void checkIndex(int i) const;
+  void checkColorIndex(int i) const;
+  void colorsEdited();
   double clampX(double x) const;
   std::vector<OpacityPoint> points_;
   std::vector<ColorPoint> colors_;

@@ -164,6 +164,98 @@ TEST(TransferFunctionEditor, ColourMapChangesColoursOnly) {
   EXPECT_THROW(e.setColors({}, "none"), ValueError);
 }
 
+// The invariants of the colour points.
+void expectValidColors(const TransferFunctionEditor& e) {
+  ASSERT_FALSE(e.colors().empty());
+  for (std::size_t i = 0; i < e.colors().size(); ++i) {
+    const ColorPoint& p = e.colors()[i];
+    EXPECT_GE(p.x, e.lo());
+    EXPECT_LE(p.x, e.hi());
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_GE(p.rgb[c], 0.0) << "colour point " << i;
+      EXPECT_LE(p.rgb[c], 1.0) << "colour point " << i;
+    }
+    if (i > 0) {
+      EXPECT_LE(e.colors()[i - 1].x, p.x) << "colour point " << i << " out of order";
+    }
+  }
+}
+
+// A colour point inserted takes the function's colour there (the function stays what it was, within
+// rounding), recoloured and moved it changes the function there and only between its neighbours, and
+// removed gives the first colours back exactly.
+TEST(TransferFunctionEditor, ColourPointsInsertRecolourMoveAndRemove) {
+  TransferFunctionEditor e(viridisOn(0.0, 16.0), 0.0, 16.0);
+  const TransferFunction first = e.function("first");
+  const std::vector<ColorPoint> firstColors = e.colors();
+  const uint64_t r0 = e.revision();
+  const int i = e.insertColor(4.5);
+  EXPECT_GT(e.revision(), r0);
+  EXPECT_EQ(e.colorMapName(), "viridis (edited)");
+  ASSERT_EQ(e.colors().size(), firstColors.size() + 1);
+  ASSERT_GT(i, 0);
+  ASSERT_LT(i + 1, int(e.colors().size()));
+  EXPECT_EQ(e.colors()[std::size_t(i)].x, 4.5);
+  const double below = e.colors()[std::size_t(i) - 1].x, above = e.colors()[std::size_t(i) + 1].x;
+  ASSERT_LT(below, 4.5);
+  ASSERT_GT(above, 4.5);
+  for (double v = -1.0; v <= 17.0; v += 0.173) {
+    const glm::dvec3 a = e.function("f").color(v), b = first.color(v);
+    EXPECT_NEAR(glm::length(a - b), 0.0, 1e-12) << "at " << v;
+  }
+
+  e.setColor(i, glm::dvec3(1.0, 2.0, -1.0));  // clamped
+  EXPECT_EQ(e.colors()[std::size_t(i)].rgb, glm::dvec3(1.0, 1.0, 0.0));
+  EXPECT_EQ(e.function("f").color(4.5), glm::dvec3(1.0, 1.0, 0.0));
+  const double left = below - 0.01, right = above + 0.01;
+  EXPECT_EQ(e.function("f").color(left), first.color(left)) << "left of the neighbour below: untouched";
+  EXPECT_EQ(e.function("f").color(right), first.color(right)) << "right of the neighbour above: untouched";
+  e.setColor(i, glm::dvec3(std::nan(""), 0.5, std::nan("")));
+  EXPECT_EQ(e.colors()[std::size_t(i)].rgb, glm::dvec3(1.0, 0.5, 0.0)) << "NaN leaves a component";
+  EXPECT_EQ(e.colorMapName(), "viridis (edited)") << "marked once";
+
+  e.moveColor(i, 4.8);
+  EXPECT_EQ(e.colors()[std::size_t(i)].x, 4.8);
+  e.moveColor(i, 9.0);  // past the neighbour above: stops there
+  EXPECT_EQ(e.colors()[std::size_t(i)].x, above);
+  e.moveColor(i, -3.0);
+  EXPECT_EQ(e.colors()[std::size_t(i)].x, below);
+  e.moveColor(0, -3.0);
+  EXPECT_EQ(e.colors()[0].x, 0.0) << "the first point: the range's low end";
+  const uint64_t r1 = e.revision();
+  e.moveColor(0, 0.0);
+  e.setColor(0, e.colors()[0].rgb);
+  EXPECT_EQ(e.revision(), r1) << "no change, no revision";
+  expectValidColors(e);
+
+  EXPECT_TRUE(e.removeColor(i));
+  ASSERT_EQ(e.colors().size(), firstColors.size());
+  for (std::size_t k = 0; k < firstColors.size(); ++k) {
+    EXPECT_EQ(e.colors()[k].x, firstColors[k].x);
+    EXPECT_EQ(e.colors()[k].rgb, firstColors[k].rgb);
+  }
+  while (e.colors().size() > 1) EXPECT_TRUE(e.removeColor(0));
+  EXPECT_FALSE(e.removeColor(0)) << "the last colour point stays";
+  EXPECT_THROW(e.removeColor(1), ValueError);
+  EXPECT_THROW(e.moveColor(-1, 0.0), ValueError);
+  EXPECT_THROW(e.setColor(3, glm::dvec3(0.0)), ValueError);
+  EXPECT_NO_THROW(e.function("one colour"));
+}
+
+TEST(TransferFunctionEditor, PickColourFindsTheNearestPointWithinTheRadius) {
+  // Three points at 0, 1 and 2 on [0, 4]; 10 pixels per value unit.
+  TransferFunction tf = viridisOn(0.0, 4.0);
+  TransferFunctionEditor e(tf, 0.0, 4.0);
+  e.setColors({{0.0, glm::dvec3(0.0)}, {1.0, glm::dvec3(0.5)}, {2.0, glm::dvec3(1.0)}}, "grey");
+  EXPECT_EQ(e.pickColor(1.2, 10.0, 4.0), 1);
+  EXPECT_EQ(e.pickColor(1.5, 10.0, 4.0), -1) << "5 pixels from either";
+  EXPECT_EQ(e.pickColor(2.3, 10.0, 4.0), 2);
+  EXPECT_EQ(e.pickColor(3.9, 10.0, 4.0), -1);
+  const int added = e.insertColor(1.0);  // on point 1: the later one wins the tie
+  EXPECT_EQ(added, 2);
+  EXPECT_EQ(e.pickColor(1.0, 10.0, 4.0), added);
+}
+
 // Random edits of every kind keep the invariants, and the function always constructs.
 TEST(TransferFunctionEditor, RandomEditsKeepTheInvariants) {
   std::mt19937 rng(18);
@@ -171,12 +263,18 @@ TEST(TransferFunctionEditor, RandomEditsKeepTheInvariants) {
   TransferFunctionEditor e(viridisOn(2.0, 8.0), 0.0, 10.0);
   for (int step = 0; step < 2000; ++step) {
     const int n = int(e.points().size());
-    switch (rng() % 3) {
+    const int nc = int(e.colors().size());
+    switch (rng() % 7) {
       case 0: e.insert(x(rng), a(rng)); break;
       case 1: e.move(int(rng() % unsigned(n)), x(rng), a(rng)); break;
-      default: e.remove(int(rng() % unsigned(n))); break;
+      case 2: e.remove(int(rng() % unsigned(n))); break;
+      case 3: e.insertColor(x(rng)); break;
+      case 4: e.moveColor(int(rng() % unsigned(nc)), x(rng)); break;
+      case 5: e.setColor(int(rng() % unsigned(nc)), glm::dvec3(a(rng), a(rng), a(rng))); break;
+      default: e.removeColor(int(rng() % unsigned(nc))); break;
     }
     expectValid(e);
+    expectValidColors(e);
     if (HasFailure()) FAIL() << "after step " << step;
     EXPECT_NO_THROW(e.function("f"));
   }
