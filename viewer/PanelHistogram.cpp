@@ -83,6 +83,8 @@ void ViewerSession::drawHistogram() {
                    IM_COL32(int(255.0f * c.r), int(255.0f * c.g), int(255.0f * c.b), 255), selected ? 2.5f : 1.5f);
     }
   }
+  // DVR: the colour points on a bar of the function's colours, right under the plot and on its axis.
+  if (dvr_) editColorPoints(x0, x1, axis.min, axis.max);  // viewer/PanelColorPoints.cpp
   // The value axis: the first bin's low end under the left edge, the last bin's high end under the right.
   char low[32], high[32];
   std::snprintf(low, sizeof low, "%.4g", double(axis.min));

@@ -99,7 +99,10 @@ void ViewerSession::drawTransferFiles() {
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);
   if (ImGui::BeginCombo("colour map", editor_->colorMapName().c_str())) {
     for (const auto& [name, colors] : colorMaps_)
-      if (ImGui::Selectable(name.c_str(), name == editor_->colorMapName())) editor_->setColors(colors, name);
+      if (ImGui::Selectable(name.c_str(), name == editor_->colorMapName())) {
+        editor_->setColors(colors, name);
+        dragColor_ = selectedColor_ = -1;  // the points are the new map's
+      }
     ImGui::EndCombo();
   }
   layout_.colorMapCombo = lastRect();

@@ -84,6 +84,8 @@ void ViewerSession::drawPanel(int windowHeight) {
   layout_.unitDistanceSlider = layout_.stopOpacitySlider = layout_.shadingCheckbox = {};
   layout_.colorMapCombo = layout_.transferPathField = layout_.transferLoad = layout_.transferSave = {};
   layout_.opacityPoints.clear();
+  layout_.colorBar = layout_.colorPointEdit = layout_.colorPointRemove = {};
+  layout_.colorPoints.clear();
   layout_.segmentMidpointSlider = layout_.segmentSharpnessSlider = {};
   if (dvr()) {
     drawTransferSection();
@@ -256,6 +258,7 @@ void ViewerSession::drawTransferSection() {
   layout_.stopOpacitySlider = lastItemRect();
   drawHistogram();  // with the opacity curve and the editor's points over it
   drawSegmentShape();   // viewer/PanelTransfer.cpp
+  drawColorPointEdit();  // viewer/PanelColorPoints.cpp
   drawTransferFiles();
 }
 

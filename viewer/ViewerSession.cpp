@@ -333,7 +333,7 @@ void ViewerSession::applyTransfer() {
     if (newBase) {
       editor_->reset(dvr_->function);
       baseRevision_ = editor_->revision();
-      dragPoint_ = shapePoint_ = -1;
+      dragPoint_ = shapePoint_ = dragColor_ = selectedColor_ = -1;
     }
     appliedRevision_ = editor_->revision();
     appliedDensityScale_ = settings_.densityScale;
@@ -345,7 +345,7 @@ void ViewerSession::applyTransfer() {
     if (edited) {
       editor_->reset(dvr_->function);
       appliedRevision_ = editor_->revision();
-      dragPoint_ = shapePoint_ = -1;
+      dragPoint_ = shapePoint_ = dragColor_ = selectedColor_ = -1;
     }
     notify(e.what());
   }

@@ -80,6 +80,11 @@ struct PanelLayout {
   // The sliders of the segment from the last grabbed point to the next (ParaView's midpoint and
   // sharpness; empty while no point is chosen or it is the last).
   ImRectF segmentMidpointSlider, segmentSharpnessSlider;
+  // The colour bar under the histogram, a square around each colour point's marker on it (the
+  // editor's order), and the chosen point's colour field and remove button (empty while none is).
+  ImRectF colorBar;
+  std::vector<ImRectF> colorPoints;
+  ImRectF colorPointEdit, colorPointRemove;
   ImRectF addSurface, removeLastSurface;  // the Surfaces section's buttons (empty when not shown)
   // The Renderer section's reconstruction combo while closed (empty for FCC data: no choice), and its
   // items (name, where) while open.
@@ -265,6 +270,10 @@ class ViewerSession {
                          bool active);
   void drawTransferFiles();
   void drawSegmentShape();
+  // viewer/PanelColorPoints.cpp: the colour bar under the histogram (the function's colours on its
+  // value axis, a marker at each colour point; click, drag, right-click) and the chosen point's colour.
+  void editColorPoints(float x0, float x1, float axisMin, float axisMax);
+  void drawColorPointEdit();
   TransferFunction baseFunction(const std::string& name) const;  // a preset, --tf's or a loaded one, fitted
   void addColorMapsOf(const std::string& spec);  // a ParaView file's maps, for the colour-map combo
   void updateCursor(int fbWidth, int fbHeight, int windowHeight);
@@ -294,6 +303,8 @@ class ViewerSession {
   uint64_t appliedRevision_ = 0, baseRevision_ = 0;  // baseRevision_: right after the last reset (unedited)
   int dragPoint_ = -1;
   int shapePoint_ = -1;  // the point whose segment's shape the panel's sliders edit (-1: none)
+  int dragColor_ = -1;      // the colour point a drag on the colour bar holds (-1: none)
+  int selectedColor_ = -1;  // the colour point whose colour the panel's picker edits (-1: none)
   bool reloadBase_ = false;
   std::vector<std::pair<std::string, TransferFunction>> loadedFunctions_;
   std::vector<std::pair<std::string, std::vector<ColorPoint>>> colorMaps_;

@@ -873,6 +873,81 @@ TEST_F(ViewerSession, DvrEditorAddsDragsAndRemovesOpacityPoints) {
   EXPECT_EQ(differingChannels(before, h.pixels(), panel), 0) << "the first function must give the first image";
 }
 
+// DVR's colour points: a click on the colour bar adds one there (the function's colours stay, within
+// rounding), the chosen point's colour typed into its field changes the table and the image, a drag
+// moves it, a right-click removes it and gives the first table and image back, bit for bit.
+TEST_F(ViewerSession, DvrEditorAddsRecoloursDragsAndRemovesColourPoints) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), "grayscale");
+  ASSERT_TRUE(h.settle());
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  const std::vector<unsigned char> before = h.pixels();
+  const std::vector<glm::vec4> tableBefore = tableInUse(h);
+  const render::TransferFunctionEditor& editor = *h.session->transferEditor();
+  const std::size_t colorsBefore = editor.colors().size();
+  const render::ImRectF plot = h.session->panelLayout().histogram, bar = h.session->panelLayout().colorBar;
+  ASSERT_FALSE(bar.empty()) << "no colour bar in DVR mode";
+  EXPECT_GE(bar.y0, plot.y1) << "the colour bar is under the histogram";
+  EXPECT_EQ(h.session->panelLayout().colorPoints.size(), colorsBefore);
+  EXPECT_TRUE(h.session->panelLayout().colorPointEdit.empty()) << "no point chosen yet";
+
+  // A click 40 % along the bar: a new point there, in the colour the function had there.
+  const float padX = ImGui::GetStyle().FramePadding.x;
+  const float x = plot.x0 + padX + 0.4f * (plot.x1 - plot.x0 - 2.0f * padX);
+  h.click(x, bar.centreY());
+  ASSERT_EQ(colorsBefore, 2u) << "grayscale has two colour points";
+  ASSERT_EQ(editor.colors().size(), colorsBefore + 1) << "the click added no colour point";
+  ASSERT_LT(editor.colors()[0].x, editor.colors()[1].x) << "the new point is the inner one";
+  ASSERT_LT(editor.colors()[1].x, editor.colors()[2].x);
+  const ColorPoint point = editor.colors()[1];
+  EXPECT_NEAR(glm::length(point.rgb - glm::dvec3((point.x - editor.colors()[0].x) /
+                                                 (editor.colors()[2].x - editor.colors()[0].x))),
+              0.0, 1e-9) << "grey in proportion";
+  const std::vector<glm::vec4> tableAdded = tableInUse(h);
+  ASSERT_EQ(tableAdded.size(), tableBefore.size());
+  for (std::size_t k = 0; k < tableAdded.size(); ++k)
+    ASSERT_NEAR(glm::length(tableAdded[k] - tableBefore[k]), 0.0f, 1e-5f) << "entry " << k;
+
+  // Its colour: red typed into the field's first component (ctrl + click types); green and blue stay.
+  const render::ImRectF field = h.session->panelLayout().colorPointEdit;
+  ASSERT_FALSE(field.empty()) << "the grabbed point's colour field is not shown";
+  h.click(field.x0 + 5.0f, field.centreY(), /*ctrl=*/true);
+  h.type("255");
+  h.press(GLFW_KEY_ENTER);
+  h.frame();
+  ASSERT_EQ(editor.colors().size(), 3u);
+  EXPECT_EQ(editor.colors()[1].rgb.r, 1.0);
+  EXPECT_EQ(editor.colors()[1].rgb.g, point.rgb.g) << "an untouched component stays exactly";
+  EXPECT_EQ(editor.colors()[1].rgb.b, point.rgb.b);
+  EXPECT_EQ(h.session->transfer()->function.color(point.x), editor.colors()[1].rgb);
+  EXPECT_NE(tableInUse(h), tableAdded) << "the table must follow the new colour";
+  ASSERT_TRUE(settleAway(h));
+  const std::vector<unsigned char> red = h.pixels();
+  EXPECT_GT(differingChannels(before, red, panel), 0) << "the new colour must change the image";
+
+  // Dragged right: it follows (the same point, further along).
+  ASSERT_EQ(h.session->panelLayout().colorPoints.size(), 3u);
+  const render::ImRectF marker = h.session->panelLayout().colorPoints[1];
+  drag(h, marker.centreX(), bar.centreY(), marker.centreX() + 20.0f, bar.centreY());
+  ASSERT_EQ(editor.colors().size(), 3u) << "a drag must move the point, not add one";
+  EXPECT_GT(editor.colors()[1].x, point.x);
+  EXPECT_EQ(editor.colors()[1].rgb.r, 1.0);
+
+  // Right-click on it: gone; the table and the image are the first ones again.
+  const render::ImRectF now = h.session->panelLayout().colorPoints[1];
+  h.frame([&](ImGuiIO& io) { io.MousePos = ImVec2(now.centreX(), bar.centreY()); });
+  h.frame([&](ImGuiIO& io) { io.MouseDown[1] = true; });
+  h.frame([&](ImGuiIO& io) {
+    io.MouseDown[1] = false;
+    io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+  });
+  EXPECT_EQ(editor.colors().size(), 2u) << "the right-click removed no colour point";
+  EXPECT_TRUE(h.session->panelLayout().colorPointEdit.empty());
+  EXPECT_EQ(tableInUse(h), tableBefore);
+  ASSERT_TRUE(settleAway(h));
+  EXPECT_EQ(differingChannels(before, h.pixels(), panel), 0) << "the first function must give the first image";
+}
+
 // Save writes the function in use as ParaView JSON; Load (the field and its button) reads it back as
 // `--tf` does: the same table, bit for bit; and `render --tf` with the saved file draws the image the
 // session shows, bit for bit.
