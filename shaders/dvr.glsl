@@ -26,8 +26,11 @@ uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
 // 1: gradient shading (RenderOptions::dvrShading, `--shading on`): each sub-step's emission times a
 // headlight's two-sided Lambert term of the reconstruction's analytic gradient at its midpoint, over an
 // ambient floor: kDvrAmbient + (1 - kDvrAmbient) |cos| of the angle between the world gradient and the
-// ray, 1 where the gradient is 0 (sparse/ReferenceDvr.h's dvrShade, the same formula). Absorption is
-// unchanged, so opacity and depth are those of the unshaded image. 0: the unshaded code, unchanged.
+// ray, 1 where the gradient is 0 (sparse/ReferenceDvr.h's dvrShade, the same formula), plus a white
+// specular term uDvrSpecular |cos|^uDvrSpecularPower (Blinn-Phong's with the light at the eye: the half
+// vector is the ray; 0 where the gradient is 0; ReferenceDvr.h's dvrSpecular) emitted in proportion
+// to the sub-step's opacity. Absorption is unchanged, so opacity and depth are those of the unshaded
+// image. 0: the unshaded code, unchanged.
 #ifndef FCC_DVR_SHADING
 #define FCC_DVR_SHADING 0
 #endif
@@ -67,6 +70,8 @@ struct DvrState {
 
 #if FCC_DVR_SHADING
 const float kDvrAmbient = 0.3;
+uniform float uDvrSpecular;       // RenderOptions::dvrSpecular: 0 none, at most 1
+uniform float uDvrSpecularPower;  // RenderOptions::dvrSpecularPower: > 0
 // The ray and the unit cell integrateCell is in (dvrBeginCell), for the gradient at a sub-step.
 vec3 gDvrO, gDvrD;
 ivec3 gDvrCell;
@@ -78,13 +83,15 @@ float gDvrLevelScale = 1.0;
 // `cell` (xyz kept inside it, so the stencil stays inside the slot's halo).
 vec3 dvrGradient(ivec3 cell, vec3 xyz);
 
-// The shading factor at ray parameter t: uNormalFromIndex turns the index-space gradient into the world
-// one, and d (index displacement per world unit) gives dot(world gradient, unit world direction).
-float dvrShadeAt(float t) {
+// The shading at ray parameter t: (the emission's factor, the specular light), both from |cos|.
+// uNormalFromIndex turns the index-space gradient into the world one, and d (index displacement per
+// world unit) gives dot(world gradient, unit world direction).
+vec2 dvrShadeAt(float t) {
   vec3 g = dvrGradient(gDvrCell, gDvrO + t * gDvrD);
   float len = length(uNormalFromIndex * g) * gDvrLevelScale;
-  if (!(len > 0.0)) return 1.0;
-  return kDvrAmbient + (1.0 - kDvrAmbient) * min(abs(dot(g, gDvrD)) / len, 1.0);
+  if (!(len > 0.0)) return vec2(1.0, 0.0);
+  float c = min(abs(dot(g, gDvrD)) / len, 1.0);
+  return vec2(kDvrAmbient + (1.0 - kDvrAmbient) * c, uDvrSpecular > 0.0 ? uDvrSpecular * pow(c, uDvrSpecularPower) : 0.0);
 }
 #endif
 
@@ -264,7 +271,9 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
   float a = dvrOpacity(e.a * h);
 #if FCC_DVR_COUNT
 #elif FCC_DVR_SHADING
-  st.color += st.transmittance * (e.rgb / e.a) * a * dvrShadeAt(ta + 0.5 * h);
+  vec2 shade = dvrShadeAt(ta + 0.5 * h);
+  st.color += st.transmittance * (e.rgb / e.a) * a * shade.x;
+  st.color += st.transmittance * a * shade.y;  // white light: 0 without the specular term
 #else
   st.color += st.transmittance * (e.rgb / e.a) * a;
 #endif

@@ -86,8 +86,14 @@ void integrateSpan(const Reconstruction& recon, const SiteValue& at, const DvrMe
     const spline::FccValueGradient vg = recon.evaluate(glm::vec3(p), at);
     ++acc.pixel.evaluations;
     glm::dvec4 e = medium.at(vg.value);
-    if (acc.options.shading)
-      e = glm::dvec4(glm::dvec3(e) * dvrShade(glm::dvec3(vg.gradient), ray.d, acc.options.normalFromIndex), e.a);
+    if (acc.options.shading) {
+      // e is premultiplied by the extinction: the white highlight too.
+      const glm::dvec3 g(vg.gradient);
+      const DvrOptions& o = acc.options;
+      e = glm::dvec4(glm::dvec3(e) * dvrShade(g, ray.d, o.normalFromIndex) +
+                         e.a * dvrSpecular(g, ray.d, o.normalFromIndex, o.specular, o.specularPower),
+                     e.a);
+    }
     acc.add(e, t, h);
   }
 }
@@ -98,6 +104,13 @@ double dvrShade(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, const
   const double len = glm::length(normalFromIndex * gradientIndex);
   if (!(len > 0.0)) return 1.0;
   return kDvrShadingAmbient + (1.0 - kDvrShadingAmbient) * std::min(std::abs(glm::dot(gradientIndex, dIndex)) / len, 1.0);
+}
+
+double dvrSpecular(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, const glm::dmat3& normalFromIndex,
+                   double strength, double power) {
+  const double len = glm::length(normalFromIndex * gradientIndex);
+  if (!(len > 0.0) || !(strength > 0.0)) return 0.0;
+  return strength * std::pow(std::min(std::abs(glm::dot(gradientIndex, dIndex)) / len, 1.0), power);
 }
 
 DvrPixel integrateDvrRay(const Reconstruction& recon, const SiteValue& at, const CellBounds* bounds,

@@ -60,10 +60,16 @@ DvrRay dvrRayFromWorld(const glm::dmat4& indexFromWorld, const glm::dvec3& oWorl
 // linear part).
 inline constexpr double kDvrShadingAmbient = 0.3;
 double dvrShade(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, const glm::dmat3& normalFromIndex);
+// Its specular term: white light strength |cos|^power of the same angle (Blinn-Phong with the light at
+// the eye: the half vector is the ray), emitted in proportion to the sub-step's opacity; 0 where the
+// gradient is 0 or strength is 0.
+double dvrSpecular(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, const glm::dmat3& normalFromIndex,
+                   double strength, double power);
 
 struct DvrOptions {
   double step = 1e-3;                 // world units: the longest sub-step
   bool shading = false;               // gradient shading (dvrShade), with this normalFromIndex
+  double specular = 0.0, specularPower = 20.0;  // with shading: dvrSpecular's strength and power
   glm::dmat3 normalFromIndex{1.0};
   double terminationOpacity = 0.995;  // stop once the accumulated opacity reaches it (>= 1: only when the
                                       // transmittance is exactly 0)

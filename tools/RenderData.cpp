@@ -84,9 +84,15 @@ void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& opti
   if (options.mode != render::RenderMode::Dvr) {
     if (flags.shading == "on")
       throw ValueError("--shading on applies to --mode dvr (the isosurface is always shaded)");
+    if (flags.specular > 0.0)
+      throw ValueError("--specular applies to --mode dvr --shading on");
     return;
   }
   options.dvrShading = flags.shading == "on";
+  if (flags.specular > 0.0 && !options.dvrShading)
+    throw ValueError("--specular lights the gradient shading: add --shading on");
+  options.dvrSpecular = float(flags.specular);
+  options.dvrSpecularPower = float(flags.specularPower);
   options.transfer = dvrTransfer(flags).table();
   const float background = source_->background();
   if (!options.transfer->zeroOn(background, background))
@@ -129,6 +135,8 @@ std::unique_ptr<render::ProjectedTetrahedra> RenderData::projectedTetrahedra(con
   render::ProjectedTetrahedra::Options o;
   o.transfer = options.transfer;
   o.shading = options.dvrShading;
+  o.specular = options.dvrSpecular;
+  o.specularPower = options.dvrSpecularPower;
   o.timeGpu = options.timeGpu;
   return std::make_unique<render::ProjectedTetrahedra>(*source_, o);
 }

@@ -72,6 +72,12 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
                  "DVR: on shades the emission by the reconstruction's gradient (a headlight's Lambert term over an "
                  "ambient of 0.3; opacity unchanged); off: unshaded emission")
       ->capture_default_str()->check(CLI::IsMember({"on", "off"}));
+  app.add_option("--specular", flags.specular,
+                 "DVR with --shading on: a white highlight of this strength, K |cos|^P of the angle between the "
+                 "gradient and the ray (Blinn-Phong, light at the eye); 0: none")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  app.add_option("--specular-power", flags.specularPower, "DVR: the highlight's exponent P (larger: smaller highlights)")
+      ->capture_default_str()->check(CLI::Range(1e-3, 1000.0));
   app.add_option("--dvr-method", flags.dvrMethod,
                  "DVR: ray (the raycaster's integration through the reconstruction), or tetrahedra: paper 002's "
                  "projected tetrahedra, in core, for a BCC dataset with the barycentric reconstruction (render and "

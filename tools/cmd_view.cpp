@@ -89,6 +89,8 @@ RenderFlags flagsForAnotherFile(const RenderFlags& first, const std::string& pat
   f.lodBias = first.lodBias;
   f.fullResolution = first.fullResolution;
   f.shading = first.shading;
+  f.specular = first.specular;
+  f.specularPower = first.specularPower;
   return f;
 }
 
@@ -149,6 +151,8 @@ Command addViewCommand(CLI::App& parent) {
               // where every brick wants level 0.
               if (!d.dvr) d.data->applyLevels(flags, /*levelsByDefault=*/true, false, options);
               options.dvrShading = flags.shading == "on";
+              options.dvrSpecular = float(flags.specular);
+              options.dvrSpecularPower = float(flags.specularPower);
               const io::BrickStore* store = d.data->fccStore();
               auto session = std::make_unique<render::ViewerSession>(
                   d.data->source(), store, options, d.data->camera(flags, window.aspect()),

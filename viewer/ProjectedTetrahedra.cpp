@@ -208,6 +208,9 @@ ProjectedTetrahedra::ProjectedTetrahedra(const BrickSource& source, Options opti
       withDefines(embedded::shaders("shaders/tetra.frag"), options_.shading ? "#define FCC_DVR_SHADING 1\n" : ""),
       "projected tetrahedra");
   table_->setUniforms(program_, -1.0f);  // no early stop inside a segment: segments composite afterwards
+  checkDvrSpecular(options_.specular, options_.specularPower);
+  glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "uDvrSpecular"), options_.specular);  // shaded only
+  glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "uDvrSpecularPower"), options_.specularPower);
   if (options_.timeGpu) timer_ = std::make_unique<GpuInterval>();  // before the objects the destructor frees
   glCreateVertexArrays(1, &vertexArray_);
   glCreateFramebuffers(1, &framebuffer_);

@@ -30,6 +30,7 @@ class ProjectedTetrahedra {
   struct Options {
     std::shared_ptr<const TransferTable> transfer;  // required
     bool shading = false;                            // dvr.glsl's gradient shading (the tetrahedron's gradient)
+    float specular = 0.0f, specularPower = 20.0f;    // its specular term (RenderOptions::dvrSpecular)
     bool timeGpu = false;                            // FrameStats::gpuSeconds
     std::size_t maxTetrahedra = std::size_t(8) << 20;
   };

@@ -122,6 +122,7 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source.reconstruction().deviceId) + "\n";
   const bool dvr = options.mode == RenderMode::Dvr;
   if (dvr && !options.transfer) throw ValueError("direct volume rendering needs a transfer function");
+  checkDvrSpecular(options.dvrSpecular, options.dvrSpecularPower);
   buildRaycastProgram();
   // A CPU rasteriser gets the cheap coefficient-hull cell bounds, a GPU the BB-coefficient ones
   // (both conservative; the image is the same, only the work skipped differs).
@@ -235,6 +236,22 @@ void Raycaster::setDvrShading(bool on) {
   ++settings_;
 }
 
+void checkDvrSpecular(float strength, float power) {
+  if (!(strength >= 0.0f && strength <= 1.0f))
+    throw ValueError("specular strength " + std::to_string(strength) + ": valid are 0 (none) to 1");
+  if (!(power > 0.0f && power <= 1000.0f))
+    throw ValueError("specular power " + std::to_string(power) + ": valid are (0, 1000]");
+}
+
+void Raycaster::setDvrSpecular(float strength, float power) {
+  checkDvrSpecular(strength, power);
+  if (options_.dvrSpecular == strength && options_.dvrSpecularPower == power) return;
+  options_.dvrSpecular = strength;
+  options_.dvrSpecularPower = power;
+  if (dvrTable_) setTransferUniforms();  // uDvrSpecular, uDvrSpecularPower (inactive in unshaded programs)
+  ++settings_;
+}
+
 void Raycaster::setTerminationOpacity(float opacity) {
   if (!(opacity > 0.0f && opacity <= 1.0f))
     throw ValueError("stop opacity " + std::to_string(opacity) + ": valid are (0, 1]");
@@ -262,8 +279,13 @@ void Raycaster::uploadTransfer() {
 }
 
 void Raycaster::setTransferUniforms() {
-  dvrTable_->setUniforms(program_, 1.0f - options_.terminationOpacity);
-  if (lodProgram_.id() != 0) dvrTable_->setUniforms(lodProgram_, 1.0f - options_.terminationOpacity);
+  for (const GlProgram* program : {&program_, &lodProgram_}) {
+    if (program->id() == 0) continue;
+    dvrTable_->setUniforms(*program, 1.0f - options_.terminationOpacity);
+    // The shaded programs' (location -1, ignored, in the others).
+    glProgramUniform1f(program->id(), glGetUniformLocation(program->id(), "uDvrSpecular"), options_.dvrSpecular);
+    glProgramUniform1f(program->id(), glGetUniformLocation(program->id(), "uDvrSpecularPower"), options_.dvrSpecularPower);
+  }
 }
 
 void Raycaster::setTransfer(std::shared_ptr<const TransferTable> transfer) {

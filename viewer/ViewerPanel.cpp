@@ -82,6 +82,7 @@ void ViewerSession::drawPanel(int windowHeight) {
 
   layout_.isoLabel = layout_.isoSlider = layout_.transferCombo = layout_.densitySlider = {};
   layout_.unitDistanceSlider = layout_.stopOpacitySlider = layout_.shadingCheckbox = {};
+  layout_.specularSlider = layout_.specularPowerSlider = {};
   layout_.colorMapCombo = layout_.transferPathField = layout_.transferLoad = layout_.transferSave = {};
   layout_.opacityPoints.clear();
   layout_.colorBar = layout_.colorPointEdit = layout_.colorPointRemove = {};
@@ -123,6 +124,13 @@ void ViewerSession::drawPanel(int windowHeight) {
     if (dvr()) {
       ImGui::Checkbox("gradient shading", &settings_.dvrShading);
       layout_.shadingCheckbox = lastItemRect();
+      if (settings_.dvrShading) {  // the highlight: K |cos|^P (docs/DVR.md)
+        ImGui::SliderFloat("specular", &settings_.dvrSpecular, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_NoRoundToFormat);
+        layout_.specularSlider = lastItemRect();
+        ImGui::SliderFloat("specular power", &settings_.dvrSpecularPower, 1.0f, 200.0f, "%.3g",
+                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
+        layout_.specularPowerSlider = lastItemRect();
+      }
     }
     row("mode", dvr() ? "direct volume rendering" : "isosurface");
     drawReconstructionChoice();

@@ -78,6 +78,8 @@ void ViewerSession::init(const RenderOptions& options) {
   settings_.reconstruction = std::string(raycaster_.source().reconstruction().name);
   settings_.stopOpacity = options.terminationOpacity;
   settings_.dvrShading = options.dvrShading;
+  settings_.dvrSpecular = options.dvrSpecular;
+  settings_.dvrSpecularPower = options.dvrSpecularPower;
   if (dvr_) {
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
@@ -277,6 +279,15 @@ bool ViewerSession::applySettings() {
         notify(e.what());
       }
     }
+    if (settings_.dvrSpecular != o.dvrSpecular || settings_.dvrSpecularPower != o.dvrSpecularPower) {
+      try {
+        raycaster_.setDvrSpecular(settings_.dvrSpecular, settings_.dvrSpecularPower);
+      } catch (const Error& e) {  // typed out of range (ctrl + click): the settings go back
+        settings_.dvrSpecular = o.dvrSpecular;
+        settings_.dvrSpecularPower = o.dvrSpecularPower;
+        notify(e.what());
+      }
+    }
     if (settings_.stopOpacity != o.terminationOpacity) {
       try {
         raycaster_.setTerminationOpacity(settings_.stopOpacity);
@@ -297,7 +308,8 @@ bool ViewerSession::applySettings() {
   return raycaster_.surfaces() != surfaces || now.transfer != transfer || now.skipEmpty != o.skipEmpty ||
          now.finiteDifferenceNormals != o.finiteDifferenceNormals || now.surfaceColor != o.surfaceColor ||
          now.lightInCamera != o.lightInCamera || now.clipLo != o.clipLo || now.clipHi != o.clipHi ||
-         now.dvrShading != o.dvrShading || now.terminationOpacity != o.terminationOpacity;
+         now.dvrShading != o.dvrShading || now.terminationOpacity != o.terminationOpacity ||
+         now.dvrSpecular != o.dvrSpecular || now.dvrSpecularPower != o.dvrSpecularPower;
 }
 
 std::vector<Isosurface> ViewerSession::surfacesOfSettings() const {

@@ -52,6 +52,9 @@ struct ViewerSettings {
   float unitDistance = 1.0f;
   float stopOpacity = 0.995f;
   bool dvrShading = false;
+  // The shading's specular term (RenderOptions::dvrSpecular, dvrSpecularPower): uniforms, no rebuild.
+  float dvrSpecular = 0.0f;
+  float dvrSpecularPower = 20.0f;
   // The clipping box, world space (RenderOptions::clipLo/clipHi); the panel's sliders span the data.
   glm::dvec3 clipLo{-1e30}, clipHi{1e30};
   // The reconstruction the source is rendered with (its name; the panel's combo for a Cartesian grid).
@@ -73,6 +76,7 @@ struct PanelLayout {
   ImRectF isoLabel, isoSlider, histogram, backgroundSwatch;
   ImRectF transferCombo, densitySlider;  // DVR mode's (empty in isosurface mode, as the iso ones in DVR)
   ImRectF unitDistanceSlider, stopOpacitySlider, shadingCheckbox;  // DVR mode's too
+  ImRectF specularSlider, specularPowerSlider;  // DVR with gradient shading on
   // DVR's editor (viewer/PanelTransfer.cpp): the colour-map combo, the file field and its buttons, and
   // a small square around each opacity point drawn over the histogram (the editor's order).
   ImRectF colorMapCombo, transferPathField, transferLoad, transferSave;

@@ -294,5 +294,51 @@ TEST(ReferenceDvr, ShadingChangesOnlyTheEmission) {
   EXPECT_GT(darker, 6) << "the sphere's gradient turns away from most rays somewhere";
 }
 
+// The specular term: the strength where the gradient lies along the ray, 0 across it and where the
+// gradient is 0, strength |cos|^power between; in world space like the Lambert term.
+TEST(ReferenceDvr, SpecularIsBlinnPhongWithTheLightAtTheEye) {
+  const glm::dmat3 identity(1.0);
+  const glm::dvec3 dz(0.0, 0.0, 1.0);
+  EXPECT_EQ(dvrSpecular(glm::dvec3(0.0), dz, identity, 0.7, 10.0), 0.0);
+  EXPECT_DOUBLE_EQ(dvrSpecular(glm::dvec3(0.0, 0.0, -3.0), dz, identity, 0.7, 10.0), 0.7);
+  EXPECT_EQ(dvrSpecular(glm::dvec3(2.0, 0.0, 0.0), dz, identity, 0.7, 10.0), 0.0);
+  EXPECT_EQ(dvrSpecular(glm::dvec3(0.0, 0.0, 1.0), dz, identity, 0.0, 10.0), 0.0) << "strength 0: none";
+  const glm::dvec3 d60(std::sin(M_PI / 3.0), 0.0, std::cos(M_PI / 3.0));
+  EXPECT_NEAR(dvrSpecular(glm::dvec3(0.0, 0.0, 1.0), d60, identity, 0.7, 3.0), 0.7 * 0.125, 1e-12);
+  const glm::dmat3 indexFromWorld(glm::dvec3(4.0, 0.0, 0.0), glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0, 0.0, 1.0));
+  const glm::dvec3 dWorld = glm::normalize(glm::dvec3(1.0, 0.0, 1.0));
+  EXPECT_NEAR(dvrSpecular(glm::dvec3(0.25, 0.0, 0.0), indexFromWorld * dWorld, glm::transpose(indexFromWorld), 1.0, 2.0),
+              0.5, 1e-12);
+}
+
+// Through the sphere with the highlight: opacity and depth as without it, each colour channel up by
+// the same amount (white light), by at most the strength times the opacity, and visibly somewhere.
+TEST(ReferenceDvr, SpecularAddsWhiteLightOnly) {
+  const TransferFunction tf({{0.0, glm::dvec3(0.2, 0.4, 0.9)}, {1.0, glm::dvec3(1.0, 0.8, 0.1)}}, {{0.0, 0.05}, {1.0, 0.0}});
+  const DvrMedium medium = dvrMedium(tf, {kH, 1.0});
+  const SphereScene scene(findReconstruction("boxspline"));
+  DvrOptions shaded, lit;
+  shaded.step = lit.step = 2e-3;
+  shaded.shading = lit.shading = true;
+  shaded.normalFromIndex = lit.normalFromIndex = glm::transpose(glm::dmat3(scene.indexFromWorld));
+  lit.specular = 0.5;
+  lit.specularPower = 4.0;
+  int brighter = 0;
+  for (const TestRay& ray : testRays(12, 0.9, 5, scene.centreWorld())) {
+    const DvrRay indexRay = dvrRayFromWorld(scene.indexFromWorld, ray.o, ray.d, 0.0, 4.0);
+    const DvrPixel a = integrateDvrRay(*scene.recon, scene.samples.accessor(), &scene.bounds, medium, indexRay, shaded);
+    const DvrPixel b = integrateDvrRay(*scene.recon, scene.samples.accessor(), &scene.bounds, medium, indexRay, lit);
+    EXPECT_EQ(a.rgba.a, b.rgba.a);
+    EXPECT_EQ(a.depth, b.depth);
+    const glm::dvec3 rise = glm::dvec3(b.rgba) - glm::dvec3(a.rgba);
+    EXPECT_NEAR(rise.r, rise.g, 1e-12);
+    EXPECT_NEAR(rise.r, rise.b, 1e-12);
+    EXPECT_GE(rise.r, 0.0);
+    EXPECT_LE(rise.r, lit.specular * b.rgba.a * (1.0 + 1e-12));
+    brighter += rise.r > 0.01 * b.rgba.a;
+  }
+  EXPECT_GT(brighter, 6) << "the sphere's gradient lies along most rays somewhere";
+}
+
 }  // namespace
 }  // namespace fcc

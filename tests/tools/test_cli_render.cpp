@@ -94,7 +94,8 @@ TEST(CliRender, CartesianReconstructionsAndDvrOutputs) {
   EXPECT_EQ(channels, (std::set<std::string>{"R", "G", "B", "A", "Z"}));
 }
 
-// --shading off is today's image, byte for byte, and on another; --shading on outside DVR is one line.
+// --shading off is today's image, byte for byte, and on another; --shading on outside DVR is one line;
+// --specular lights the shaded image and needs --shading on.
 // --tf FILE.json:NAME renders that map of a file of several; a NAME it lacks is one line naming them.
 TEST(CliRender, DvrShadingAndNamedParaViewMaps) {
   TempDir dir;
@@ -113,6 +114,18 @@ TEST(CliRender, DvrShadingAndNamedParaViewMaps) {
   EXPECT_NE(iso.status, 0);
   EXPECT_THAT(iso.err, HasSubstr("--shading on applies to --mode dvr"));
   EXPECT_EQ(std::count(iso.err.begin(), iso.err.end(), '\n'), 1) << iso.err;
+  // --specular: a highlight on the shaded image; without --shading on, one line and no output.
+  const std::string lit = dir / "lit.png", unlit = dir / "unlit.png";
+  ASSERT_EQ(runFccvdb("render " + vdb + " " + lit + common + " --shading on --specular 0.8 --specular-power 4").status, 0);
+  EXPECT_NE(readText(on), readText(lit)) << "--specular must show";
+  const auto noShading = runFccvdb("render " + vdb + " " + unlit + common + " --specular 0.8");
+  EXPECT_NE(noShading.status, 0);
+  EXPECT_THAT(noShading.err, HasSubstr("add --shading on"));
+  EXPECT_EQ(std::count(noShading.err.begin(), noShading.err.end(), '\n'), 1) << noShading.err;
+  EXPECT_FALSE(std::filesystem::exists(unlit));
+  const auto tooStrong = runFccvdb("render " + vdb + " " + unlit + common + " --shading on --specular 2");
+  EXPECT_NE(tooStrong.status, 0);
+  EXPECT_THAT(tooStrong.err, HasSubstr("--specular"));
 
   const std::string maps = dir / "maps.json";
   std::ofstream(maps) << R"([{"Name": "First", "RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1]},

@@ -732,7 +732,7 @@ TEST_F(ViewerSession, DvrShowsTheVolumeAndThePanelChangesTheTransferFunction) {
 }
 
 // DVR's panel: the unit distance (the table rebuilt: a longer one is more transparent), the opacity at
-// which rays stop and gradient shading (the program built again) each change the image and reach the
+// which rays stop, gradient shading (the program built again) and its highlight each change the image and reach the
 // renderer; set back, each gives the first image back bit for bit; a stop opacity out of range goes back,
 // with a notice.
 TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
@@ -773,7 +773,22 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   h.session->settings().dvrShading = true;
   ASSERT_TRUE(h.settle());
   EXPECT_TRUE(h.session->renderOptions().dvrShading);
-  EXPECT_GT(differingChannels(first, h.pixels(), panel), 0) << "shading must change the image";
+  const std::vector<unsigned char> shaded = h.pixels();
+  EXPECT_GT(differingChannels(first, shaded, panel), 0) << "shading must change the image";
+  // With shading, the specular sliders (uniforms: no rebuild); a highlight changes the image (a
+  // strength out of range goes back with a notice: last, below).
+  h.frame();
+  EXPECT_FALSE(h.session->panelLayout().specularSlider.empty()) << "no specular slider with shading on";
+  EXPECT_FALSE(h.session->panelLayout().specularPowerSlider.empty());
+  h.session->settings().dvrSpecular = 0.8f;
+  h.session->settings().dvrSpecularPower = 4.0f;
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(h.session->renderOptions().dvrSpecular, 0.8f);
+  EXPECT_EQ(h.session->renderOptions().dvrSpecularPower, 4.0f);
+  EXPECT_GT(differingChannels(shaded, h.pixels(), panel), 0) << "the highlight must change the image";
+  h.session->settings().dvrSpecular = 0.0f;
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(differingChannels(shaded, h.pixels(), panel), 0) << "no highlight: the shaded image";
   h.session->settings().dvrShading = false;
   ASSERT_TRUE(h.settle());
   EXPECT_EQ(differingChannels(first, h.pixels(), panel), 0) << "unshaded again: the first image";
@@ -784,6 +799,10 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   EXPECT_EQ(h.session->settings().stopOpacity, stop) << "a refused stop opacity goes back";
   EXPECT_EQ(h.session->renderOptions().terminationOpacity, stop);
   EXPECT_NE(h.session->notice().find("stop opacity"), std::string::npos) << h.session->notice();
+  h.session->settings().dvrSpecular = 3.0f;
+  h.frame();
+  EXPECT_EQ(h.session->settings().dvrSpecular, 0.0f) << "a refused strength goes back";
+  EXPECT_NE(h.session->notice().find("specular"), std::string::npos) << h.session->notice();
 }
 
 // The transfer table the session's renderer uses, as uploaded.
