@@ -128,6 +128,24 @@ void ViewerSession::drawTransferFiles() {
     }
   }
   layout_.transferSave = lastRect();
+  // Every edit above (points, shapes, colours, the colour map) can be undone: ctrl + Z, ctrl + Y.
+  ImGui::BeginDisabled(!editor_->canUndo());
+  if (ImGui::Button("undo")) undoTransferEdit(false);
+  ImGui::EndDisabled();
+  layout_.transferUndo = lastRect();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!editor_->canRedo());
+  if (ImGui::Button("redo")) undoTransferEdit(true);
+  ImGui::EndDisabled();
+  layout_.transferRedo = lastRect();
+}
+
+void ViewerSession::undoTransferEdit(bool redo) {
+  if (!(redo ? editor_->redo() : editor_->undo())) {
+    notify(redo ? "nothing to redo" : "nothing to undo in the transfer function");
+    return;
+  }
+  dragPoint_ = shapePoint_ = dragColor_ = selectedColor_ = -1;  // the indices were the other state's
 }
 
 TransferFunction ViewerSession::baseFunction(const std::string& name) const {

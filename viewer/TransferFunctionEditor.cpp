@@ -24,7 +24,45 @@ void TransferFunctionEditor::reset(const TransferFunction& tf) {
   points_ = tf.opacities();
   colors_ = tf.colors();
   colorMapName_ = tf.name();
+  undo_.clear();
+  redo_.clear();
+  gesture_ = Gesture{};
   ++revision_;
+}
+
+void TransferFunctionEditor::record(Gesture g) {
+  const bool continues = g.kind != 0 && g == gesture_;
+  gesture_ = g;
+  if (continues) return;
+  undo_.push_back(state());
+  if (undo_.size() > kUndoSteps) undo_.erase(undo_.begin());
+  redo_.clear();
+}
+
+void TransferFunctionEditor::restore(State s) {
+  points_ = std::move(s.points);
+  colors_ = std::move(s.colors);
+  colorMapName_ = std::move(s.colorMapName);
+  gesture_ = Gesture{};
+  ++revision_;
+}
+
+bool TransferFunctionEditor::undo() {
+  if (undo_.empty()) return false;
+  redo_.push_back(state());
+  State back = std::move(undo_.back());
+  undo_.pop_back();
+  restore(std::move(back));
+  return true;
+}
+
+bool TransferFunctionEditor::redo() {
+  if (redo_.empty()) return false;
+  undo_.push_back(state());
+  State again = std::move(redo_.back());
+  redo_.pop_back();
+  restore(std::move(again));
+  return true;
 }
 
 void TransferFunctionEditor::checkIndex(int i) const {
@@ -45,7 +83,9 @@ int TransferFunctionEditor::insert(double x, double alpha) {
   const auto at = std::upper_bound(points_.begin(), points_.end(), x,
                                    [](double v, const OpacityPoint& p) { return v < p.x; });
   const int index = int(at - points_.begin());
+  record();
   points_.insert(at, OpacityPoint{x, alpha});
+  gesture_ = Gesture{kMove, index};  // a drag that follows is the same step
   ++revision_;
   return index;
 }
@@ -58,6 +98,7 @@ void TransferFunctionEditor::move(int i, double x, double alpha) {
   alpha = std::isnan(alpha) ? points_[std::size_t(i)].alpha : std::clamp(alpha, 0.0, 1.0);
   OpacityPoint& p = points_[std::size_t(i)];
   if (p.x == x && p.alpha == alpha) return;
+  record(Gesture{kMove, i});
   p.x = x;  // its midpoint and sharpness (the shape of the segment to the next point) stay
   p.alpha = alpha;
   ++revision_;
@@ -69,6 +110,7 @@ void TransferFunctionEditor::setShape(int i, double midpoint, double sharpness) 
   midpoint = std::isnan(midpoint) ? p.midpoint : std::clamp(midpoint, 0.0, 1.0);
   sharpness = std::isnan(sharpness) ? p.sharpness : std::clamp(sharpness, 0.0, 1.0);
   if (p.midpoint == midpoint && p.sharpness == sharpness) return;
+  record(Gesture{kShape, i});
   p.midpoint = midpoint;
   p.sharpness = sharpness;
   ++revision_;
@@ -77,6 +119,7 @@ void TransferFunctionEditor::setShape(int i, double midpoint, double sharpness) 
 bool TransferFunctionEditor::remove(int i) {
   checkIndex(i);
   if (points_.size() <= 1) return false;
+  record();
   points_.erase(points_.begin() + i);
   ++revision_;
   return true;
@@ -115,8 +158,10 @@ int TransferFunctionEditor::insertColor(double x) {
   const glm::dvec3 rgb = function("").color(x);
   const auto at = std::upper_bound(colors_.begin(), colors_.end(), x, [](double v, const ColorPoint& p) { return v < p.x; });
   const int index = int(at - colors_.begin());
+  record();
   colors_.insert(at, ColorPoint{x, rgb});
   colorsEdited();
+  gesture_ = Gesture{kMoveColor, index};
   return index;
 }
 
@@ -127,6 +172,7 @@ void TransferFunctionEditor::moveColor(int i, double x) {
   x = std::clamp(clampX(x), below, above);
   ColorPoint& p = colors_[std::size_t(i)];
   if (p.x == x) return;
+  record(Gesture{kMoveColor, i});
   p.x = x;
   colorsEdited();
 }
@@ -138,6 +184,7 @@ void TransferFunctionEditor::setColor(int i, const glm::dvec3& rgb) {
   for (int c = 0; c < 3; ++c)
     if (!std::isnan(rgb[c])) clamped[c] = std::clamp(rgb[c], 0.0, 1.0);
   if (clamped == p.rgb) return;
+  record(Gesture{kSetColor, i});
   p.rgb = clamped;
   colorsEdited();
 }
@@ -145,6 +192,7 @@ void TransferFunctionEditor::setColor(int i, const glm::dvec3& rgb) {
 bool TransferFunctionEditor::removeColor(int i) {
   checkColorIndex(i);
   if (colors_.size() <= 1) return false;
+  record();
   colors_.erase(colors_.begin() + i);
   colorsEdited();
   return true;
@@ -165,6 +213,7 @@ int TransferFunctionEditor::pickColor(double x, double xScale, double radius) co
 
 void TransferFunctionEditor::setColors(std::vector<ColorPoint> colors, std::string name) {
   if (colors.empty()) throw ValueError("transfer function editor: a colour map without points");
+  record();
   colors_ = std::move(colors);
   colorMapName_ = std::move(name);
   ++revision_;

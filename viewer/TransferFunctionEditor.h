@@ -2,8 +2,9 @@
 // free of any GUI so that it is tested on its own: the opacity control points (sorted by value, each
 // inside the editor's value range, opacities in [0, 1]) with insert, move and remove, the colour map
 // the function takes its colours from, and that map's colour points edited one by one (the same
-// invariants: sorted, inside the range, components in [0, 1]; at least one). The panel (viewer/PanelTransfer.cpp) turns mouse events
-// into these calls; the session rebuilds the GPU's table when revision() changes.
+// invariants: sorted, inside the range, components in [0, 1]; at least one), with undo and redo of
+// every edit. The panel (viewer/PanelTransfer.cpp) turns mouse events into these calls; the session
+// rebuilds the GPU's table when revision() changes.
 #pragma once
 
 #include <cstdint>
@@ -61,8 +62,21 @@ class TransferFunctionEditor {
   bool removeColor(int i);
   int pickColor(double x, double xScale, double radius) const;
 
-  // Everything from `tf` again (a preset or a file chosen as the starting point).
+  // Everything from `tf` again (a preset or a file chosen as the starting point); forgets the undo
+  // and redo history (it belonged to the function replaced).
   void reset(const TransferFunction& tf);
+
+  // Undo and redo: each edit that changed the function is a step, except that the edits of one gesture
+  // are one: a point inserted and then moved, or moved again and again (a drag), the same segment's
+  // shape or the same colour point's colour set again and again (a slider held), until closeStep().
+  // The panel closes the step when the mouse is released. undo() and redo() return false when there
+  // is nothing to undo or redo; a new edit forgets what could be redone. At most kUndoSteps are kept.
+  static constexpr std::size_t kUndoSteps = 256;
+  void closeStep() { gesture_ = Gesture{}; }
+  bool undo();
+  bool redo();
+  bool canUndo() const { return !undo_.empty(); }
+  bool canRedo() const { return !redo_.empty(); }
 
   // The function edited: colours and opacity points, in data values (not normalized).
   TransferFunction function(const std::string& name) const;
@@ -72,6 +86,25 @@ class TransferFunctionEditor {
   void checkColorIndex(int i) const;
   void colorsEdited();
   double clampX(double x) const;
+  // What undo brings back, and the gesture the last step belongs to (kind 0: none, a new step).
+  struct State {
+    std::vector<OpacityPoint> points;
+    std::vector<ColorPoint> colors;
+    std::string colorMapName;
+  };
+  struct Gesture {
+    int kind = 0;
+    int index = -1;
+    bool operator==(const Gesture& o) const { return kind == o.kind && index == o.index; }
+  };
+  enum : int { kMove = 1, kShape, kMoveColor, kSetColor };
+  State state() const { return State{points_, colors_, colorMapName_}; }
+  void restore(State s);
+  // Before an edit that changes the function: a new undo step, unless `g` continues the last one.
+  void record(Gesture g);
+  void record() { record(Gesture{0, -1}); }
+  std::vector<State> undo_, redo_;
+  Gesture gesture_;
   std::vector<OpacityPoint> points_;
   std::vector<ColorPoint> colors_;
   std::string colorMapName_;

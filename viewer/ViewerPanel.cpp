@@ -84,6 +84,7 @@ void ViewerSession::drawPanel(int windowHeight) {
   layout_.unitDistanceSlider = layout_.stopOpacitySlider = layout_.shadingCheckbox = {};
   layout_.specularSlider = layout_.specularPowerSlider = {};
   layout_.colorMapCombo = layout_.transferPathField = layout_.transferLoad = layout_.transferSave = {};
+  layout_.transferUndo = layout_.transferRedo = {};
   layout_.opacityPoints.clear();
   layout_.colorBar = layout_.colorPointEdit = layout_.colorPointRemove = {};
   layout_.colorPoints.clear();
@@ -359,6 +360,7 @@ void ViewerSession::drawHelp() {
     const char* keys;
     const char* what;
     bool isoOnly = false;
+    bool dvrOnly = false;
   };
   static const Row kRows[] = {
       {"left drag", "orbit about the look-at point"},
@@ -369,6 +371,7 @@ void ViewerSession::drawHelp() {
       {"C", "save the camera as JSON (for --camera) and copy it"},
       {"+, - (or keypad)", "isovalue (of the surface selected in the panel) up or down by 1% of its range", true},
       {"Page Up, Page Down", "isovalue up or down by 10%", true},
+      {"ctrl + Z; ctrl + Y, ctrl + shift + Z", "undo; redo an edit of the transfer function", false, true},
       {"S, F12", "screenshot: PNG of the window and EXR of the image, in the current directory"},
       {"O, or drop a file", "open another file (any input `fccvdb view` takes)"},
       {"P", "show or hide the panel"},
@@ -384,7 +387,7 @@ void ViewerSession::drawHelp() {
   layout_.helpTextLeft = FLT_MAX;
   layout_.helpKeys.clear();
   for (const Row& r : kRows) {
-    if (r.isoOnly && dvr()) continue;
+    if ((r.isoOnly && dvr()) || (r.dvrOnly && !dvr())) continue;
     ImGui::TextUnformatted(r.keys);
     layout_.helpKeys.push_back(r.keys);
     layout_.helpKeysRight = std::max(layout_.helpKeysRight, ImGui::GetItemRectMax().x);

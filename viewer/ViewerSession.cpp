@@ -205,6 +205,8 @@ void ViewerSession::handleInput(int windowHeight) {
     else if (moved && io.MouseDown[0]) camera_ = orbit(camera_, dx, dy);
     if (io.MouseWheel != 0.0f) camera_ = zoom(camera_, io.MouseWheel);
   }
+  // A drag or a slider let go: the editor's next edit is a new undo step.
+  if (editor_ && !io.MouseDown[0] && !ImGui::IsAnyItemActive()) editor_->closeStep();
   // Keys reach the viewer while the panel has focus (a slider held, a colour picked), but not while
   // a text field takes them (ctrl + click on a slider types its value: an "s" there is a letter).
   if (!io.WantTextInput) {
@@ -225,6 +227,9 @@ void ViewerSession::handleInput(int windowHeight) {
       float& iso = selectedIso();  // the surface selected in the panel
       iso = std::clamp(iso + isoSteps * range, summary_.valueMin, summary_.valueMax);
     }
+    // DVR: the transfer function's edits undone and redone (ctrl + Z; ctrl + shift + Z or ctrl + Y).
+    if (editor_ && io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false)) undoTransferEdit(/*redo=*/io.KeyShift);
+    if (editor_ && io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Y, false)) undoTransferEdit(/*redo=*/true);
     if (ImGui::IsKeyPressed(GLFW_KEY_O, false)) {
       openField_.shown = true;
       openField_.focus = true;

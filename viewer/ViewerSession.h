@@ -79,7 +79,7 @@ struct PanelLayout {
   ImRectF specularSlider, specularPowerSlider;  // DVR with gradient shading on
   // DVR's editor (viewer/PanelTransfer.cpp): the colour-map combo, the file field and its buttons, and
   // a small square around each opacity point drawn over the histogram (the editor's order).
-  ImRectF colorMapCombo, transferPathField, transferLoad, transferSave;
+  ImRectF colorMapCombo, transferPathField, transferLoad, transferSave, transferUndo, transferRedo;
   std::vector<ImRectF> opacityPoints;
   // The sliders of the segment from the last grabbed point to the next (ParaView's midpoint and
   // sharpness; empty while no point is chosen or it is the last).
@@ -274,6 +274,7 @@ class ViewerSession {
                          bool active);
   void drawTransferFiles();
   void drawSegmentShape();
+  void undoTransferEdit(bool redo);  // viewer/PanelTransfer.cpp: the editor's undo or redo, with a notice
   // viewer/PanelColorPoints.cpp: the colour bar under the histogram (the function's colours on its
   // value axis, a marker at each colour point; click, drag, right-click) and the chosen point's colour.
   void editColorPoints(float x0, float x1, float axisMin, float axisMax);

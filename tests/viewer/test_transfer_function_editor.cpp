@@ -256,6 +256,92 @@ TEST(TransferFunctionEditor, PickColourFindsTheNearestPointWithinTheRadius) {
   EXPECT_EQ(e.pickColor(1.0, 10.0, 4.0), added);
 }
 
+// Undo: each edit a step, a drag (insert then moves of that point, or moves of one point) one step
+// until closeStep; undo gives each earlier state back exactly, redo the later ones; a new edit forgets
+// the redo; reset forgets everything.
+TEST(TransferFunctionEditor, UndoAndRedoStepThroughEditsAndGestures) {
+  TransferFunctionEditor e(viridisOn(0.0, 16.0), 0.0, 16.0);
+  EXPECT_FALSE(e.canUndo());
+  EXPECT_FALSE(e.undo());
+  EXPECT_FALSE(e.redo());
+  const auto snapshot = [&] { return e.function("s"); };
+  const auto same = [](const TransferFunction& a, const TransferFunction& b) {
+    if (a.opacities().size() != b.opacities().size() || a.colors().size() != b.colors().size()) return false;
+    for (std::size_t k = 0; k < a.opacities().size(); ++k) {
+      const OpacityPoint &p = a.opacities()[k], &q = b.opacities()[k];
+      if (p.x != q.x || p.alpha != q.alpha || p.midpoint != q.midpoint || p.sharpness != q.sharpness) return false;
+    }
+    for (std::size_t k = 0; k < a.colors().size(); ++k)
+      if (a.colors()[k].x != b.colors()[k].x || a.colors()[k].rgb != b.colors()[k].rgb) return false;
+    return true;
+  };
+  std::vector<TransferFunction> states{snapshot()};
+  std::vector<std::string> names{e.colorMapName()};
+  // A click and a drag: one step.
+  const int i = e.insert(5.0, 0.5);
+  e.move(i, 5.5, 0.6);
+  e.move(i, 6.0, 0.7);
+  e.closeStep();
+  states.push_back(snapshot());
+  names.push_back(e.colorMapName());
+  // The same point dragged again after the release: another step.
+  e.move(i, 6.5, 0.2);
+  e.move(i, 6.6, 0.25);
+  e.closeStep();
+  states.push_back(snapshot());
+  names.push_back(e.colorMapName());
+  // A slider held on its segment's shape, then a colour point recoloured twice: two steps.
+  e.setShape(i, 0.3, 0.1);
+  e.setShape(i, 0.35, 0.2);
+  states.push_back(snapshot());
+  names.push_back(e.colorMapName());
+  e.setColor(2, glm::dvec3(1.0, 0.0, 0.0));
+  e.setColor(2, glm::dvec3(1.0, 0.5, 0.0));
+  e.closeStep();
+  states.push_back(snapshot());
+  names.push_back(e.colorMapName());
+  // A no-op is no step.
+  e.move(i, e.points()[std::size_t(i)].x, e.points()[std::size_t(i)].alpha);
+  e.closeStep();
+  EXPECT_TRUE(e.remove(0));
+  states.push_back(snapshot());
+  names.push_back(e.colorMapName());
+
+  for (std::size_t k = states.size() - 1; k-- > 0;) {
+    const uint64_t r = e.revision();
+    ASSERT_TRUE(e.undo()) << "undo to state " << k;
+    EXPECT_GT(e.revision(), r) << "an undo must rebuild the table";
+    EXPECT_TRUE(same(snapshot(), states[k])) << "state " << k;
+    EXPECT_EQ(e.colorMapName(), names[k]) << "state " << k;
+  }
+  EXPECT_FALSE(e.undo()) << "back at the start";
+  for (std::size_t k = 1; k < states.size(); ++k) {
+    ASSERT_TRUE(e.redo());
+    EXPECT_TRUE(same(snapshot(), states[k])) << "redo to state " << k;
+  }
+  EXPECT_FALSE(e.redo());
+  ASSERT_TRUE(e.undo());
+  ASSERT_TRUE(e.undo());
+  e.insertColor(8.0);  // a new edit: the undone ones are gone
+  EXPECT_FALSE(e.canRedo());
+  ASSERT_TRUE(e.undo());
+  EXPECT_TRUE(same(snapshot(), states[states.size() - 3]));
+  e.reset(viridisOn(0.0, 16.0));
+  EXPECT_FALSE(e.canUndo());
+  EXPECT_FALSE(e.canRedo());
+}
+
+TEST(TransferFunctionEditor, UndoKeepsABoundedHistory) {
+  TransferFunctionEditor e(viridisOn(0.0, 16.0), 0.0, 16.0);
+  for (std::size_t k = 0; k < TransferFunctionEditor::kUndoSteps + 10; ++k) {
+    e.move(0, 0.0, double(k % 2));  // alternating: every move changes the function
+    e.closeStep();
+  }
+  std::size_t undone = 0;
+  while (e.undo()) ++undone;
+  EXPECT_EQ(undone, TransferFunctionEditor::kUndoSteps);
+}
+
 // Random edits of every kind keep the invariants, and the function always constructs.
 TEST(TransferFunctionEditor, RandomEditsKeepTheInvariants) {
   std::mt19937 rng(18);
@@ -264,14 +350,17 @@ TEST(TransferFunctionEditor, RandomEditsKeepTheInvariants) {
   for (int step = 0; step < 2000; ++step) {
     const int n = int(e.points().size());
     const int nc = int(e.colors().size());
-    switch (rng() % 7) {
+    switch (rng() % 10) {
       case 0: e.insert(x(rng), a(rng)); break;
       case 1: e.move(int(rng() % unsigned(n)), x(rng), a(rng)); break;
       case 2: e.remove(int(rng() % unsigned(n))); break;
       case 3: e.insertColor(x(rng)); break;
       case 4: e.moveColor(int(rng() % unsigned(nc)), x(rng)); break;
       case 5: e.setColor(int(rng() % unsigned(nc)), glm::dvec3(a(rng), a(rng), a(rng))); break;
-      default: e.removeColor(int(rng() % unsigned(nc))); break;
+      case 6: e.removeColor(int(rng() % unsigned(nc))); break;
+      case 7: e.undo(); break;
+      case 8: e.redo(); break;
+      default: e.closeStep(); break;
     }
     expectValid(e);
     expectValidColors(e);

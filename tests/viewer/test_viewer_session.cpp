@@ -645,7 +645,7 @@ TEST_F(ViewerSession, AxisIndicatorShowsInTheCornerWithThePanelHidden) {
 }
 
 // The help lists the keys that apply to the mode: the isovalue's in isosurface mode, not in DVR mode
-// (where they do nothing).
+// (where they do nothing), the transfer function's undo in DVR mode only.
 TEST_F(ViewerSession, HelpListsTheKeysOfTheMode) {
   TempDir dir;
   const std::string path = test::writeSmallBlobs(dir);
@@ -675,6 +675,8 @@ TEST_F(ViewerSession, HelpListsTheKeysOfTheMode) {
     EXPECT_TRUE(lists(iso, key)) << key;
     EXPECT_TRUE(lists(dvr, key)) << key << " in DVR mode";
   }
+  EXPECT_TRUE(lists(dvr, "ctrl + Z; ctrl + Y, ctrl + shift + Z")) << "the transfer function's undo in DVR mode";
+  EXPECT_FALSE(lists(iso, "ctrl + Z; ctrl + Y, ctrl + shift + Z")) << "no transfer function in isosurface mode";
 }
 
 // Pixels right of `firstColumn` that differ from the background (as drawn: sRGB, 8 bits) by more than a level.
@@ -890,6 +892,48 @@ TEST_F(ViewerSession, DvrEditorAddsDragsAndRemovesOpacityPoints) {
   EXPECT_EQ(tableInUse(h), tableBefore);
   ASSERT_TRUE(settleAway(h));
   EXPECT_EQ(differingChannels(before, h.pixels(), panel), 0) << "the first function must give the first image";
+}
+
+// The editor's undo: a point added by a click (and a colour point after it) undone by ctrl + Z, one
+// edit at a time, gives the first table and image back bit for bit; ctrl + Y and the redo button
+// bring them back; with nothing left to undo, a notice.
+TEST_F(ViewerSession, DvrEditorUndoesAndRedoesEdits) {
+  TempDir dir;
+  SessionHarness h(test::writeSmallBlobs(dir), "grayscale");
+  ASSERT_TRUE(h.settle());
+  const int panel = int(std::ceil(h.session->panelWidth()));
+  const std::vector<unsigned char> before = h.pixels();
+  const std::vector<glm::vec4> tableBefore = tableInUse(h);
+  const render::TransferFunctionEditor& editor = *h.session->transferEditor();
+  const render::ImRectF plot = h.session->panelLayout().histogram;
+  const float padX = ImGui::GetStyle().FramePadding.x, padY = ImGui::GetStyle().FramePadding.y;
+  h.click(plot.x0 + padX + (plot.x1 - plot.x0 - 2.0f * padX) / 3.0f, plot.y1 - padY - 0.75f * (plot.y1 - plot.y0 - 2.0f * padY));
+  ASSERT_EQ(editor.points().size(), 3u);
+  const std::vector<glm::vec4> tableWithPoint = tableInUse(h);
+  const render::ImRectF bar = h.session->panelLayout().colorBar;
+  h.click(plot.x0 + padX + 0.6f * (plot.x1 - plot.x0 - 2.0f * padX), bar.centreY());
+  ASSERT_EQ(editor.colors().size(), 3u);
+  EXPECT_FALSE(h.session->panelLayout().transferUndo.empty());
+
+  h.press(GLFW_KEY_Z, /*shift=*/false, /*ctrl=*/true);
+  EXPECT_EQ(editor.colors().size(), 2u) << "ctrl + Z must undo the colour point first";
+  EXPECT_EQ(editor.points().size(), 3u);
+  h.press(GLFW_KEY_Z, false, true);
+  EXPECT_EQ(editor.points().size(), 2u) << "then the opacity point";
+  EXPECT_EQ(tableInUse(h), tableBefore) << "undone: the first table, bit for bit";
+  ASSERT_TRUE(settleAway(h));
+  EXPECT_EQ(differingChannels(before, h.pixels(), panel), 0) << "undone: the first image";
+  h.press(GLFW_KEY_Z, false, true);
+  EXPECT_NE(h.session->notice().find("nothing to undo"), std::string::npos) << h.session->notice();
+
+  h.press(GLFW_KEY_Y, false, true);
+  EXPECT_EQ(editor.points().size(), 3u) << "ctrl + Y must redo";
+  EXPECT_EQ(tableInUse(h), tableWithPoint);
+  const render::ImRectF redo = h.session->panelLayout().transferRedo;
+  ASSERT_FALSE(redo.empty());
+  h.click(redo.centreX(), redo.centreY());
+  EXPECT_EQ(editor.colors().size(), 3u) << "the redo button must redo";
+  EXPECT_FALSE(editor.canRedo());
 }
 
 // DVR's colour points: a click on the colour bar adds one there (the function's colours stay, within
