@@ -268,6 +268,18 @@ TEST(ReferenceDvr, ShadingIsAHeadlightLambertOverAnAmbientFloor) {
               kDvrShadingAmbient + (1.0 - kDvrShadingAmbient) * std::sqrt(0.5), 1e-12);
 }
 
+// The sphere's test rays (12 x 5 through its centre's neighbourhood), each integrated with options a and b.
+std::vector<std::pair<DvrPixel, DvrPixel>> pixelPairs(const SphereScene& scene, const DvrMedium& medium,
+                                                      const DvrOptions& a, const DvrOptions& b) {
+  std::vector<std::pair<DvrPixel, DvrPixel>> pairs;
+  for (const TestRay& ray : testRays(12, 0.9, 5, scene.centreWorld())) {
+    const DvrRay indexRay = dvrRayFromWorld(scene.indexFromWorld, ray.o, ray.d, 0.0, 4.0);
+    pairs.emplace_back(integrateDvrRay(*scene.recon, scene.samples.accessor(), &scene.bounds, medium, indexRay, a),
+                       integrateDvrRay(*scene.recon, scene.samples.accessor(), &scene.bounds, medium, indexRay, b));
+  }
+  return pairs;
+}
+
 // Through the sphere with shading on: the same opacity and depth, colour between the ambient floor and
 // the unshaded colour, and the unshaded colour exactly where it is off.
 TEST(ReferenceDvr, ShadingChangesOnlyTheEmission) {
@@ -279,10 +291,7 @@ TEST(ReferenceDvr, ShadingChangesOnlyTheEmission) {
   on.shading = true;
   on.normalFromIndex = glm::transpose(glm::dmat3(scene.indexFromWorld));
   int darker = 0;
-  for (const TestRay& ray : testRays(12, 0.9, 5, scene.centreWorld())) {
-    const DvrRay indexRay = dvrRayFromWorld(scene.indexFromWorld, ray.o, ray.d, 0.0, 4.0);
-    const DvrPixel a = integrateDvrRay(*scene.recon, scene.samples.accessor(), &scene.bounds, medium, indexRay, off);
-    const DvrPixel b = integrateDvrRay(*scene.recon, scene.samples.accessor(), &scene.bounds, medium, indexRay, on);
+  for (const auto& [a, b] : pixelPairs(scene, medium, off, on)) {
     EXPECT_EQ(a.rgba.a, b.rgba.a);
     EXPECT_EQ(a.depth, b.depth);
     for (int k = 0; k < 3; ++k) {
@@ -324,10 +333,7 @@ TEST(ReferenceDvr, SpecularAddsWhiteLightOnly) {
   lit.specular = 0.5;
   lit.specularPower = 4.0;
   int brighter = 0;
-  for (const TestRay& ray : testRays(12, 0.9, 5, scene.centreWorld())) {
-    const DvrRay indexRay = dvrRayFromWorld(scene.indexFromWorld, ray.o, ray.d, 0.0, 4.0);
-    const DvrPixel a = integrateDvrRay(*scene.recon, scene.samples.accessor(), &scene.bounds, medium, indexRay, shaded);
-    const DvrPixel b = integrateDvrRay(*scene.recon, scene.samples.accessor(), &scene.bounds, medium, indexRay, lit);
+  for (const auto& [a, b] : pixelPairs(scene, medium, shaded, lit)) {
     EXPECT_EQ(a.rgba.a, b.rgba.a);
     EXPECT_EQ(a.depth, b.depth);
     const glm::dvec3 rise = glm::dvec3(b.rgba) - glm::dvec3(a.rgba);

@@ -819,26 +819,40 @@ void drag(SessionHarness& h, float x0, float y0, float x1, float y1) {
   h.frame([&](ImGuiIO& io) { io.MouseDown[0] = false; });
 }
 
+// The editor tests' start: a DVR session of the small blobs in grayscale, settled, with its first
+// image and table, and the histogram's plot; `at` is the place over the plot's bars at a fraction of
+// the value axis and of the opacity.
+struct DvrEditorStart {
+  TempDir dir;
+  SessionHarness h{test::writeSmallBlobs(dir), std::string("grayscale")};
+  bool settled = h.settle();
+  int panel = int(std::ceil(h.session->panelWidth()));
+  std::vector<unsigned char> before = h.pixels();
+  std::vector<glm::vec4> tableBefore = tableInUse(h);
+  const render::TransferFunctionEditor& editor = *h.session->transferEditor();
+  render::ImRectF plot = h.session->panelLayout().histogram;
+  float padX = ImGui::GetStyle().FramePadding.x, padY = ImGui::GetStyle().FramePadding.y;
+  float xAt(float fraction) const { return plot.x0 + padX + fraction * (plot.x1 - plot.x0 - 2.0f * padX); }
+  float yAt(float opacity) const { return plot.y1 - padY - opacity * (plot.y1 - plot.y0 - 2.0f * padY); }
+};
+
 // DVR's editor: a click on the histogram adds an opacity point there (the function passes through
 // it), dragging it moves it and changes the table and the image, the shape sliders make its segment a
 // step, a right-click removes it and gives the first image back, bit for bit (the same table).
 TEST_F(ViewerSession, DvrEditorAddsDragsAndRemovesOpacityPoints) {
-  TempDir dir;
-  SessionHarness h(test::writeSmallBlobs(dir), "grayscale");
-  ASSERT_TRUE(h.settle());
-  const int panel = int(std::ceil(h.session->panelWidth()));
-  const std::vector<unsigned char> before = h.pixels();
-  const std::vector<glm::vec4> tableBefore = tableInUse(h);
-  const render::TransferFunctionEditor& editor = *h.session->transferEditor();
+  DvrEditorStart start;
+  ASSERT_TRUE(start.settled);
+  SessionHarness& h = start.h;
+  const int panel = start.panel;
+  const std::vector<unsigned char>& before = start.before;
+  const std::vector<glm::vec4>& tableBefore = start.tableBefore;
+  const render::TransferFunctionEditor& editor = start.editor;
   ASSERT_EQ(editor.points().size(), 2u);
-  const render::ImRectF plot = h.session->panelLayout().histogram;
+  const render::ImRectF plot = start.plot;
   ASSERT_FALSE(plot.empty());
 
   // A click a third of the way along, three quarters up: a new point there.
-  const float padX = ImGui::GetStyle().FramePadding.x, padY = ImGui::GetStyle().FramePadding.y;
-  const float x = plot.x0 + padX + (plot.x1 - plot.x0 - 2.0f * padX) / 3.0f;
-  const float y = plot.y1 - padY - 0.75f * (plot.y1 - plot.y0 - 2.0f * padY);
-  h.click(x, y);
+  h.click(start.xAt(1.0f / 3.0f), start.yAt(0.75f));
   ASSERT_EQ(editor.points().size(), 3u) << "the click added no point";
   const OpacityPoint added = editor.points()[1];
   EXPECT_NEAR(added.alpha, 0.75, 0.05);
@@ -851,7 +865,7 @@ TEST_F(ViewerSession, DvrEditorAddsDragsAndRemovesOpacityPoints) {
   // Dragged down and right: the point follows, the table and the image change again.
   ASSERT_EQ(h.session->panelLayout().opacityPoints.size(), 3u);
   const render::ImRectF handle = h.session->panelLayout().opacityPoints[1];
-  drag(h, handle.centreX(), handle.centreY(), handle.centreX() + 12.0f, plot.y1 - padY - 0.1f * (plot.y1 - plot.y0 - 2.0f * padY));
+  drag(h, handle.centreX(), handle.centreY(), handle.centreX() + 12.0f, start.yAt(0.1f));
   ASSERT_EQ(editor.points().size(), 3u) << "a drag must move the point, not add one";
   const OpacityPoint moved = editor.points()[1];
   EXPECT_GT(moved.x, added.x);
@@ -898,20 +912,15 @@ TEST_F(ViewerSession, DvrEditorAddsDragsAndRemovesOpacityPoints) {
 // edit at a time, gives the first table and image back bit for bit; ctrl + Y and the redo button
 // bring them back; with nothing left to undo, a notice.
 TEST_F(ViewerSession, DvrEditorUndoesAndRedoesEdits) {
-  TempDir dir;
-  SessionHarness h(test::writeSmallBlobs(dir), "grayscale");
-  ASSERT_TRUE(h.settle());
-  const int panel = int(std::ceil(h.session->panelWidth()));
-  const std::vector<unsigned char> before = h.pixels();
-  const std::vector<glm::vec4> tableBefore = tableInUse(h);
-  const render::TransferFunctionEditor& editor = *h.session->transferEditor();
-  const render::ImRectF plot = h.session->panelLayout().histogram;
-  const float padX = ImGui::GetStyle().FramePadding.x, padY = ImGui::GetStyle().FramePadding.y;
-  h.click(plot.x0 + padX + (plot.x1 - plot.x0 - 2.0f * padX) / 3.0f, plot.y1 - padY - 0.75f * (plot.y1 - plot.y0 - 2.0f * padY));
+  DvrEditorStart start;
+  ASSERT_TRUE(start.settled);
+  SessionHarness& h = start.h;
+  const render::TransferFunctionEditor& editor = start.editor;
+  h.click(start.xAt(1.0f / 3.0f), start.yAt(0.75f));
   ASSERT_EQ(editor.points().size(), 3u);
   const std::vector<glm::vec4> tableWithPoint = tableInUse(h);
   const render::ImRectF bar = h.session->panelLayout().colorBar;
-  h.click(plot.x0 + padX + 0.6f * (plot.x1 - plot.x0 - 2.0f * padX), bar.centreY());
+  h.click(start.xAt(0.6f), bar.centreY());
   ASSERT_EQ(editor.colors().size(), 3u);
   EXPECT_FALSE(h.session->panelLayout().transferUndo.empty());
 
@@ -920,9 +929,9 @@ TEST_F(ViewerSession, DvrEditorUndoesAndRedoesEdits) {
   EXPECT_EQ(editor.points().size(), 3u);
   h.press(GLFW_KEY_Z, false, true);
   EXPECT_EQ(editor.points().size(), 2u) << "then the opacity point";
-  EXPECT_EQ(tableInUse(h), tableBefore) << "undone: the first table, bit for bit";
+  EXPECT_EQ(tableInUse(h), start.tableBefore) << "undone: the first table, bit for bit";
   ASSERT_TRUE(settleAway(h));
-  EXPECT_EQ(differingChannels(before, h.pixels(), panel), 0) << "undone: the first image";
+  EXPECT_EQ(differingChannels(start.before, h.pixels(), start.panel), 0) << "undone: the first image";
   h.press(GLFW_KEY_Z, false, true);
   EXPECT_NE(h.session->notice().find("nothing to undo"), std::string::npos) << h.session->notice();
 
@@ -940,24 +949,22 @@ TEST_F(ViewerSession, DvrEditorUndoesAndRedoesEdits) {
 // rounding), the chosen point's colour typed into its field changes the table and the image, a drag
 // moves it, a right-click removes it and gives the first table and image back, bit for bit.
 TEST_F(ViewerSession, DvrEditorAddsRecoloursDragsAndRemovesColourPoints) {
-  TempDir dir;
-  SessionHarness h(test::writeSmallBlobs(dir), "grayscale");
-  ASSERT_TRUE(h.settle());
-  const int panel = int(std::ceil(h.session->panelWidth()));
-  const std::vector<unsigned char> before = h.pixels();
-  const std::vector<glm::vec4> tableBefore = tableInUse(h);
-  const render::TransferFunctionEditor& editor = *h.session->transferEditor();
+  DvrEditorStart start;
+  ASSERT_TRUE(start.settled);
+  SessionHarness& h = start.h;
+  const int panel = start.panel;
+  const std::vector<unsigned char>& before = start.before;
+  const std::vector<glm::vec4>& tableBefore = start.tableBefore;
+  const render::TransferFunctionEditor& editor = start.editor;
   const std::size_t colorsBefore = editor.colors().size();
-  const render::ImRectF plot = h.session->panelLayout().histogram, bar = h.session->panelLayout().colorBar;
+  const render::ImRectF plot = start.plot, bar = h.session->panelLayout().colorBar;
   ASSERT_FALSE(bar.empty()) << "no colour bar in DVR mode";
   EXPECT_GE(bar.y0, plot.y1) << "the colour bar is under the histogram";
   EXPECT_EQ(h.session->panelLayout().colorPoints.size(), colorsBefore);
   EXPECT_TRUE(h.session->panelLayout().colorPointEdit.empty()) << "no point chosen yet";
 
   // A click 40 % along the bar: a new point there, in the colour the function had there.
-  const float padX = ImGui::GetStyle().FramePadding.x;
-  const float x = plot.x0 + padX + 0.4f * (plot.x1 - plot.x0 - 2.0f * padX);
-  h.click(x, bar.centreY());
+  h.click(start.xAt(0.4f), bar.centreY());
   ASSERT_EQ(colorsBefore, 2u) << "grayscale has two colour points";
   ASSERT_EQ(editor.colors().size(), colorsBefore + 1) << "the click added no colour point";
   ASSERT_LT(editor.colors()[0].x, editor.colors()[1].x) << "the new point is the inner one";
