@@ -8,26 +8,45 @@
 
 namespace fcc::render {
 
-TransferFunctionEditor::TransferFunctionEditor(const TransferFunction& tf, double lo, double hi) {
+TransferFunctionEditor::TransferFunctionEditor(const TransferFunction& tf, double lo, double hi, std::string spec) {
   if (!(std::isfinite(lo) && std::isfinite(hi) && lo <= hi))
     throw ValueError("transfer function editor: value range [" + std::to_string(lo) + ", " + std::to_string(hi) +
                      "] is not a finite interval");
   lo_ = std::min(lo, tf.domainMin());
   hi_ = std::max(hi, tf.domainMax());
-  reset(tf);
+  reset(tf, std::move(spec));
   revision_ = 0;
 }
 
-void TransferFunctionEditor::reset(const TransferFunction& tf) {
+void TransferFunctionEditor::take(const TransferFunction& tf, std::string spec) {
   lo_ = std::min(lo_, tf.domainMin());
   hi_ = std::max(hi_, tf.domainMax());
   points_ = tf.opacities();
   colors_ = tf.colors();
   colorMapName_ = tf.name();
-  undo_.clear();
-  redo_.clear();
+  base_ = Base{std::move(spec), tf.name(), points_, colors_};
   gesture_ = Gesture{};
   ++revision_;
+}
+
+void TransferFunctionEditor::start(const TransferFunction& tf, std::string spec) {
+  record();
+  take(tf, std::move(spec));
+}
+
+void TransferFunctionEditor::reset(const TransferFunction& tf, std::string spec) {
+  undo_.clear();
+  redo_.clear();
+  take(tf, std::move(spec));
+}
+
+bool TransferFunctionEditor::edited() const {
+  const auto samePoint = [](const OpacityPoint& a, const OpacityPoint& b) {
+    return a.x == b.x && a.alpha == b.alpha && a.midpoint == b.midpoint && a.sharpness == b.sharpness;
+  };
+  const auto sameColor = [](const ColorPoint& a, const ColorPoint& b) { return a.x == b.x && a.rgb == b.rgb; };
+  return !std::equal(points_.begin(), points_.end(), base_.points.begin(), base_.points.end(), samePoint) ||
+         !std::equal(colors_.begin(), colors_.end(), base_.colors.begin(), base_.colors.end(), sameColor);
 }
 
 void TransferFunctionEditor::record(Gesture g) {
@@ -43,6 +62,7 @@ void TransferFunctionEditor::restore(State s) {
   points_ = std::move(s.points);
   colors_ = std::move(s.colors);
   colorMapName_ = std::move(s.colorMapName);
+  base_ = std::move(s.base);
   gesture_ = Gesture{};
   ++revision_;
 }

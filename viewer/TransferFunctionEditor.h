@@ -17,10 +17,11 @@ namespace fcc::render {
 
 class TransferFunctionEditor {
  public:
-  // Starts from `tf` (data values: a preset already fitted to the source, or a file's function). Points
-  // may lie in [lo, hi] widened to tf's domain (the panel passes its histogram's axis). ValueError
-  // unless lo <= hi, both finite.
-  TransferFunctionEditor(const TransferFunction& tf, double lo, double hi);
+  // Starts from `tf` (data values: a preset already fitted to the source, or a file's function), which
+  // `spec` names (what --tf and the panel's combo call it: a preset, a file). Points may lie in [lo, hi]
+  // widened to tf's domain (the panel passes its histogram's axis). ValueError unless lo <= hi, both
+  // finite.
+  TransferFunctionEditor(const TransferFunction& tf, double lo, double hi, std::string spec = "");
 
   double lo() const { return lo_; }
   double hi() const { return hi_; }
@@ -29,6 +30,10 @@ class TransferFunctionEditor {
   const std::string& colorMapName() const { return colorMapName_; }
   // Counts every change that altered the function (a move to where a point already is does not).
   uint64_t revision() const { return revision_; }
+  // The starting point the edits began from (reset's or start's spec), and whether the points or the
+  // colours now differ from its: false again once the edits are undone or edited back.
+  const std::string& spec() const { return base_.spec; }
+  bool edited() const;
 
   // A new point at value x with opacity alpha, both clamped (x into [lo, hi], alpha into [0, 1]),
   // placed after the points already at its value (so it is the step's upper side). Returns its index.
@@ -62,9 +67,12 @@ class TransferFunctionEditor {
   bool removeColor(int i);
   int pickColor(double x, double xScale, double radius) const;
 
-  // Everything from `tf` again (a preset or a file chosen as the starting point); forgets the undo
-  // and redo history (it belonged to the function replaced).
-  void reset(const TransferFunction& tf);
+  // Another starting point: everything from `tf`, named `spec` (a preset or a file chosen in the panel),
+  // as one undo step, so that choosing a preset by mistake loses no edits.
+  void start(const TransferFunction& tf, std::string spec);
+  // The same, forgetting the undo and redo history (another session's function, or an edit undone
+  // because the session could not apply it).
+  void reset(const TransferFunction& tf, std::string spec);
 
   // Undo and redo: each edit that changed the function is a step, except that the edits of one gesture
   // are one: a point inserted and then moved, or moved again and again (a drag), the same segment's
@@ -78,19 +86,28 @@ class TransferFunctionEditor {
   bool canUndo() const { return !undo_.empty(); }
   bool canRedo() const { return !redo_.empty(); }
 
-  // The function edited: colours and opacity points, in data values (not normalized).
+  // The function edited: colours and opacity points, in data values (not normalized), named `name` or
+  // as the starting point's function was.
   TransferFunction function(const std::string& name) const;
+  TransferFunction function() const { return function(base_.functionName); }
 
  private:
   void checkIndex(int i) const;
   void checkColorIndex(int i) const;
   void colorsEdited();
   double clampX(double x) const;
+  // The starting point: its spec, its function's name, and its points and colours (for edited()).
+  struct Base {
+    std::string spec, functionName;
+    std::vector<OpacityPoint> points;
+    std::vector<ColorPoint> colors;
+  };
   // What undo brings back, and the gesture the last step belongs to (kind 0: none, a new step).
   struct State {
     std::vector<OpacityPoint> points;
     std::vector<ColorPoint> colors;
     std::string colorMapName;
+    Base base;
   };
   struct Gesture {
     int kind = 0;
@@ -98,7 +115,8 @@ class TransferFunctionEditor {
     bool operator==(const Gesture& o) const { return kind == o.kind && index == o.index; }
   };
   enum : int { kMove = 1, kShape, kMoveColor, kSetColor };
-  State state() const { return State{points_, colors_, colorMapName_}; }
+  State state() const { return State{points_, colors_, colorMapName_, base_}; }
+  void take(const TransferFunction& tf, std::string spec);  // start's and reset's change
   void restore(State s);
   // Before an edit that changes the function: a new undo step, unless `g` continues the last one.
   void record(Gesture g);
@@ -108,6 +126,7 @@ class TransferFunctionEditor {
   std::vector<OpacityPoint> points_;
   std::vector<ColorPoint> colors_;
   std::string colorMapName_;
+  Base base_;
   double lo_, hi_;
   uint64_t revision_ = 0;
 };

@@ -248,7 +248,7 @@ void ViewerSession::drawTransferSection() {
     if (!isTransferFunctionPreset(loaded.first)) names.push_back(loaded.first);
   for (const std::string& preset : transferFunctionPresetNames()) names.push_back(preset);
   ImGui::SetNextItemWidth(-1.0f);
-  const std::string shown = settings_.transferFunction + (editor_->revision() != baseRevision_ ? " (edited)" : "");
+  const std::string shown = settings_.transferFunction + (editor_->edited() ? " (edited)" : "");
   if (ImGui::BeginCombo("##transfer", shown.c_str())) {
     for (const std::string& name : names)
       if (ImGui::Selectable(name.c_str(), name == settings_.transferFunction)) settings_.transferFunction = name;

@@ -88,8 +88,8 @@ void ViewerSession::init(const RenderOptions& options) {
     // without one; the editor widens that to the function's own points.
     const bool axis = !summary_.histogram.empty() && summary_.histogramMax > summary_.histogramMin;
     editor_.emplace(dvr_->function, axis ? summary_.histogramMin : source().valueMin(),
-                    axis ? summary_.histogramMax : source().valueMax());
-    appliedRevision_ = baseRevision_ = editor_->revision();
+                    axis ? summary_.histogramMax : source().valueMax(), dvr_->spec);
+    appliedRevision_ = editor_->revision();
     for (const std::string& preset : transferFunctionPresetNames())
       colorMaps_.emplace_back(preset, fitTransferFunction(transferFunctionPreset(preset), source()).colors());
     try {
@@ -118,8 +118,8 @@ void ViewerSession::restoreView(const SessionView& view) {
     settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
     settings_.unitDistance = appliedUnitDistance_ = float(dvr_->scale.unitDistance);
     raycaster_.setTransfer(dvr_->table());
-    editor_->reset(dvr_->function);
-    appliedRevision_ = baseRevision_ = editor_->revision();
+    editor_->reset(dvr_->function, dvr_->spec);
+    appliedRevision_ = editor_->revision();
     loadedFunctions_ = view.loadedFunctions;
     for (const auto& loaded : loadedFunctions_) {
       try {
@@ -329,15 +329,16 @@ float& ViewerSession::selectedIso() {
 }
 
 void ViewerSession::applyTransfer() {
-  // Another starting point (the combo, or Load) replaces the editor's points; else the editor's
-  // points and colours, when edited, are the function.
+  // Another starting point (the combo, or Load) replaces the editor's points, as an undo step; else
+  // the editor's points and colours, when edited, are the function, and its starting point the spec
+  // (an undo can go back across a starting point chosen).
   const bool newBase = settings_.transferFunction != dvr_->spec || std::exchange(reloadBase_, false);
   const bool edited = editor_->revision() != appliedRevision_;
   if (!newBase && !edited && settings_.densityScale == appliedDensityScale_ && settings_.unitDistance == appliedUnitDistance_)
     return;
   try {
-    const std::string& name = settings_.transferFunction;
-    const TransferFunction function = newBase ? baseFunction(name) : editor_->function(dvr_->function.name());
+    const std::string name = newBase ? settings_.transferFunction : editor_->spec();
+    const TransferFunction function = newBase ? baseFunction(name) : editor_->function();
     // The unit distance as the session has it (a double: --unit-distance, or the voxel size) until the
     // slider moves it, so that the table stays render's, bit for bit.
     const double unitDistance =
@@ -347,9 +348,9 @@ void ViewerSession::applyTransfer() {
     // needed recomputed when its zero entries moved): resident bricks stay.
     raycaster_.setTransfer(next.table());
     dvr_ = std::move(next);
+    settings_.transferFunction = dvr_->spec;
     if (newBase) {
-      editor_->reset(dvr_->function);
-      baseRevision_ = editor_->revision();
+      editor_->start(dvr_->function, dvr_->spec);
       dragPoint_ = shapePoint_ = dragColor_ = selectedColor_ = -1;
     }
     appliedRevision_ = editor_->revision();
@@ -360,7 +361,7 @@ void ViewerSession::applyTransfer() {
     settings_.densityScale = appliedDensityScale_;
     settings_.unitDistance = appliedUnitDistance_;
     if (edited) {
-      editor_->reset(dvr_->function);
+      editor_->reset(dvr_->function, dvr_->spec);
       appliedRevision_ = editor_->revision();
       dragPoint_ = shapePoint_ = dragColor_ = selectedColor_ = -1;
     }

@@ -305,7 +305,7 @@ class ViewerSession {
   // holds (-1: none), functions loaded from the panel (spec, fitted function) and the colour maps
   // offered (name, colours in data values: the presets fitted to the source, then files' maps).
   std::optional<TransferFunctionEditor> editor_;
-  uint64_t appliedRevision_ = 0, baseRevision_ = 0;  // baseRevision_: right after the last reset (unedited)
+  uint64_t appliedRevision_ = 0;  // the editor's revision dvr_ holds
   int dragPoint_ = -1;
   int shapePoint_ = -1;  // the point whose segment's shape the panel's sliders edit (-1: none)
   int dragColor_ = -1;      // the colour point a drag on the colour bar holds (-1: none)

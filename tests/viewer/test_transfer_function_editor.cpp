@@ -326,9 +326,66 @@ TEST(TransferFunctionEditor, UndoAndRedoStepThroughEditsAndGestures) {
   EXPECT_FALSE(e.canRedo());
   ASSERT_TRUE(e.undo());
   EXPECT_TRUE(same(snapshot(), states[states.size() - 3]));
-  e.reset(viridisOn(0.0, 16.0));
+  e.reset(viridisOn(0.0, 16.0), "viridis");
   EXPECT_FALSE(e.canUndo());
   EXPECT_FALSE(e.canRedo());
+}
+
+// A starting point chosen (a preset, a file) is one undo step: undone, the spec, the function's name
+// and the edits made before it come back. edited() says whether the points and colours differ from
+// the starting point's: false once the edits are undone or edited back, true across an undone start.
+TEST(TransferFunctionEditor, StartingPointsAreUndoStepsAndEditedFollowsThem) {
+  const TransferFunction viridis = viridisOn(0.0, 16.0);
+  TransferFunctionEditor e(viridis, 0.0, 16.0, "viridis");
+  EXPECT_EQ(e.spec(), "viridis");
+  EXPECT_FALSE(e.edited());
+  const int i = e.insert(5.0, 0.5);
+  e.closeStep();
+  EXPECT_TRUE(e.edited());
+  const std::vector<OpacityPoint> editedPoints = e.points();
+  // Moved away and back: the same function, so not edited (though two more undo steps).
+  e.move(i, 6.0, 0.5);
+  e.closeStep();
+  e.move(i, 5.0, 0.5);
+  e.closeStep();
+  EXPECT_TRUE(e.edited()) << "the inserted point is still there";
+  EXPECT_TRUE(e.remove(i));
+  EXPECT_FALSE(e.edited()) << "the point removed: the starting point's function again";
+  ASSERT_TRUE(e.undo());
+  EXPECT_TRUE(e.edited());
+
+  TransferFunction inferno = transferFunctionPreset("inferno").stretchedTo(0.0, 16.0);
+  const uint64_t r = e.revision();
+  e.start(inferno, "inferno");
+  EXPECT_GT(e.revision(), r);
+  EXPECT_EQ(e.spec(), "inferno");
+  EXPECT_FALSE(e.edited());
+  EXPECT_EQ(e.function().name(), inferno.name());
+  EXPECT_EQ(e.points().size(), inferno.opacities().size());
+  EXPECT_FALSE(e.canRedo());
+
+  ASSERT_TRUE(e.undo()) << "the start must be undoable";
+  EXPECT_EQ(e.spec(), "viridis");
+  EXPECT_EQ(e.function().name(), viridis.name());
+  EXPECT_TRUE(e.edited()) << "the edits made before the start are back";
+  ASSERT_EQ(e.points().size(), editedPoints.size());
+  for (std::size_t k = 0; k < editedPoints.size(); ++k) EXPECT_EQ(e.points()[k].x, editedPoints[k].x) << k;
+  while (e.undo()) {
+  }
+  EXPECT_EQ(e.spec(), "viridis");
+  EXPECT_FALSE(e.edited()) << "every edit undone";
+  while (e.redo()) {
+  }
+  EXPECT_EQ(e.spec(), "inferno");
+  EXPECT_FALSE(e.edited());
+
+  // reset takes another starting point and forgets the history.
+  e.insertColor(3.0);
+  EXPECT_TRUE(e.edited());
+  e.reset(viridis, "file.json");
+  EXPECT_EQ(e.spec(), "file.json");
+  EXPECT_FALSE(e.edited());
+  EXPECT_FALSE(e.canUndo());
 }
 
 TEST(TransferFunctionEditor, UndoKeepsABoundedHistory) {
@@ -360,7 +417,10 @@ TEST(TransferFunctionEditor, RandomEditsKeepTheInvariants) {
       case 6: e.removeColor(int(rng() % unsigned(nc))); break;
       case 7: e.undo(); break;
       case 8: e.redo(); break;
-      default: e.closeStep(); break;
+      case 9:
+        if (rng() % 4 == 0) e.start(viridisOn(x(rng), 12.0), "viridis");
+        else e.closeStep();
+        break;
     }
     expectValid(e);
     expectValidColors(e);

@@ -945,6 +945,45 @@ TEST_F(ViewerSession, DvrEditorUndoesAndRedoesEdits) {
   EXPECT_FALSE(editor.canRedo());
 }
 
+// Another preset chosen is an undo step too: ctrl + Z gives back the function edited before it (its
+// spec, its table bit for bit), then the first one, unedited; ctrl + Y the preset again.
+TEST_F(ViewerSession, DvrEditorUndoesAPresetChosen) {
+  DvrEditorStart start;
+  ASSERT_TRUE(start.settled);
+  SessionHarness& h = start.h;
+  const render::TransferFunctionEditor& editor = start.editor;
+  EXPECT_FALSE(editor.edited());
+  h.click(start.xAt(1.0f / 3.0f), start.yAt(0.75f));
+  ASSERT_EQ(editor.points().size(), 3u);
+  EXPECT_TRUE(editor.edited());
+  const std::vector<glm::vec4> tableEdited = tableInUse(h);
+
+  h.session->settings().transferFunction = "inferno";
+  h.frame();
+  ASSERT_EQ(h.session->transfer()->spec, "inferno") << h.session->notice();
+  EXPECT_EQ(editor.spec(), "inferno");
+  EXPECT_FALSE(editor.edited());
+  const std::vector<glm::vec4> tableInferno = tableInUse(h);
+  EXPECT_NE(tableInferno, tableEdited);
+
+  h.press(GLFW_KEY_Z, /*shift=*/false, /*ctrl=*/true);
+  h.frame();
+  EXPECT_EQ(h.session->transfer()->spec, "grayscale") << "ctrl + Z must go back to the function before the preset";
+  EXPECT_EQ(h.session->settings().transferFunction, "grayscale");
+  EXPECT_TRUE(editor.edited());
+  EXPECT_EQ(tableInUse(h), tableEdited) << "the edited function, bit for bit";
+  h.press(GLFW_KEY_Z, false, true);
+  h.frame();
+  EXPECT_FALSE(editor.edited());
+  EXPECT_EQ(tableInUse(h), start.tableBefore) << "then the first function";
+
+  h.press(GLFW_KEY_Y, false, true);
+  h.press(GLFW_KEY_Y, false, true);
+  h.frame();
+  EXPECT_EQ(h.session->transfer()->spec, "inferno");
+  EXPECT_EQ(tableInUse(h), tableInferno);
+}
+
 // DVR's colour points: a click on the colour bar adds one there (the function's colours stay, within
 // rounding), the chosen point's colour typed into its field changes the table and the image, a drag
 // moves it, a right-click removes it and gives the first table and image back, bit for bit.
