@@ -8,14 +8,26 @@
 
 namespace fcc::render {
 
-TransferFunctionEditor::TransferFunctionEditor(const TransferFunction& tf, double lo, double hi, std::string spec) {
+namespace {
+void checkRange(double lo, double hi) {
   if (!(std::isfinite(lo) && std::isfinite(hi) && lo <= hi))
     throw ValueError("transfer function editor: value range [" + std::to_string(lo) + ", " + std::to_string(hi) +
                      "] is not a finite interval");
+}
+}  // namespace
+
+TransferFunctionEditor::TransferFunctionEditor(const TransferFunction& tf, double lo, double hi, std::string spec) {
+  checkRange(lo, hi);
   lo_ = std::min(lo, tf.domainMin());
   hi_ = std::max(hi, tf.domainMax());
   reset(tf, std::move(spec));
   revision_ = 0;
+}
+
+void TransferFunctionEditor::widen(double lo, double hi) {
+  checkRange(lo, hi);
+  lo_ = std::min(lo_, lo);
+  hi_ = std::max(hi_, hi);
 }
 
 void TransferFunctionEditor::take(const TransferFunction& tf, std::string spec) {

@@ -25,6 +25,9 @@ class TransferFunctionEditor {
 
   double lo() const { return lo_; }
   double hi() const { return hi_; }
+  // Points may lie in [lo, hi] too (another reconstruction's histogram axis): the function, the
+  // history and the revision stay. ValueError unless lo <= hi, both finite.
+  void widen(double lo, double hi);
   const std::vector<OpacityPoint>& points() const { return points_; }
   const std::vector<ColorPoint>& colors() const { return colors_; }
   const std::string& colorMapName() const { return colorMapName_; }

@@ -100,7 +100,7 @@ void ViewerSession::init(const RenderOptions& options) {
 }
 
 SessionView ViewerSession::view() const {
-  return SessionView{camera_, initialCamera_, settings_, dvr_, loadedFunctions_, pathRecorder_, outputDirectory_};
+  return SessionView{camera_, initialCamera_, settings_, dvr_, editor_, appliedRevision_, loadedFunctions_, pathRecorder_, outputDirectory_};
 }
 
 void ViewerSession::restoreView(const SessionView& view) {
@@ -118,8 +118,19 @@ void ViewerSession::restoreView(const SessionView& view) {
     settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
     settings_.unitDistance = appliedUnitDistance_ = float(dvr_->scale.unitDistance);
     raycaster_.setTransfer(dvr_->table());
-    editor_->reset(dvr_->function, dvr_->spec);
-    appliedRevision_ = editor_->revision();
+    if (view.editor) {
+      // Its points, starting point and history as they were (an undo may go back across the switch),
+      // on this reconstruction's histogram axis too. Edits the old session had not applied yet are
+      // applied by the first frame.
+      TransferFunctionEditor kept = *view.editor;
+      kept.widen(editor_->lo(), editor_->hi());
+      const bool pending = kept.revision() != view.appliedRevision;
+      editor_ = std::move(kept);
+      appliedRevision_ = editor_->revision() - (pending ? 1 : 0);
+    } else {
+      editor_->reset(dvr_->function, dvr_->spec);
+      appliedRevision_ = editor_->revision();
+    }
     loadedFunctions_ = view.loadedFunctions;
     for (const auto& loaded : loadedFunctions_) {
       try {

@@ -138,12 +138,14 @@ struct OpenRequest {
 
 // What a session hands on to the one that replaces it over the same data (another reconstruction):
 // the camera (and the one R goes back to), the panel's settings — surfaces, colours, light, clipping
-// box, transfer function — the transfer function in use with what the panel loaded, and where its
-// keys write files and record the camera.
+// box, transfer function — the transfer function in use with what the panel loaded, the editor (its
+// starting point and undo history), and where its keys write files and record the camera.
 struct SessionView {
   Camera camera, initialCamera;
   ViewerSettings settings;
   std::optional<DvrTransfer> dvr;
+  std::optional<TransferFunctionEditor> editor;
+  uint64_t appliedRevision = 0;  // the editor's revision `dvr` holds
   std::vector<std::pair<std::string, TransferFunction>> loadedFunctions;
   CameraPathRecorder* pathRecorder = nullptr;
   std::string outputDirectory;

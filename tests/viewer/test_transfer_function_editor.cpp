@@ -388,6 +388,31 @@ TEST(TransferFunctionEditor, StartingPointsAreUndoStepsAndEditedFollowsThem) {
   EXPECT_FALSE(e.canUndo());
 }
 
+// widen lets points go further (another reconstruction's axis) and changes nothing else: the
+// function, the revision and the history stay; a narrower range narrows nothing.
+TEST(TransferFunctionEditor, WidenKeepsTheFunctionAndItsHistory) {
+  TransferFunctionEditor e(viridisOn(0.0, 16.0), 0.0, 16.0, "viridis");
+  e.insert(5.0, 0.5);
+  e.closeStep();
+  const std::vector<OpacityPoint> before = e.points();
+  const uint64_t r = e.revision();
+  e.widen(-4.0, 20.0);
+  EXPECT_EQ(e.lo(), -4.0);
+  EXPECT_EQ(e.hi(), 20.0);
+  EXPECT_EQ(e.revision(), r);
+  EXPECT_TRUE(e.canUndo());
+  EXPECT_EQ(e.points().size(), before.size());
+  e.widen(1.0, 2.0);
+  EXPECT_EQ(e.lo(), -4.0);
+  EXPECT_EQ(e.hi(), 20.0);
+  const int i = e.insert(19.0, 0.25);
+  EXPECT_EQ(e.points()[std::size_t(i)].x, 19.0) << "a point beyond the first axis, inside the widened one";
+  EXPECT_THROW(e.widen(3.0, 2.0), ValueError);
+  EXPECT_THROW(e.widen(0.0, std::nan("")), ValueError);
+  EXPECT_TRUE(e.undo());
+  EXPECT_EQ(e.points().size(), before.size());
+}
+
 TEST(TransferFunctionEditor, UndoKeepsABoundedHistory) {
   TransferFunctionEditor e(viridisOn(0.0, 16.0), 0.0, 16.0);
   for (std::size_t k = 0; k < TransferFunctionEditor::kUndoSteps + 10; ++k) {

@@ -1206,6 +1206,11 @@ TEST_F(ViewerSession, CartesianDvrSwitchesTheReconstructionKeepingModeAndTransfe
         EXPECT_EQ(s.transfer()->scale.densityScale, 0.5);
         EXPECT_EQ(s.transfer()->scale.unitDistance, double(s.settings().unitDistance));
         EXPECT_TRUE(s.renderOptions().dvrShading);
+        EXPECT_NE(s.transferEditor(), nullptr);
+        if (s.transferEditor()) {
+          EXPECT_EQ(s.transferEditor()->spec(), "ct-bone");
+          EXPECT_TRUE(s.transferEditor()->canUndo()) << "the preset chosen is an undo step";
+        }
         keptTransfer = *s.transfer();
         keptCamera = s.camera();
         trilinearImage = h.pixels();
@@ -1254,6 +1259,20 @@ TEST_F(ViewerSession, CartesianDvrSwitchesTheReconstructionKeepingModeAndTransfe
         EXPECT_TRUE(s.panelLayout().isoSlider.empty()) << "an isovalue slider in DVR mode";
         EXPECT_FALSE(s.panelLayout().transferCombo.empty()) << "no transfer function controls";
         tricubicImage = h.pixels();
+        // The editor came along with its history: ctrl + Z goes back across the switch to the
+        // function before ct-bone (grayscale, fitted to the trilinear source as when it was chosen).
+        if (const render::TransferFunctionEditor* editor = s.transferEditor()) {
+          EXPECT_EQ(editor->spec(), "ct-bone");
+          EXPECT_FALSE(editor->edited());
+          EXPECT_TRUE(editor->canUndo()) << "the switch lost the editor's history";
+          h.press(GLFW_KEY_Z, /*shift=*/false, /*ctrl=*/true);
+          h.frame();
+          EXPECT_EQ(s.transfer()->spec, "grayscale") << s.notice();
+          EXPECT_EQ(s.settings().transferFunction, "grayscale");
+          EXPECT_EQ(s.transfer()->function.opacities().size(), data.dvr->function.opacities().size());
+        } else {
+          ADD_FAILURE() << "no editor in DVR mode";
+        }
         return std::nullopt;
       }
       default:
