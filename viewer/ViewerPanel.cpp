@@ -248,7 +248,10 @@ void ViewerSession::drawTransferSection() {
     if (!isTransferFunctionPreset(loaded.first)) names.push_back(loaded.first);
   for (const std::string& preset : transferFunctionPresetNames()) names.push_back(preset);
   ImGui::SetNextItemWidth(-1.0f);
-  const std::string shown = settings_.transferFunction + (editor_->edited() ? " (edited)" : "");
+  // The editor's starting point, unless another one is chosen and not applied yet (an undo across a
+  // starting point this frame has not been applied either: the editor's spec is the one shown).
+  const std::string& base = settings_.transferFunction == dvr_->spec ? editor_->spec() : settings_.transferFunction;
+  const std::string shown = base + (editor_->edited() ? " (edited)" : "");
   if (ImGui::BeginCombo("##transfer", shown.c_str())) {
     for (const std::string& name : names)
       if (ImGui::Selectable(name.c_str(), name == settings_.transferFunction)) settings_.transferFunction = name;

@@ -121,7 +121,7 @@ void ViewerSession::restoreView(const SessionView& view) {
     if (view.editor) {
       // Its points, starting point and history as they were (an undo may go back across the switch),
       // on this reconstruction's histogram axis too. Edits the old session had not applied yet are
-      // applied by the first frame.
+      // applied by applySettings below.
       TransferFunctionEditor kept = *view.editor;
       kept.widen(editor_->lo(), editor_->hi());
       const bool pending = kept.revision() != view.appliedRevision;
@@ -343,7 +343,10 @@ void ViewerSession::applyTransfer() {
   // Another starting point (the combo, or Load) replaces the editor's points, as an undo step; else
   // the editor's points and colours, when edited, are the function, and its starting point the spec
   // (an undo can go back across a starting point chosen).
-  const bool newBase = settings_.transferFunction != dvr_->spec || std::exchange(reloadBase_, false);
+  // (reloadBase_ taken first: left set, it would start the same function again next frame, a second
+  // undo step.)
+  const bool reload = std::exchange(reloadBase_, false);
+  const bool newBase = reload || settings_.transferFunction != dvr_->spec;
   const bool edited = editor_->revision() != appliedRevision_;
   if (!newBase && !edited && settings_.densityScale == appliedDensityScale_ && settings_.unitDistance == appliedUnitDistance_)
     return;
@@ -371,12 +374,20 @@ void ViewerSession::applyTransfer() {
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_;
     settings_.unitDistance = appliedUnitDistance_;
-    if (edited) {
+    notify(e.what());
+    if (!edited) return;
+    // The editor's function at the scale in use: the scale was what failed, so its edits (an undo
+    // across a starting point too) still apply. Only a function refused there too starts anew.
+    try {
+      DvrTransfer next{editor_->spec(), editor_->function(), dvr_->scale};
+      raycaster_.setTransfer(next.table());
+      dvr_ = std::move(next);
+      settings_.transferFunction = dvr_->spec;
+    } catch (const Error&) {
       editor_->reset(dvr_->function, dvr_->spec);
-      appliedRevision_ = editor_->revision();
       dragPoint_ = shapePoint_ = dragColor_ = selectedColor_ = -1;
     }
-    notify(e.what());
+    appliedRevision_ = editor_->revision();
   }
 }
 

@@ -982,6 +982,19 @@ TEST_F(ViewerSession, DvrEditorUndoesAPresetChosen) {
   h.frame();
   EXPECT_EQ(h.session->transfer()->spec, "inferno");
   EXPECT_EQ(tableInUse(h), tableInferno);
+
+  // An undo in the frame a refused density scale is typed: the scale goes back, the undo stays, and
+  // so does the history.
+  const float scale = h.session->settings().densityScale;
+  h.session->settings().densityScale = -1.0f;
+  h.press(GLFW_KEY_Z, false, true);
+  h.frame();
+  EXPECT_EQ(h.session->settings().densityScale, scale);
+  EXPECT_NE(h.session->notice().find("density scale"), std::string::npos) << h.session->notice();
+  EXPECT_EQ(h.session->transfer()->spec, "grayscale");
+  EXPECT_EQ(tableInUse(h), tableEdited);
+  EXPECT_TRUE(editor.canUndo()) << "a refused scale must not cost the history";
+  EXPECT_TRUE(editor.canRedo());
 }
 
 // DVR's colour points: a click on the colour bar adds one there (the function's colours stay, within
@@ -1124,6 +1137,15 @@ TEST_F(ViewerSession, DvrEditorSavesLoadsAndRenderReadsTheSameFunction) {
   h.click(load.centreX(), load.centreY());
   EXPECT_NE(h.session->notice().find("missing"), std::string::npos) << h.session->notice();
   EXPECT_EQ(tableInUse(h), edited);
+
+  // The file loaded was one undo step (frames after it included), the preset before it another.
+  h.press(GLFW_KEY_Z, /*shift=*/false, /*ctrl=*/true);
+  h.frame();
+  EXPECT_EQ(h.session->transfer()->spec, "inferno") << "one ctrl + Z must undo the load";
+  h.press(GLFW_KEY_Z, false, true);
+  h.frame();
+  EXPECT_EQ(h.session->transfer()->spec, "viridis");
+  EXPECT_EQ(tableInUse(h), edited) << "the edited function before the preset, bit for bit";
 }
 
 // `view --mode dvr` of a Cartesian grid (`--reconstruction trilinear`): choosing tricubic in the panel's
