@@ -22,6 +22,8 @@ namespace fcc {
 struct ColorPoint {
   double x;        // data value
   glm::dvec3 rgb;  // each in [0, 1]
+  bool operator==(const ColorPoint& o) const { return x == o.x && rgb == o.rgb; }
+  bool operator!=(const ColorPoint& o) const { return !(*this == o); }
 };
 
 // ParaView's opacity point: the midpoint and sharpness shape the segment from this point to the next
@@ -31,6 +33,10 @@ struct OpacityPoint {
   double alpha;             // in [0, 1]: the opacity of a segment one unit distance long
   double midpoint = 0.5;    // in [0, 1]: where in the segment the opacity is halfway between the two
   double sharpness = 0.0;   // in [0, 1]: 0 linear, up to 1 a step at the midpoint
+  bool operator==(const OpacityPoint& o) const {
+    return x == o.x && alpha == o.alpha && midpoint == o.midpoint && sharpness == o.sharpness;
+  }
+  bool operator!=(const OpacityPoint& o) const { return !(*this == o); }
 };
 
 // The shape of a segment from 0 to 1 under ParaView's midpoint and sharpness, at u in [0, 1] of it:

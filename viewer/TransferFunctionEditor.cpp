@@ -52,14 +52,7 @@ void TransferFunctionEditor::reset(const TransferFunction& tf, std::string spec)
   take(tf, std::move(spec));
 }
 
-bool TransferFunctionEditor::edited() const {
-  const auto samePoint = [](const OpacityPoint& a, const OpacityPoint& b) {
-    return a.x == b.x && a.alpha == b.alpha && a.midpoint == b.midpoint && a.sharpness == b.sharpness;
-  };
-  const auto sameColor = [](const ColorPoint& a, const ColorPoint& b) { return a.x == b.x && a.rgb == b.rgb; };
-  return !std::equal(points_.begin(), points_.end(), base_.points.begin(), base_.points.end(), samePoint) ||
-         !std::equal(colors_.begin(), colors_.end(), base_.colors.begin(), base_.colors.end(), sameColor);
-}
+bool TransferFunctionEditor::edited() const { return points_ != base_.points || colors_ != base_.colors; }
 
 void TransferFunctionEditor::record(Gesture g) {
   const bool continues = g.kind != 0 && g == gesture_;

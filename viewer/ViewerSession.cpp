@@ -124,9 +124,8 @@ void ViewerSession::restoreView(const SessionView& view) {
       // applied by applySettings below.
       TransferFunctionEditor kept = *view.editor;
       kept.widen(editor_->lo(), editor_->hi());
-      const bool pending = kept.revision() != view.appliedRevision;
       editor_ = std::move(kept);
-      appliedRevision_ = editor_->revision() - (pending ? 1 : 0);
+      appliedRevision_ = view.appliedRevision;  // the kept editor's own count
     } else {
       editor_->reset(dvr_->function, dvr_->spec);
       appliedRevision_ = editor_->revision();
@@ -339,6 +338,14 @@ float& ViewerSession::selectedIso() {
   return k >= 1 && k <= int(settings_.moreSurfaces.size()) ? settings_.moreSurfaces[std::size_t(k - 1)].iso : settings_.iso;
 }
 
+void ViewerSession::useTransfer(DvrTransfer next) {
+  // Validates the scale first: a throw changes nothing. Only the table is uploaded (and the bricks
+  // needed recomputed when its zero entries moved): resident bricks stay.
+  raycaster_.setTransfer(next.table());
+  dvr_ = std::move(next);
+  settings_.transferFunction = dvr_->spec;
+}
+
 void ViewerSession::applyTransfer() {
   // Another starting point (the combo, or Load) replaces the editor's points, as an undo step; else
   // the editor's points and colours, when edited, are the function, and its starting point the spec
@@ -357,12 +364,7 @@ void ViewerSession::applyTransfer() {
     // slider moves it, so that the table stays render's, bit for bit.
     const double unitDistance =
         settings_.unitDistance == appliedUnitDistance_ ? dvr_->scale.unitDistance : double(settings_.unitDistance);
-    DvrTransfer next{name, function, OpticalScale{unitDistance, double(settings_.densityScale)}};
-    // Validates the scale first: a throw changes nothing. Only the table is uploaded (and the bricks
-    // needed recomputed when its zero entries moved): resident bricks stay.
-    raycaster_.setTransfer(next.table());
-    dvr_ = std::move(next);
-    settings_.transferFunction = dvr_->spec;
+    useTransfer(DvrTransfer{name, function, OpticalScale{unitDistance, double(settings_.densityScale)}});
     if (newBase) {
       editor_->start(dvr_->function, dvr_->spec);
       dragPoint_ = shapePoint_ = dragColor_ = selectedColor_ = -1;
@@ -379,10 +381,7 @@ void ViewerSession::applyTransfer() {
     // The editor's function at the scale in use: the scale was what failed, so its edits (an undo
     // across a starting point too) still apply. Only a function refused there too starts anew.
     try {
-      DvrTransfer next{editor_->spec(), editor_->function(), dvr_->scale};
-      raycaster_.setTransfer(next.table());
-      dvr_ = std::move(next);
-      settings_.transferFunction = dvr_->spec;
+      useTransfer(DvrTransfer{editor_->spec(), editor_->function(), dvr_->scale});
     } catch (const Error&) {
       editor_->reset(dvr_->function, dvr_->spec);
       dragPoint_ = shapePoint_ = dragColor_ = selectedColor_ = -1;

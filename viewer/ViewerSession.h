@@ -264,6 +264,7 @@ class ViewerSession {
   void handleInput(int windowHeight);
   bool applySettings();  // true when a setting changed the image (it restarts the frame)
   void applyTransfer();  // DVR: a new table when the transfer function or density scale changed
+  void useTransfer(DvrTransfer next);  // applyTransfer's: `next` in use (its table on the GPU), or a throw
   void drawTransferSection();  // viewer/ViewerPanel.cpp
   void drawReconstructionChoice();  // viewer/ViewerPanel.cpp
   void drawSurfacesSection();  // viewer/PanelSurfaces.cpp

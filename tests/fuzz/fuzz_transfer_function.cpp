@@ -14,14 +14,7 @@
 namespace {
 
 bool samePoints(const fcc::TransferFunction& a, const fcc::TransferFunction& b) {
-  if (a.colors().size() != b.colors().size() || a.opacities().size() != b.opacities().size()) return false;
-  for (size_t i = 0; i < a.colors().size(); ++i)
-    if (a.colors()[i].x != b.colors()[i].x || a.colors()[i].rgb != b.colors()[i].rgb) return false;
-  for (size_t i = 0; i < a.opacities().size(); ++i) {
-    const fcc::OpacityPoint &p = a.opacities()[i], &q = b.opacities()[i];
-    if (p.x != q.x || p.alpha != q.alpha || p.midpoint != q.midpoint || p.sharpness != q.sharpness) return false;
-  }
-  return true;
+  return a.colors() == b.colors() && a.opacities() == b.opacities();
 }
 
 bool inUnit(double v) { return std::isfinite(v) && v >= 0.0 && v <= 1.0; }

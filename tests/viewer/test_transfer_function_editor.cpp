@@ -266,14 +266,7 @@ TEST(TransferFunctionEditor, UndoAndRedoStepThroughEditsAndGestures) {
   EXPECT_FALSE(e.redo());
   const auto snapshot = [&] { return e.function("s"); };
   const auto same = [](const TransferFunction& a, const TransferFunction& b) {
-    if (a.opacities().size() != b.opacities().size() || a.colors().size() != b.colors().size()) return false;
-    for (std::size_t k = 0; k < a.opacities().size(); ++k) {
-      const OpacityPoint &p = a.opacities()[k], &q = b.opacities()[k];
-      if (p.x != q.x || p.alpha != q.alpha || p.midpoint != q.midpoint || p.sharpness != q.sharpness) return false;
-    }
-    for (std::size_t k = 0; k < a.colors().size(); ++k)
-      if (a.colors()[k].x != b.colors()[k].x || a.colors()[k].rgb != b.colors()[k].rgb) return false;
-    return true;
+    return a.opacities() == b.opacities() && a.colors() == b.colors();
   };
   std::vector<TransferFunction> states{snapshot()};
   std::vector<std::string> names{e.colorMapName()};
