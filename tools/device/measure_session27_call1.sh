@@ -6,11 +6,7 @@
 # unshaded one (engine CT inferno, ML 160^3x4 FCC viridis), alternating, two rounds. Run as
 #   ../shared/tools/device-bundle build/bin/fccvdb build/bin/fccvdb-guard build/bin/test_render_dvr ../shared/data/engine_256x256x128_uint8.raw.gz
 #   source .devbundle/env.sh && bash tools/device/measure_session27_call1.sh        (SMALL=1: toy sizes)
-set -u
-HERE=$(pwd)
-B=$(dirname "$(command -v fccvdb)")
-[ "$B/fccvdb" -ef /work/main/build/bin/fccvdb ] || { mkdir -p /work/main/build/bin && ln -sf "$B/fccvdb" /work/main/build/bin/fccvdb; }
-nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null
+source tools/device/prologue.sh
 "$B/test_render_dvr" --gtest_filter='*Specular*:*Shading*' 2>&1 | grep -E "^\[  (FAILED|PASSED|     OK) |Failure|Which is|PSNR|highlight" | cut -c1-160 | head -30
 W=${W:-/tmp/m27}; source "$HERE/tools/device/bench_data.sh"
 for v in 0 1; do
