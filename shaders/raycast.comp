@@ -151,13 +151,17 @@ uniform vec3 uClipHi;
 #ifndef FCC_DVR_SPLIT_CELLS
 #define FCC_DVR_SPLIT_CELLS 32
 #endif
-// Entry k of pixel p at k * pixels + p: (slot | 0x80000000 where the chain breaks before the cell,
+// Entry k of a ray at (group * K + k) * the group's size + the ray's index in its group, so that a
+// warp's k-th entries are one run of memory and a group's whole list another: (slot | 0x80000000 where the chain breaks before the cell,
 // the cell + 512 in 10 bits an axis | the exit axis << 30, t0's bits, t1's bits); x = kSplitEnd ends
 // a list shorter than K.
 layout(std430, binding = 15) buffer DvrSplitList { uvec4 splitList[]; };
 const uint kSplitEnd = 0xFFFFFFFFu;
-uint gSplitPixel = 0u;
-uint splitIndex(int k) { return uint(k) * uint(uResolution.x * uResolution.y) + gSplitPixel; }
+uint splitIndex(int k) {
+  const uint groupSize = uint(FCC_GROUP_X * FCC_GROUP_Y);
+  uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  return (group * uint(FCC_DVR_SPLIT_CELLS) + uint(k)) * groupSize + gl_LocalInvocationIndex;
+}
 #endif
 #if FCC_DVR_SPLIT == 1
 int gSplitCount = 0;
@@ -535,7 +539,6 @@ void pixelRay(ivec2 pixel, out vec3 dirWorld, out vec3 o, out vec3 d) {
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(uColumnOffset, 0);
   if (any(greaterThanEqual(pixel, uResolution)) || pixel.x < uFirstColumn) return;
-  gSplitPixel = uint(pixel.y * uResolution.x + pixel.x);
   if (splitList[splitIndex(0)].x == kSplitEnd) return;
   vec3 dirWorld, o, d;
   pixelRay(pixel, dirWorld, o, d);
@@ -573,9 +576,6 @@ void main() {
 #endif
   if (any(greaterThanEqual(pixel, uResolution)) || pixel.x < uFirstColumn) return;
   // The first pass writes every pixel's resume value (below), so the image needs no clearing.
-#if FCC_DVR_SPLIT
-  gSplitPixel = uint(pixel.y * uResolution.x + pixel.x);
-#endif
   float tResume = uFirstPass != 0 ? 0.0 : imageLoad(uResume, pixel).x;
 #if FCC_DVR_SPLIT == 1
   if (tResume < 0.0) splitList[splitIndex(0)].x = kSplitEnd;

@@ -736,7 +736,8 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   if (splitDrawing()) {
     // N rounds of the walk's lists and their integration, then program_ for the rays left (a measurement
     // knob: FCCVDB_DVR_SPLIT). The walk's first round starts the rays where program_'s would.
-    const std::size_t bytes = std::size_t(split_.cells) * std::size_t(width) * std::size_t(height) * 4 * sizeof(uint32_t);
+    const std::size_t groups = std::size_t((columns + group.x - 1) / group.x) * std::size_t((height + group.y - 1) / group.y);
+    const std::size_t bytes = std::size_t(split_.cells) * groups * std::size_t(group.x * group.y) * 4 * sizeof(uint32_t);
     if (!split_.list || split_.list->size() < bytes) split_.list = std::make_unique<GlBuffer>(bytes);
     split_.list->bindBase(GL_SHADER_STORAGE_BUFFER, 15);
     const Uniforms walkU = uniformsOf(split_.walk, true, true), integrateU = uniformsOf(split_.integrate, true, true);
