@@ -12,16 +12,6 @@ float valueAt(vec3 xyz) {
 }
 
 #if FCC_MODE_DVR
-#ifndef FCC_DVR_SHADE_REUSE
-#define FCC_DVR_SHADE_REUSE 0
-#endif
-#if FCC_DVR_SHADING && FCC_DVR_SHADE_REUSE
-// The stencil integrateCell gathered for the cell's exit piece, for dvrGradient (known: gathered for
-// the cell being integrated).
-FccSamples gDvrShadeSamples;
-ivec3 gDvrShadeOrigin, gDvrShadeAxis;
-bool gDvrShadeKnown = false;
-#endif
 #ifndef FCC_DVR_ONE_FETCH
 #define FCC_DVR_ONE_FETCH 0
 #endif
@@ -64,9 +54,6 @@ FccSegment pieceSegment(ivec3 cell, vec3 o, vec3 d, float s0, float s1) {
 // walk.
 bool integrateCellPieces(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrState st) {
   dvrBeginCell(cell, o, d);
-#if FCC_DVR_SHADING && FCC_DVR_SHADE_REUSE
-  gDvrShadeKnown = false;
-#endif
   vec4 splits = fcc_cell_splits(cell, o, d, t0, t1);
 #if FCC_DVR_GATHER_CENTRAL
   // The reference (RenderOptions::dvrGatherCentral): every piece gathered and sub-stepped by itself.
@@ -176,12 +163,6 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   float beyond = coefficientAt(carries ? fcc_face_jump_beyond_site(frame, a) : frame.origin);
 #endif
   vec4 gathered = fcc_piece_taylor(fcc_cubic_t0(samples), frame, o, d, prepare ? t0 : t1);
-#if FCC_DVR_SHADING && FCC_DVR_SHADE_REUSE
-  gDvrShadeSamples = samples;
-  gDvrShadeOrigin = frame.origin;
-  gDvrShadeAxis = frame.axis;
-  gDvrShadeKnown = true;
-#endif
   if (prepare) {
     gDvrCarry = DvrCarry(gathered, kDvrCarryEntry);
     return false;
@@ -206,16 +187,9 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
 
 #if FCC_DVR_SHADING
 // The box spline's gradient at xyz (the piece there: the spline is C2, so a rounding across a piece
-// boundary changes nothing that matters). Where the piece's stencil is the one integrateCell gathered
-// for its exit piece (the 19 sites depend on the frame's origin and axis only), those values are
-// taken instead of gathered again: the same numbers, the same image (EXR bytes on llvmpipe). A knob,
-// off by default until measured on NVIDIA (FCC_DVR_SHADE_REUSE=1; tools/device/measure_session27_call1.sh).
+// boundary changes nothing that matters).
 vec3 dvrGradient(ivec3 cell, vec3 xyz) {
   FccFrame frame = fcc_locate(clamp(xyz, vec3(cell), vec3(cell + 1)));
-#if FCC_DVR_SHADE_REUSE
-  if (gDvrShadeKnown && frame.origin == gDvrShadeOrigin && frame.axis == gDvrShadeAxis)
-    return fcc_gradient(gDvrShadeSamples, frame);
-#endif
   return fcc_gradient(gatherStencil(frame), frame);
 }
 #endif
