@@ -9,12 +9,8 @@
 source tools/device/prologue.sh
 "$B/test_render_dvr" --gtest_filter='*Specular*:*Shading*' 2>&1 | grep -E "^\[  (FAILED|PASSED|     OK) |Failure|Which is|PSNR|highlight" | cut -c1-160 | head -30
 W=${W:-/tmp/m27}; source "$HERE/tools/device/bench_data.sh"
-for v in 0 1; do
-  FCCVDB_SHADER_DEFINES="FCC_DVR_SHADE_REUSE=$v" fccvdb render engine.vdb --mode dvr --tf inferno --shading on --res $RES -o "$W/engine_shaded_$v.exr" --force --quiet
-  FCCVDB_SHADER_DEFINES="FCC_DVR_SHADE_REUSE=$v" fccvdb render ml.vdb --mode dvr --tf viridis --shading on --res $RES -o "$W/ml_shaded_$v.exr" --force --quiet
-done
-cmp "$W/engine_shaded_0.exr" "$W/engine_shaded_1.exr" && echo "engine shaded EXR: the same bytes"
-cmp "$W/ml_shaded_0.exr" "$W/ml_shaded_1.exr" && echo "ML shaded EXR: the same bytes"
+source "$HERE/tools/device/dvr_knob_runs.sh"
+dvr_reuse_images
 for round in 1 2; do
   for v in "0 --shading on" "1 --shading on" "1 --shading off"; do
     set -- $v; reuse=$1; shift; flags="$*"

@@ -9,12 +9,8 @@
 #   source .devbundle/env.sh && bash tools/device/measure_session28_call1.sh        (SMALL=1: toy sizes)
 source tools/device/prologue.sh
 W=${W:-/tmp/m28}; source "$HERE/tools/device/bench_data.sh"
-for v in 0 1; do
-  FCCVDB_SHADER_DEFINES="FCC_DVR_SHADE_REUSE=$v" fccvdb render engine.vdb --mode dvr --tf inferno --shading on --res $RES -o "$W/engine_shaded_$v.exr" --force --quiet
-  FCCVDB_SHADER_DEFINES="FCC_DVR_SHADE_REUSE=$v" fccvdb render ml.vdb --mode dvr --tf viridis --shading on --res $RES -o "$W/ml_shaded_$v.exr" --force --quiet
-done
-cmp "$W/engine_shaded_0.exr" "$W/engine_shaded_1.exr" && echo "engine shaded EXR: the same bytes"
-cmp "$W/ml_shaded_0.exr" "$W/ml_shaded_1.exr" && echo "ML shaded EXR: the same bytes"
+source "$HERE/tools/device/dvr_knob_runs.sh"
+dvr_reuse_images
 for round in 1 2; do
   for reuse in 0 1; do
     run() { FCCVDB_SHADER_DEFINES="FCC_DVR_SHADE_REUSE=$reuse" fccvdb bench render "$@" "${D[@]}" --shading on | fps; }
@@ -22,19 +18,6 @@ for round in 1 2; do
   done
 done
 SPLITS="16,8 32,4 32,8 64,2 64,4 128,2"
-fccvdb render engine.vdb --mode dvr --tf inferno --res $RES -o "$W/engine_main.png" --force --quiet
-fccvdb render ml.vdb --mode dvr --tf viridis --res $RES -o "$W/ml_main.png" --force --quiet
-for s in $SPLITS; do
-  FCCVDB_DVR_SPLIT=$s fccvdb render engine.vdb --mode dvr --tf inferno --res $RES -o "$W/engine_split.png" --force --quiet
-  FCCVDB_DVR_SPLIT=$s fccvdb render ml.vdb --mode dvr --tf viridis --res $RES -o "$W/ml_split.png" --force --quiet
-  echo "split $s engine: $(python3 "$HERE/tools/device/pngdiff.py" "$W/engine_main.png" "$W/engine_split.png" | head -1 | cut -c1-120)"
-  echo "split $s ML: $(python3 "$HERE/tools/device/pngdiff.py" "$W/ml_main.png" "$W/ml_split.png" | head -1 | cut -c1-120)"
-done
-for round in 1 2; do
-  for s in main $SPLITS; do
-    if [ $s = main ]; then run() { fccvdb bench render "$@" "${D[@]}" | fps; }
-    else run() { FCCVDB_DVR_SPLIT=$s fccvdb bench render "$@" "${D[@]}" | fps; }; fi
-    echo "-- round $round [split $s]: engine DVR inferno $(run engine.vdb --mode dvr --tf inferno) ML DVR viridis $(run ml.vdb --mode dvr --tf viridis)"
-  done
-done
+dvr_split_images "$SPLITS"
+dvr_split_rounds "$SPLITS"
 true

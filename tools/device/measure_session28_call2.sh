@@ -8,19 +8,7 @@
 source tools/device/prologue.sh
 W=${W:-/tmp/m28}; source "$HERE/tools/device/bench_data.sh"
 SPLITS=${SPLITS:-"16,6 32,3 32,4 64,2 128,1 256,1"}
-fccvdb render engine.vdb --mode dvr --tf inferno --res $RES -o "$W/engine_main.png" --force --quiet
-fccvdb render ml.vdb --mode dvr --tf viridis --res $RES -o "$W/ml_main.png" --force --quiet
-for s in $SPLITS; do
-  FCCVDB_DVR_SPLIT=$s fccvdb render engine.vdb --mode dvr --tf inferno --res $RES -o "$W/engine_split.png" --force --quiet
-  FCCVDB_DVR_SPLIT=$s fccvdb render ml.vdb --mode dvr --tf viridis --res $RES -o "$W/ml_split.png" --force --quiet
-  echo "split $s engine: $(python3 "$HERE/tools/device/pngdiff.py" "$W/engine_main.png" "$W/engine_split.png" | head -1 | cut -c1-100)"
-  echo "split $s ML: $(python3 "$HERE/tools/device/pngdiff.py" "$W/ml_main.png" "$W/ml_split.png" | head -1 | cut -c1-100)"
-done
-for round in 1 2; do
-  for s in main $SPLITS; do
-    if [ $s = main ]; then run() { fccvdb bench render "$@" "${D[@]}" | fps; }
-    else run() { FCCVDB_DVR_SPLIT=$s fccvdb bench render "$@" "${D[@]}" | fps; }; fi
-    echo "-- round $round [split $s]: engine DVR inferno $(run engine.vdb --mode dvr --tf inferno) ML DVR viridis $(run ml.vdb --mode dvr --tf viridis)"
-  done
-done
+source "$HERE/tools/device/dvr_knob_runs.sh"
+dvr_split_images "$SPLITS"
+dvr_split_rounds "$SPLITS"
 true
