@@ -1463,15 +1463,20 @@ TEST_F(ViewerSession, RecordedPathHoldsEveryFrameAndReplaysInBenchStream) {
   EXPECT_EQ(test::checkJsonWithPython(dir, test::readText(json),
                                       "assert rows['frames'] == " + std::to_string(expected) + ", rows['frames']\n"
                                       "assert len(rows['runs'][0]['frames']) == rows['frames']\n"
-                                      "assert rows['path'].endswith('path.json')\n"),
+                                      "assert rows['path'].endswith('path.json')\n"
+                                      "assert sum(x['bricks_uploaded'] for x in rows['runs'][0]['frames']) > 0\n"),
             0);
+  // Five frames as fast as the 1 ms budget lets them come: the loader threads may not have read a brick
+  // yet (under a loaded CI machine they had not), so no count of uploads is promised here; a frame
+  // complete without any would be wrong all the same.
   const std::string json5 = dir / "replay5.json";
   const test::CommandResult r5 = test::runFccvdb("bench stream " + blobs + " --path " + file +
                                                  " --res 64x48 --frames 5 --gpu-cache 4 --host-cache 4 --frame-budget-ms 1 --json " + json5);
   ASSERT_EQ(r5.status, 0) << r5.err;
   EXPECT_EQ(test::checkJsonWithPython(dir, test::readText(json5),
                                       "f = rows['runs'][0]['frames']\nassert len(f) == 5, len(f)\n"
-                                      "assert f[0]['restarted'] and sum(x['bricks_uploaded'] for x in f) > 0\n"),
+                                      "assert f[0]['restarted']\n"
+                                      "assert sum(x['bricks_uploaded'] for x in f) > 0 or not any(x['complete'] for x in f)\n"),
             0);
 }
 
