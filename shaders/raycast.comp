@@ -66,14 +66,6 @@
 #else
 #define FCC_DVR_FLAT 0
 #endif
-// DVR split in two programs (a measurement knob; the renderer's FCCVDB_DVR_SPLIT="K,N", docs/RENDERER.md):
-// 1, the walk: the flat walk lists the next K cells (FCC_DVR_SPLIT_CELLS) the transfer function does
-// not map to zero in splitList instead of integrating them, and resumes past them next time; 2, the
-// integration: reads a ray's list and integrates its cells (integrateCell), without the walk's state
-// in registers. The renderer alternates them N times, then runs the one program (0) for what is left.
-#ifndef FCC_DVR_SPLIT
-#define FCC_DVR_SPLIT 0
-#endif
 
 // The work group: pixels per group in x and y (RenderOptions::workGroup defines them).
 #ifndef FCC_GROUP_X
@@ -146,30 +138,6 @@ uniform vec3 uSurfaceColor;
 uniform vec3 uLightDir;       // world, unit, towards the light
 uniform vec3 uClipLo;         // the clipping box, world space (+-1e30: none); rays are cut to it
 uniform vec3 uClipHi;
-
-#if FCC_DVR_SPLIT
-#ifndef FCC_DVR_SPLIT_CELLS
-#define FCC_DVR_SPLIT_CELLS 32
-#endif
-// Entry k of a ray at (group * K + k) * the group's size + the ray's index in its group, so that a
-// warp's k-th entries are one run of memory and a group's whole list another: (slot | 0x80000000 where the chain breaks before the cell,
-// the cell + 512 in 10 bits an axis | the exit axis << 30, t0's bits, t1's bits); x = kSplitEnd ends
-// a list shorter than K.
-layout(std430, binding = 15) buffer DvrSplitList { uvec4 splitList[]; };
-const uint kSplitEnd = 0xFFFFFFFFu;
-uint splitIndex(int k) {
-  const uint groupSize = uint(FCC_GROUP_X * FCC_GROUP_Y);
-  uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-  return (group * uint(FCC_DVR_SPLIT_CELLS) + uint(k)) * groupSize + gl_LocalInvocationIndex;
-}
-#endif
-#if FCC_DVR_SPLIT == 1
-int gSplitCount = 0;
-bool gSplitBreak = true;   // a cell passed over, or a new brick, since the last one listed
-bool gSplitFull = false;   // the list is full: the walk resumes at gSplitResumeT
-float gSplitResumeT = 0.0;
-uint gSplitSlot = 0u;
-#endif
 
 #if FCC_LOD
 // Level k of the pyramid: its box of bricks (its own brick coordinates: level 0's brick b lies in level
@@ -326,10 +294,6 @@ DvrCellWalk dvrBeginBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float t
   // Nothing carries into a brick: its cells are integrated the same whatever was resident before it
   // (the image does not depend on the cache), and the face jumps' sites stay inside the slot.
   gDvrCarry.state = kDvrCarryNone;
-#if FCC_DVR_SPLIT == 1
-  gSplitBreak = true;
-  gSplitSlot = slot;
-#endif
   return w;
 }
 
@@ -381,29 +345,13 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, vec3 invD, inout DvrState st)
     st.color.r += 1.0;
 #endif
     gDvrCarry.state = kDvrCarryNone;  // a cell passed over: nothing carries past it
-#if FCC_DVR_SPLIT == 1
-    gSplitBreak = true;
-#endif
     if (dvrStep(w, d, invD, tExit, axis)) {
       w.done = true;
       break;
     }
   }
   if (!have) return false;
-#if FCC_DVR_SPLIT == 1
-  // Listed for the integration program instead of integrated; a full list stops the walk here.
-  if (gSplitCount == FCC_DVR_SPLIT_CELLS) {
-    gSplitFull = true;
-    gSplitResumeT = foundT0;
-    return true;
-  }
-  uvec3 c = uvec3(found + 512);
-  splitList[splitIndex(gSplitCount++)] = uvec4(gSplitSlot | (gSplitBreak ? 0x80000000u : 0u),
-                                               c.x | (c.y << 10) | (c.z << 20) | (uint(foundAxis) << 30),
-                                               floatBitsToUint(foundT0), floatBitsToUint(foundT1));
-  gSplitBreak = false;
-  bool stop = false;
-#elif FCC_DVR_WALK_ONLY
+#if FCC_DVR_WALK_ONLY
   st.transmittance *= 1.0 - 1e-3 * (foundT1 - foundT0);
   bool stop = st.transmittance <= uStopTransmittance;
 #else
@@ -519,56 +467,6 @@ bool marchBrick(ivec3 b, uint slot, vec3 o, vec3 d, vec3 invD, float ta, float t
 }
 #endif
 
-// The pixel's ray: the world direction (unit), the eye and the direction in index space (in which the
-// same parameter t measures world distance along the unit world direction).
-const float kTiny = 1e-20;
-void pixelRay(ivec2 pixel, out vec3 dirWorld, out vec3 o, out vec3 d) {
-  // Pinhole camera, rays through pixel centres, row 0 at the top.
-  vec2 ndc = (vec2(pixel) + 0.5) / vec2(uResolution) * 2.0 - 1.0;
-  dirWorld = normalize(uForward + ndc.x * uRight - ndc.y * uUp);
-  o = (uIndexFromWorld * vec4(uEye, 1.0)).xyz;
-  d = mat3(uIndexFromWorld) * dirWorld;
-  // No zero components: keeps the slab and DDA arithmetic free of 0 * inf.
-  d = vec3(abs(d.x) < kTiny ? kTiny : d.x, abs(d.y) < kTiny ? kTiny : d.y, abs(d.z) < kTiny ? kTiny : d.z);
-}
-
-#if FCC_DVR_SPLIT == 2
-// The split's integration (FCC_DVR_SPLIT above): the cells the walk listed for this ray, in order, a
-// round a call of integrateCell as in dvrRound (a cell whose entry piece is gathered first takes two),
-// from what the ray had accumulated; where it turns opaque the ray is done.
-void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(uColumnOffset, 0);
-  if (any(greaterThanEqual(pixel, uResolution)) || pixel.x < uFirstColumn) return;
-  if (splitList[splitIndex(0)].x == kSplitEnd) return;
-  vec3 dirWorld, o, d;
-  pixelRay(pixel, dirWorld, o, d);
-  DvrState st;
-  st.color = imageLoad(uColor, pixel).rgb;
-  vec4 nd = imageLoad(uNormalDepth, pixel);
-  st.transmittance = nd.x;
-  st.depthHalf = nd.w;
-  gDvrCarry.state = kDvrCarryNone;
-  bool stop = false;
-  int k = 0;
-  for (int round = 0; round < 2 * FCC_DVR_SPLIT_CELLS && k < FCC_DVR_SPLIT_CELLS && !stop; ++round) {
-    uvec4 e = splitList[splitIndex(k)];
-    if (e.x == kSplitEnd) break;
-    ivec3 cell = ivec3(e.y & 1023u, (e.y >> 10) & 1023u, (e.y >> 20) & 1023u) - 512;
-    ivec3 b = cell >> 4;
-    if ((e.x & 0x80000000u) != 0u && gDvrCarry.state != kDvrCarryEntry) gDvrCarry.state = kDvrCarryNone;
-    selectSlot(e.x & 0x7FFFFFFFu, b);
-    gDvrExitAxis = int(e.y >> 30);
-    gDvrBrickCellLo = b * 16;
-    stop = integrateCell(cell, o, d, uintBitsToFloat(e.z), uintBitsToFloat(e.w), st);
-    if (gDvrCarry.state != kDvrCarryEntry) ++k;
-  }
-  if (stop) imageStore(uResume, pixel, vec4(-1.0));
-  bool done = stop || imageLoad(uResume, pixel).x < 0.0;
-  imageStore(uColor, pixel, vec4(st.color, 1.0 - st.transmittance));
-  imageStore(uNormalDepth, pixel, vec4(done ? 0.0 : st.transmittance, 0.0, 0.0, st.depthHalf));
-  if (st.transmittance < 1.0) noteSurfacePixel(pixel);
-}
-#else
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(uColumnOffset, 0);
 #if FCC_OCCUPANCY_PAD > 0
@@ -577,13 +475,17 @@ void main() {
   if (any(greaterThanEqual(pixel, uResolution)) || pixel.x < uFirstColumn) return;
   // The first pass writes every pixel's resume value (below), so the image needs no clearing.
   float tResume = uFirstPass != 0 ? 0.0 : imageLoad(uResume, pixel).x;
-#if FCC_DVR_SPLIT == 1
-  if (tResume < 0.0) splitList[splitIndex(0)].x = kSplitEnd;
-#endif
   if (tResume < 0.0) return;
 
-  vec3 dirWorld, o, d;
-  pixelRay(pixel, dirWorld, o, d);
+  // Pinhole camera, rays through pixel centres, row 0 at the top.
+  vec2 ndc = (vec2(pixel) + 0.5) / vec2(uResolution) * 2.0 - 1.0;
+  vec3 dirWorld = normalize(uForward + ndc.x * uRight - ndc.y * uUp);
+  // Index space: the same parameter t measures world distance along the unit world direction.
+  vec3 o = (uIndexFromWorld * vec4(uEye, 1.0)).xyz;
+  vec3 d = mat3(uIndexFromWorld) * dirWorld;
+  // No zero components: keeps the slab and DDA arithmetic free of 0 * inf.
+  const float kTiny = 1e-20;
+  d = vec3(abs(d.x) < kTiny ? kTiny : d.x, abs(d.y) < kTiny ? kTiny : d.y, abs(d.z) < kTiny ? kTiny : d.z);
   vec3 invD = 1.0 / d;
 
   vec3 boxLo = vec3(uBrickMin) * kBrickSites, boxHi = vec3(uBrickMin + uBrickDims) * kBrickSites;
@@ -842,20 +744,6 @@ void main() {
     t = tExitBrick > t ? tExitBrick : t + 1e-5 * abs(t) + 1e-6;
   }
 #endif
-#if FCC_DVR_SPLIT == 1
-  // The walk: what it listed is integrated by the other program, which writes the images, except for
-  // a ray that listed nothing (as the one program would: what the ray has) and in the first pass.
-  if (gSplitCount < FCC_DVR_SPLIT_CELLS) splitList[splitIndex(gSplitCount)].x = kSplitEnd;
-  if (gSplitCount > 0) {
-    if (gSplitFull) imageStore(uResume, pixel, vec4(gSplitResumeT));
-    else if (!stopped) imageStore(uResume, pixel, vec4(-1.0));  // (a stopped ray's is where it waits)
-    if (uFirstPass != 0) {  // what the integration starts from
-      imageStore(uColor, pixel, vec4(st.color, 1.0 - st.transmittance));
-      imageStore(uNormalDepth, pixel, vec4(st.transmittance, 0.0, 0.0, st.depthHalf));
-    }
-    return;
-  }
-#endif
 #if FCC_MODE_DVR
   if (stopped && !found) {  // resumes next pass; meanwhile the pixel shows what it has so far
     imageStore(uColor, pixel, vec4(st.color, 1.0 - st.transmittance));
@@ -922,4 +810,3 @@ void main() {
   imageStore(uNormalDepth, pixel, vec4(n, hit.t));
   noteSurfacePixel(pixel);
 }
-#endif

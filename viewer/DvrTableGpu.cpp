@@ -38,8 +38,7 @@ void DvrTableGpu::setUniforms(const GlProgram& program, float stopTransmittance)
   glProgramUniform1f(p, program.uniformLocation("uTfMin"), vmin_);
   glProgramUniform1f(p, program.uniformLocation("uTfScale"), scale_);
   glProgramUniform1i(p, program.uniformLocation("uTfSize"), size_);
-  // (Inactive in the DVR split's walk, which integrates nothing: FCCVDB_DVR_SPLIT.)
-  glProgramUniform1f(p, glGetUniformLocation(p, "uStopTransmittance"), stopTransmittance);
+  glProgramUniform1f(p, program.uniformLocation("uStopTransmittance"), stopTransmittance);
   // tfZeroOn's (not every program calls it: -1 is ignored).
   glProgramUniform1i(p, glGetUniformLocation(p, "uTfNonZeroFirst"), nonZero_.first);
   glProgramUniform1i(p, glGetUniformLocation(p, "uTfNonZeroEnd"), nonZero_.end);

@@ -5,7 +5,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
-#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -208,20 +207,6 @@ void Raycaster::buildRaycastProgram() {
     lodProgram = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines + "#define FCC_LOD 1\n"),
                                     "shaders/raycast.comp (level of detail)");
   }
-  DvrSplit split;
-  if (const char* spec = std::getenv("FCCVDB_DVR_SPLIT"); spec && dvr) {
-    if (std::sscanf(spec, "%d,%d", &split.cells, &split.rounds) != 2 || split.cells < 1 || split.cells > 1024 ||
-        split.rounds < 1 || split.rounds > 64)
-      throw ValueError(std::string("FCCVDB_DVR_SPLIT \"") + spec + "\": valid is \"K,N\", K cells a list (1 to 1024), N rounds (1 to 64)");
-    const std::string splitDefines = "#define FCC_DVR_SPLIT_CELLS " + std::to_string(split.cells) + "\n#define FCC_DVR_SPLIT ";
-    split.walk = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines + splitDefines + "1\n"),
-                                    "shaders/raycast.comp (DVR split: walk)");
-    split.integrate = GlProgram::compute(withDefines(embedded::shaders("shaders/raycast.comp"), defines + splitDefines + "2\n"),
-                                         "shaders/raycast.comp (DVR split: integration)");
-    pool_->setUniforms(split.walk);
-    pool_->setUniforms(split.integrate);
-  }
-  split_ = std::move(split);
   raycastDefines_ = std::move(defines);
   program_ = std::move(program);
   uniforms_ = uniformsOf(program_, dvr);
@@ -294,7 +279,7 @@ void Raycaster::uploadTransfer() {
 }
 
 void Raycaster::setTransferUniforms() {
-  for (const GlProgram* program : {&program_, &lodProgram_, &split_.walk, &split_.integrate}) {
+  for (const GlProgram* program : {&program_, &lodProgram_}) {
     if (program->id() == 0) continue;
     dvrTable_->setUniforms(*program, 1.0f - options_.terminationOpacity);
     // The shaded programs' (location -1, ignored, in the others).
@@ -422,10 +407,6 @@ int Raycaster::passLookahead() const {
   // step() marks its pass started before dispatching it; render()'s passes run outside one.
   const bool completeFrame = !stepStarted_;
   return completeFrame && oneOpaqueSurfaceAtFullResolution ? 0 : 2;
-}
-
-bool Raycaster::splitDrawing() const {
-  return split_.walk.id() != 0 && options_.mode == RenderMode::Dvr && !lodDrawing() && !compositesSurfaces(options_);
 }
 
 bool Raycaster::lodDrawing() const {
@@ -629,44 +610,40 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   const glm::vec3 lightSum = l.x * glm::vec3(glm::normalize(frame.right)) + l.y * glm::vec3(glm::normalize(frame.up)) -
                              l.z * glm::vec3(frame.forward);
   const glm::vec3 lightDir = glm::length(lightSum) > 0.0f ? glm::normalize(lightSum) : -glm::vec3(frame.forward);
+  glProgramUniform2i(p, u.resolution, width, height);
   const glm::vec3 eye(frame.eye), forward(frame.forward), right(frame.right), up(frame.up);
+  glProgramUniform3fv(p, u.eye, 1, &eye.x);
+  glProgramUniform3fv(p, u.forward, 1, &forward.x);
+  glProgramUniform3fv(p, u.right, 1, &right.x);
+  glProgramUniform3fv(p, u.up, 1, &up.x);
+  glProgramUniformMatrix4fv(p, u.indexFromWorld, 1, GL_FALSE, &indexFromWorldF[0][0]);
+  glProgramUniformMatrix3fv(p, u.normalFromIndex, 1, GL_FALSE, &normalFromIndex[0][0]);
+  glProgramUniform1f(p, u.iso, options_.iso);
+  glProgramUniform3iv(p, u.brickMin, 1, &residency_->brickMin().x);
+  glProgramUniform3iv(p, u.brickDims, 1, &residency_->brickDims().x);
+  glProgramUniform3iv(p, u.nodeDims, 1, &residency_->nodeDims().x);
+  glProgramUniform1ui(p, u.pass, pass_);
+  glProgramUniform1i(p, u.firstPass, firstPass_ ? 1 : 0);
   const glm::ivec2 group = options_.workGroup;
   const int columnOffset = firstColumn / group.x * group.x;
-  // The frame's uniforms, the same for every program that draws it (inactive ones are -1: ignored).
-  const auto setFrameUniforms = [&](GLuint p, const Uniforms& u, bool firstPass) {
-    glProgramUniform2i(p, u.resolution, width, height);
-    glProgramUniform3fv(p, u.eye, 1, &eye.x);
-    glProgramUniform3fv(p, u.forward, 1, &forward.x);
-    glProgramUniform3fv(p, u.right, 1, &right.x);
-    glProgramUniform3fv(p, u.up, 1, &up.x);
-    glProgramUniformMatrix4fv(p, u.indexFromWorld, 1, GL_FALSE, &indexFromWorldF[0][0]);
-    glProgramUniformMatrix3fv(p, u.normalFromIndex, 1, GL_FALSE, &normalFromIndex[0][0]);
-    glProgramUniform1f(p, u.iso, options_.iso);
-    glProgramUniform3iv(p, u.brickMin, 1, &residency_->brickMin().x);
-    glProgramUniform3iv(p, u.brickDims, 1, &residency_->brickDims().x);
-    glProgramUniform3iv(p, u.nodeDims, 1, &residency_->nodeDims().x);
-    glProgramUniform1ui(p, u.pass, pass_);
-    glProgramUniform1i(p, u.firstPass, firstPass ? 1 : 0);
-    glProgramUniform1i(p, u.firstColumn, firstColumn);
-    glProgramUniform1i(p, u.columnOffset, columnOffset);
-    glProgramUniform1ui(p, u.requestCapacity, requestCapacity_);
-    glProgramUniform1i(p, u.lookahead, passLookahead());
-    glProgramUniform1i(p, u.skipEmpty, options_.skipEmpty ? 1 : 0);
-    glProgramUniform1i(p, u.finiteDifferenceNormals, options_.finiteDifferenceNormals ? 1 : 0);
-    glProgramUniform3fv(p, u.surfaceColor, 1, &options_.surfaceColor.x);
-    glProgramUniform3fv(p, u.lightDir, 1, &lightDir.x);
-    const glm::vec3 clipLo(glm::clamp(options_.clipLo, glm::dvec3(-1e30), glm::dvec3(1e30)));
-    const glm::vec3 clipHi(glm::clamp(options_.clipHi, glm::dvec3(-1e30), glm::dvec3(1e30)));
-    glProgramUniform3fv(p, u.clipLo, 1, &clipLo.x);
-    glProgramUniform3fv(p, u.clipHi, 1, &clipHi.x);
-    if (source_.slotBlock() == SlotBlock::BccPacked) {
-      // The BCC stack schemes' axis and shears, once per frame from the view (march_bcc.glsl): the same
-      // choice as Reconstruction::setView with the forward direction in index space.
-      const glm::ivec3 params = spline::bcc_sheared_params_for_view(glm::vec3(glm::dmat3(indexFromWorld) * frame.forward));
-      glProgramUniform3iv(p, u.bccParams, 1, &params.x);
-    }
-  };
-  setFrameUniforms(p, u, firstPass_ && !splitDrawing());
+  glProgramUniform1i(p, u.firstColumn, firstColumn);
+  glProgramUniform1i(p, u.columnOffset, columnOffset);
+  glProgramUniform1ui(p, u.requestCapacity, requestCapacity_);
+  glProgramUniform1i(p, u.lookahead, passLookahead());
+  glProgramUniform1i(p, u.skipEmpty, options_.skipEmpty ? 1 : 0);
+  glProgramUniform1i(p, u.finiteDifferenceNormals, options_.finiteDifferenceNormals ? 1 : 0);
+  glProgramUniform3fv(p, u.surfaceColor, 1, &options_.surfaceColor.x);
+  glProgramUniform3fv(p, u.lightDir, 1, &lightDir.x);
+  const glm::vec3 clipLo(glm::clamp(options_.clipLo, glm::dvec3(-1e30), glm::dvec3(1e30)));
+  const glm::vec3 clipHi(glm::clamp(options_.clipHi, glm::dvec3(-1e30), glm::dvec3(1e30)));
+  glProgramUniform3fv(p, u.clipLo, 1, &clipLo.x);
+  glProgramUniform3fv(p, u.clipHi, 1, &clipHi.x);
+  if (source_.slotBlock() == SlotBlock::BccPacked) {
+    // The BCC stack schemes' axis and shears, once per frame from the view (march_bcc.glsl): the same
+    // choice as Reconstruction::setView with the forward direction in index space.
+    const glm::ivec3 params = spline::bcc_sheared_params_for_view(glm::vec3(glm::dmat3(indexFromWorld) * frame.forward));
+    glProgramUniform3iv(p, u.bccParams, 1, &params.x);
+  }
   if (lod) {
     const int levels = residency_->levelCount();
     glm::ivec3 brickMin[kMaxLodLevels], brickDims[kMaxLodLevels], nodeDims[kMaxLodLevels];
@@ -730,30 +707,10 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   resume_.bindImage(2, GL_READ_WRITE);
   if (composite) transmittance_.bindImage(3, GL_READ_WRITE);
 
+  program.use();
   if (passTimer_) passTimer_->begin();
   const int columns = width - columnOffset;
-  const auto dispatch = [&] { glDispatchCompute(GLuint((columns + group.x - 1) / group.x), GLuint((height + group.y - 1) / group.y), 1); };
-  if (splitDrawing()) {
-    // N rounds of the walk's lists and their integration, then program_ for the rays left (a measurement
-    // knob: FCCVDB_DVR_SPLIT). The walk's first round starts the rays where program_'s would.
-    const std::size_t groups = std::size_t((columns + group.x - 1) / group.x) * std::size_t((height + group.y - 1) / group.y);
-    const std::size_t bytes = std::size_t(split_.cells) * groups * std::size_t(group.x * group.y) * 4 * sizeof(uint32_t);
-    if (!split_.list || split_.list->size() < bytes) split_.list = std::make_unique<GlBuffer>(bytes);
-    split_.list->bindBase(GL_SHADER_STORAGE_BUFFER, 15);
-    const Uniforms walkU = uniformsOf(split_.walk, true, true), integrateU = uniformsOf(split_.integrate, true, true);
-    setFrameUniforms(split_.integrate.id(), integrateU, false);
-    for (int round = 0; round < split_.rounds; ++round) {
-      setFrameUniforms(split_.walk.id(), walkU, firstPass_ && round == 0);
-      split_.walk.use();
-      dispatch();
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-      split_.integrate.use();
-      dispatch();
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    }
-  }
-  program.use();
-  dispatch();
+  glDispatchCompute(GLuint((columns + group.x - 1) / group.x), GLuint((height + group.y - 1) / group.y), 1);
   if (passTimer_) passTimer_->end();
   firstPass_ = false;
   // For the read-backs (buffer update, texture update) and the viewer's presenter, which reads the

@@ -390,15 +390,6 @@ class Raycaster {
   } lodView_;
   std::vector<glm::ivec3> coarsestNeeded_;
   GlProgram lodProgram_;             // FCC_LOD: built when there are levels
-  // The DVR split in two programs, a measurement knob (FCCVDB_DVR_SPLIT="K,N", docs/RENDERER.md;
-  // raycast.comp's FCC_DVR_SPLIT): N rounds of a walk listing K cells a ray and an integration of them,
-  // before program_ runs for what is left. Off (no programs) without the variable.
-  struct DvrSplit {
-    int cells = 0, rounds = 0;
-    GlProgram walk, integrate;
-    std::unique_ptr<GlBuffer> list;  // K uvec4 a pixel
-  } split_;
-  bool splitDrawing() const;  // the split draws this pass's DVR (built, and no other variant draws)
   Uniforms lodUniforms_{};
   struct LodUniforms {
     GLint levelCount, brickMin, brickDims, nodeDims, pageOffset, nodeOffset, scale, size, bias, pixelAngle;

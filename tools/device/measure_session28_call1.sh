@@ -7,6 +7,8 @@
 # viridis). Run as
 #   ../shared/tools/device-bundle build/bin/fccvdb build/bin/fccvdb-guard build/bin/test_render_dvr ../shared/data/engine_256x256x128_uint8.raw.gz
 #   source .devbundle/env.sh && bash tools/device/measure_session28_call1.sh        (SMALL=1: toy sizes)
+# The knobs are removed since (sessions 28, 29): FCC_DVR_SHADE_REUSE is in commit d4f52ac, the split in
+# tools/device/session28_dvr_split.patch (against 8d1dd6c).
 source tools/device/prologue.sh
 W=${W:-/tmp/m28}; source "$HERE/tools/device/bench_data.sh"
 source "$HERE/tools/device/dvr_knob_runs.sh"
