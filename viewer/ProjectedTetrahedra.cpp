@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -195,9 +196,11 @@ ProjectedTetrahedra::ProjectedTetrahedra(const BrickSource& source, Options opti
     tetrahedra.insert(tetrahedra.end(), local.begin(), local.end());
     centres_.insert(centres_.end(), spheres.begin(), spheres.end());
   });
-  if (tetrahedra.size() > options_.maxTetrahedra)
+  // One draw of 12 vertices a tetrahedron: its vertex count must be a GLsizei.
+  const std::size_t most = std::min(options_.maxTetrahedra, std::size_t(std::numeric_limits<GLsizei>::max() / 12));
+  if (tetrahedra.size() > most)
     throw ValueError(source.path() + ": " + std::to_string(tetrahedra.size()) + " tetrahedra with data; projected tetrahedra draw at most " +
-                     std::to_string(options_.maxTetrahedra) + " (in core)");
+                     std::to_string(most) + " (in core)");
   order_.resize(tetrahedra.size());
   tetrahedra_ = std::make_unique<GlBuffer>(std::max<std::size_t>(1, tetrahedra.size()) * sizeof(GpuTetrahedron),
                                            tetrahedra.empty() ? nullptr : tetrahedra.data());
@@ -253,6 +256,11 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   const glm::vec3 eyeWorld(frame.eye), forward(frame.forward), right(frame.right), up(frame.up);
   glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "uWorldFromIndex"), 1, GL_FALSE, &worldFromIndexF[0][0]);
   glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "uIndexFromWorld"), 1, GL_FALSE, &indexFromWorldF[0][0]);
+  // MEASUREMENT KNOB (session 30, removed after its device call): FCCVDB_TETRA_KNOB=instanced and/or nocull.
+  const char* knobEnv = std::getenv("FCCVDB_TETRA_KNOB");
+  const std::string knob = knobEnv ? knobEnv : "";
+  const bool instanced = knob.find("instanced") != std::string::npos;
+  glProgramUniform1i(p, glGetUniformLocation(p, "uCullFaces"), options_.cullFaces && knob.find("nocull") == std::string::npos ? 1 : 0);
   glProgramUniformMatrix3fv(p, glGetUniformLocation(p, "uNormalFromIndex"), 1, GL_FALSE, &normalFromIndex[0][0]);
   glProgramUniform3fv(p, glGetUniformLocation(p, "uEye"), 1, &eyeWorld.x);
   glProgramUniform3fv(p, glGetUniformLocation(p, "uForward"), 1, &forward.x);
@@ -276,7 +284,8 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
     table_->bind();
     program_.use();
     glBindVertexArray(vertexArray_);
-    if (!order_.empty()) glDrawArraysInstanced(GL_TRIANGLES, 0, 12, GLsizei(order_.size()));
+    if (!order_.empty() && instanced) glDrawArraysInstanced(GL_TRIANGLES, 0, 12, GLsizei(order_.size()));
+    else if (!order_.empty()) glDrawArrays(GL_TRIANGLES, 0, GLsizei(12 * order_.size()));  // 12 a tetrahedron: tetra.vert
   }  // the caller's state back
   if (timer_) timer_->end();
   glFinish();

@@ -33,6 +33,9 @@ class ProjectedTetrahedra {
     float specular = 0.0f, specularPower = 20.0f;    // its specular term (RenderOptions::dvrSpecular)
     bool timeGpu = false;                            // FrameStats::gpuSeconds
     std::size_t maxTetrahedra = std::size_t(8) << 20;
+    // Faces no ray enters through dropped before rasterization (shaders/tetra.vert; the same image bit
+    // for bit); false rasterizes every face, the tests' reference.
+    bool cullFaces = true;
   };
 
   // `source`: a BCC dataset drawn with `barycentric` (ValueError naming what it is otherwise). Decodes

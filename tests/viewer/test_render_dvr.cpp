@@ -505,9 +505,29 @@ TEST_F(RenderDvr, CellChordFromItsEndPiecesAgreesWithEveryPieceAndTheReference) 
   }
 }
 
+// Fragment shader invocations while `draw` runs, where the GL counts them
+// (GL_ARB_pipeline_statistics_query); 0 where it does not.
+template <class Draw>
+uint64_t fragmentInvocations(Draw draw) {
+  if (!epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query")) {
+    draw();
+    return 0;
+  }
+  GLuint query = 0;
+  glGenQueries(1, &query);
+  glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query);
+  draw();
+  glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+  GLuint64 count = 0;
+  glGetQueryObjectui64v(query, GL_QUERY_RESULT, &count);
+  glDeleteQueries(1, &query);
+  return count;
+}
+
 // Paper 002's projected tetrahedra (viewer/ProjectedTetrahedra.h) on a BCC dataset: the same image as
 // the raycaster's integration of the same barycentric field and as the CPU reference, from two views
-// (the back-to-front order is sorted anew for each); with shading too; refused on other data.
+// (the back-to-front order is sorted anew for each); the faces' culling changes no pixel; with shading
+// too; refused on other data.
 TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
   TempDir dir;
   const int w = 48, h = 40;
@@ -531,6 +551,10 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
   render::ProjectedTetrahedra pt(source, ptOptions);
   std::printf("%zu tetrahedra with data\n", pt.tetrahedronCount());
   EXPECT_GT(pt.tetrahedronCount(), 1000u);
+  // The reference for tetra.vert's culling: every face rasterized, tetra.frag's test alone deciding.
+  render::ProjectedTetrahedra::Options allFacesOptions = ptOptions;
+  allFacesOptions.cullFaces = false;
+  render::ProjectedTetrahedra allFaces(source, allFacesOptions);
   const glm::dvec3 lookat(source.worldFromIndex() * glm::dvec4(24.0, 24.0, 24.0, 1.0));
   // Two views from outside, and one from inside the data (the eye inside a tetrahedron: its segment
   // from the eye to where the ray leaves it).
@@ -540,8 +564,18 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
     camera.eye = lookat + offset;
     camera.fovYDegrees = 35.0;
     const render::CameraFrame frame = render::cameraFrame(camera, double(w) / h);
-    pt.render(camera, w, h);
+    const uint64_t culledInvocations = fragmentInvocations([&] { pt.render(camera, w, h); });
     const render::FrameImages tetra = pt.readImages();
+    const uint64_t allInvocations = fragmentInvocations([&] { allFaces.render(camera, w, h); });
+    const render::FrameImages unculled = allFaces.readImages();
+    // Culling drops only faces whose every fragment tetra.frag discards: the same image bit for bit,
+    // with fewer fragments shaded (about half the faces face away) where the GL counts them.
+    EXPECT_EQ(tetra.rgba, unculled.rgba) << "culling changed the image (eye offset " << offset.x << ", " << offset.y << ", " << offset.z << ")";
+    std::printf("fragment shader invocations: %llu culled, %llu every face\n", (unsigned long long)culledInvocations,
+                (unsigned long long)allInvocations);
+    if (allInvocations > 0 && glm::length(offset) > 1.0) {
+      EXPECT_LT(culledInvocations, allInvocations * 3 / 4) << "culling dropped too little";
+    }
     const render::FrameImages ray = renderSource(source, camera, w, h, dvrOptions(table));
     const std::vector<DvrPixel> ref = renderDvrImage(
         w, h, [&](int x, int y) { return dvrRayFromWorld(indexFromWorld, camera.eye, render::pixelRay(frame, x, y, w, h), 0.0, 200.0); },
