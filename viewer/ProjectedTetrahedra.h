@@ -58,6 +58,7 @@ class ProjectedTetrahedra {
   const BrickSource& source_;
   Options options_;
   std::vector<glm::vec4> centres_;  // circumcentre (index space), w = radius^2: the power distance's
+  std::vector<uint64_t> keys_;  // render()'s sort: power distance and index
   std::vector<uint32_t> order_;
   std::unique_ptr<GlBuffer> tetrahedra_, orderBuffer_;
   std::unique_ptr<DvrTableGpu> table_;

@@ -573,7 +573,7 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
     EXPECT_EQ(tetra.rgba, unculled.rgba) << "culling changed the image (eye offset " << offset.x << ", " << offset.y << ", " << offset.z << ")";
     std::printf("fragment shader invocations: %llu culled, %llu every face\n", (unsigned long long)culledInvocations,
                 (unsigned long long)allInvocations);
-    if (allInvocations > 0 && glm::length(offset) > 1.0) {
+    if (allInvocations > 0) {  // 0.50 of them from every view on llvmpipe
       EXPECT_LT(culledInvocations, allInvocations * 3 / 4) << "culling dropped too little";
     }
     const render::FrameImages ray = renderSource(source, camera, w, h, dvrOptions(table));
