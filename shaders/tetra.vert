@@ -1,9 +1,9 @@
 #version 450 core
 // Projected tetrahedra (viewer/ProjectedTetrahedra.h): vertices 12 i .. 12 i + 11 of one draw are
-// tetrahedron order[i]'s four faces (no vertex buffer; one draw, not an instance a tetrahedron: NVIDIA
-// runs instances of 12 vertices with most of a warp idle). A face no ray enters through (the eye
-// inside its plane's half-space, clearly) is dropped here, before rasterization, where tetra.frag
-// would discard every fragment of it: about half of all faces. Each vertex goes from index space to the pinhole camera of
+// tetrahedron order[i]'s four faces (no vertex buffer; as fast as an instance a tetrahedron on the H100,
+// docs/BENCHMARKS.md, session 30). A face no ray enters through (the eye clearly on the inner side of
+// its plane) is dropped here, before rasterization, where tetra.frag would discard every fragment of
+// it: about half of all faces. Each vertex goes from index space to the pinhole camera of
 // raycast.comp: a point at eye + a F + b R + c U (F unit; R, U scaled by the half field of view) is on
 // the ray of ndc (b / a, -c / a), and window row y is the raycaster's pixel row y (row 0 at the top of
 // the image), so both renderers cast the same rays.
@@ -45,9 +45,8 @@ bool noRayEnters(uint t, int f, vec3 o) {
 }
 
 void main() {
-  int vertex = gl_VertexID + 12 * gl_InstanceID;  // MEASUREMENT KNOB (session 30): either draw
-  uint t = order[vertex / 12];
-  int corner = vertex % 12;
+  uint t = order[gl_VertexID / 12];
+  int corner = gl_VertexID % 12;
   vTetrahedron = t;
   vFace = corner / 3;
   if (uCullFaces != 0 && noRayEnters(t, vFace, (uIndexFromWorld * vec4(uEye, 1.0)).xyz)) {

@@ -217,7 +217,8 @@ ProjectedTetrahedra::ProjectedTetrahedra(const BrickSource& source, Options opti
   table_ = std::make_unique<DvrTableGpu>(table);
   program_ = GlProgram::graphics(
       embedded::shaders("shaders/tetra.vert"),
-      withDefines(embedded::shaders("shaders/tetra.frag"), options_.shading ? "#define FCC_DVR_SHADING 1\n" : ""),
+      withDefines(embedded::shaders("shaders/tetra.frag"), std::string(options_.shading ? "#define FCC_DVR_SHADING 1\n" : "") +
+                  (std::getenv("FCCVDB_TETRA_KNOB") && std::string(std::getenv("FCCVDB_TETRA_KNOB")) == "flat" ? "#define FCC_TET_FLAT 1\n" : "")),
       "projected tetrahedra");
   table_->setUniforms(program_, -1.0f);  // no early stop inside a segment: segments composite afterwards
   checkDvrSpecular(options_.specular, options_.specularPower);
@@ -237,6 +238,9 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   if (width <= 0 || height <= 0)
     throw ValueError("image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   const auto start = std::chrono::steady_clock::now();
+  // MEASUREMENT KNOB (session 30's second call, removed after it): FCCVDB_TETRA_KNOB=flat|half|nosort|noblend.
+  const std::string knob = std::getenv("FCCVDB_TETRA_KNOB") ? std::getenv("FCCVDB_TETRA_KNOB") : "";
+  static bool sorted = false;
   const CameraFrame frame = cameraFrame(camera, double(width) / double(height));
   const glm::dmat4 worldFromIndex = source_.worldFromIndex();
   const glm::dmat4 indexFromWorld = glm::inverse(worldFromIndex);
@@ -246,6 +250,8 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   // Sorted as 64-bit keys, the power's float bits ordered largest first above the tetrahedron's index:
   // one contiguous sort without a comparator reading another array (3.3 M on 2 cores: 0.16 s, not 0.21),
   // ties in index order (tetrahedra of equal power distance do not overlap on the screen).
+  if (knob != "nosort" || !sorted) {
+  sorted = true;
   keys_.resize(centres_.size());
   tbb::parallel_for(std::size_t(0), centres_.size(), [&](std::size_t i) {
     const glm::vec3 r = glm::vec3(centres_[i]) - eye;
@@ -253,11 +259,12 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   });
   tbb::parallel_sort(keys_.begin(), keys_.end());
   tbb::parallel_for(std::size_t(0), keys_.size(), [&](std::size_t i) { order_[i] = uint32_t(keys_[i]); });
+  }
   sortSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!order_.empty()) orderBuffer_->write(order_);
 
   if (color_.width() != width || color_.height() != height) {
-    color_ = GlTexture2D(GL_RGBA32F, width, height);
+    color_ = GlTexture2D(knob == "half" ? GL_RGBA16F : GL_RGBA32F, width, height);
     glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, color_.id(), 0);
     if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw GlError("projected tetrahedra: the RGBA32F framebuffer is not complete");
@@ -268,11 +275,7 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   const glm::vec3 eyeWorld(frame.eye), forward(frame.forward), right(frame.right), up(frame.up);
   glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "uWorldFromIndex"), 1, GL_FALSE, &worldFromIndexF[0][0]);
   glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "uIndexFromWorld"), 1, GL_FALSE, &indexFromWorldF[0][0]);
-  // MEASUREMENT KNOB (session 30, removed after its device call): FCCVDB_TETRA_KNOB=instanced and/or nocull.
-  const char* knobEnv = std::getenv("FCCVDB_TETRA_KNOB");
-  const std::string knob = knobEnv ? knobEnv : "";
-  const bool instanced = knob.find("instanced") != std::string::npos;
-  glProgramUniform1i(p, glGetUniformLocation(p, "uCullFaces"), options_.cullFaces && knob.find("nocull") == std::string::npos ? 1 : 0);
+  glProgramUniform1i(p, glGetUniformLocation(p, "uCullFaces"), options_.cullFaces ? 1 : 0);
   glProgramUniformMatrix3fv(p, glGetUniformLocation(p, "uNormalFromIndex"), 1, GL_FALSE, &normalFromIndex[0][0]);
   glProgramUniform3fv(p, glGetUniformLocation(p, "uEye"), 1, &eyeWorld.x);
   glProgramUniform3fv(p, glGetUniformLocation(p, "uForward"), 1, &forward.x);
@@ -289,15 +292,14 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
     glClearBufferfv(GL_COLOR, 0, clear);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    glEnable(GL_BLEND);
+    (knob == "noblend" ? glDisable : glEnable)(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // "over", premultiplied, back to front
     tetrahedra_->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
     orderBuffer_->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
     table_->bind();
     program_.use();
     glBindVertexArray(vertexArray_);
-    if (!order_.empty() && instanced) glDrawArraysInstanced(GL_TRIANGLES, 0, 12, GLsizei(order_.size()));
-    else if (!order_.empty()) glDrawArrays(GL_TRIANGLES, 0, GLsizei(12 * order_.size()));  // 12 a tetrahedron: tetra.vert
+    if (!order_.empty()) glDrawArrays(GL_TRIANGLES, 0, GLsizei(12 * order_.size()));  // 12 a tetrahedron: tetra.vert
   }  // the caller's state back
   if (timer_) timer_->end();
   glFinish();
