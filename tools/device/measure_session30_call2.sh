@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Session 30, second call: where a projected-tetrahedra frame goes (BCC ML 128^3, 1080p), by the
-# diagnostic knob FCCVDB_TETRA_KNOB of commit <this one> (removed since; wrong images): flat (no
+# diagnostic knob FCCVDB_TETRA_KNOB of commit ee6b9e2 (removed since; wrong images): flat (no
 # integration in tetra.frag), half (an RGBA16F target), nosort (the first frame's order kept), noblend
 # (no blending), against main, alternating. Run as call 1 (measure_session30_call1.sh).
 source tools/device/prologue.sh
