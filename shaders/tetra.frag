@@ -73,10 +73,6 @@ void main() {
   gTetGradient = tet.field.xyz;
   dvrBeginCell(ivec3(0), o, d);
 #endif
-#ifdef FCC_TET_FLAT
-  st.color = vec3(0.01 * (vIn + vOut)); st.transmittance = 0.99;  // MEASUREMENT KNOB: no integration
-#else
   dvrSegment3(fcc_linear_as_bernstein3(vIn, vOut), tIn, tOut, st);
-#endif
   fragColor = vec4(st.color, 1.0 - st.transmittance);
 }

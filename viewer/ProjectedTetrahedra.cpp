@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <mutex>
@@ -217,8 +216,7 @@ ProjectedTetrahedra::ProjectedTetrahedra(const BrickSource& source, Options opti
   table_ = std::make_unique<DvrTableGpu>(table);
   program_ = GlProgram::graphics(
       embedded::shaders("shaders/tetra.vert"),
-      withDefines(embedded::shaders("shaders/tetra.frag"), std::string(options_.shading ? "#define FCC_DVR_SHADING 1\n" : "") +
-                  (std::getenv("FCCVDB_TETRA_KNOB") && std::string(std::getenv("FCCVDB_TETRA_KNOB")) == "flat" ? "#define FCC_TET_FLAT 1\n" : "")),
+      withDefines(embedded::shaders("shaders/tetra.frag"), options_.shading ? "#define FCC_DVR_SHADING 1\n" : ""),
       "projected tetrahedra");
   table_->setUniforms(program_, -1.0f);  // no early stop inside a segment: segments composite afterwards
   checkDvrSpecular(options_.specular, options_.specularPower);
@@ -238,9 +236,6 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   if (width <= 0 || height <= 0)
     throw ValueError("image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   const auto start = std::chrono::steady_clock::now();
-  // MEASUREMENT KNOB (session 30's second call, removed after it): FCCVDB_TETRA_KNOB=flat|half|nosort|noblend.
-  const std::string knob = std::getenv("FCCVDB_TETRA_KNOB") ? std::getenv("FCCVDB_TETRA_KNOB") : "";
-  static bool sorted = false;
   const CameraFrame frame = cameraFrame(camera, double(width) / double(height));
   const glm::dmat4 worldFromIndex = source_.worldFromIndex();
   const glm::dmat4 indexFromWorld = glm::inverse(worldFromIndex);
@@ -250,8 +245,6 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   // Sorted as 64-bit keys, the power's float bits ordered largest first above the tetrahedron's index:
   // one contiguous sort without a comparator reading another array (3.3 M on 2 cores: 0.16 s, not 0.21),
   // ties in index order (tetrahedra of equal power distance do not overlap on the screen).
-  if (knob != "nosort" || !sorted) {
-  sorted = true;
   keys_.resize(centres_.size());
   tbb::parallel_for(std::size_t(0), centres_.size(), [&](std::size_t i) {
     const glm::vec3 r = glm::vec3(centres_[i]) - eye;
@@ -259,12 +252,11 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   });
   tbb::parallel_sort(keys_.begin(), keys_.end());
   tbb::parallel_for(std::size_t(0), keys_.size(), [&](std::size_t i) { order_[i] = uint32_t(keys_[i]); });
-  }
   sortSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!order_.empty()) orderBuffer_->write(order_);
 
   if (color_.width() != width || color_.height() != height) {
-    color_ = GlTexture2D(knob == "half" ? GL_RGBA16F : GL_RGBA32F, width, height);
+    color_ = GlTexture2D(GL_RGBA32F, width, height);
     glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, color_.id(), 0);
     if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw GlError("projected tetrahedra: the RGBA32F framebuffer is not complete");
@@ -292,7 +284,7 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
     glClearBufferfv(GL_COLOR, 0, clear);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    (knob == "noblend" ? glDisable : glEnable)(GL_BLEND);
+    glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // "over", premultiplied, back to front
     tetrahedra_->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
     orderBuffer_->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
