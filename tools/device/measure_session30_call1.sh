@@ -2,7 +2,7 @@
 # Session 30, first call: paper 002's projected tetrahedra (issue 18's baseline) on the GPU, BCC ML
 # 128^3 at 1080p and 512^2, session 15's dataset: main's draw (an instance of 12 vertices a
 # tetrahedron, every face rasterized) against one draw of 12 vertices a tetrahedron and faces no ray
-# enters dropped in tetra.vert (FCCVDB_TETRA_KNOB of this commit: instanced, nocull), alternating; the
+# enters dropped in tetra.vert (FCCVDB_TETRA_KNOB of commit a851151, removed since: instanced, nocull), alternating; the
 # host's sort from `render --timings`; the ray integration of the same field beside it. Run as
 #   ../shared/tools/device-bundle build/bin/fccvdb build/bin/fccvdb-guard
 #   source .devbundle/env.sh && bash tools/device/measure_session30_call1.sh
