@@ -1,7 +1,8 @@
 #include "ProjectedTetrahedra.h"
 
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
+
+#include <boost/sort/sort.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -243,14 +244,16 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   // keeps the order along every ray, so a visibility order there is one in world space).
   const glm::vec3 eye(indexFromWorld * glm::dvec4(frame.eye, 1.0));
   // Sorted as 64-bit keys, the power's float bits ordered largest first above the tetrahedron's index:
-  // one contiguous sort without a comparator reading another array (3.3 M on 2 cores: 0.16 s, not 0.21),
-  // ties in index order (tetrahedra of equal power distance do not overlap on the screen).
+  // one contiguous sort without a comparator reading another array, ties in index order (tetrahedra of
+  // equal power distance do not overlap on the screen). Boost's block_indirect_sort, a parallel sort
+  // of its own threads, faster than tbb::parallel_sort on such keys (`render --timings`' sort, which
+  // includes making the keys, for 3.3 M on dev-2core: 0.11 s against 0.16; docs/BENCHMARKS.md, session 30).
   keys_.resize(centres_.size());
   tbb::parallel_for(std::size_t(0), centres_.size(), [&](std::size_t i) {
     const glm::vec3 r = glm::vec3(centres_[i]) - eye;
     keys_[i] = (uint64_t(largestFirstKey(glm::dot(r, r) - centres_[i].w)) << 32) | uint64_t(i);
   });
-  tbb::parallel_sort(keys_.begin(), keys_.end());
+  boost::sort::block_indirect_sort(keys_.begin(), keys_.end());
   tbb::parallel_for(std::size_t(0), keys_.size(), [&](std::size_t i) { order_[i] = uint32_t(keys_[i]); });
   sortSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!order_.empty()) orderBuffer_->write(order_);
