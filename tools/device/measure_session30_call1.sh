@@ -7,10 +7,7 @@
 #   ../shared/tools/device-bundle build/bin/fccvdb build/bin/fccvdb-guard
 #   source .devbundle/env.sh && bash tools/device/measure_session30_call1.sh
 source tools/device/prologue.sh
-W=${W:-/tmp/s30}; mkdir -p "$W"; cd "$W"
-if [ "${SMALL:-0}" = 1 ]; then N=32; RESES="64x36"; FR=3; else N=128; RESES="1920x1080 512x512"; FR=20; fi
-[ -s pt_bcc.vdb ] || fccvdb synth marschner-lobb pt_bcc.vdb --dims $N,$N,$N --lattice bcc --force --quiet
-fps() { grep -oE '"fps": [0-9.e+]+|"seconds": [0-9.e+]+|fccvdb:.*' | tr '\n' ' '; echo; }
+source "$HERE/tools/device/pt_data.sh"
 for res in $RESES; do
   P=(--mode dvr --tf viridis --dvr-method tetrahedra --res $res)
   for round in 1 2; do

@@ -4,14 +4,11 @@
 # integration in tetra.frag), half (an RGBA16F target), nosort (the first frame's order kept), noblend
 # (no blending), against main, alternating. Run as call 1 (measure_session30_call1.sh).
 source tools/device/prologue.sh
-W=${W:-/tmp/s30}; mkdir -p "$W"; cd "$W"
-if [ "${SMALL:-0}" = 1 ]; then N=32; RES=64x36; FR=3; else N=128; RES=1920x1080; FR=20; fi
-[ -s pt_bcc.vdb ] || fccvdb synth marschner-lobb pt_bcc.vdb --dims $N,$N,$N --lattice bcc --force --quiet
-fps() { grep -oE '"fps": [0-9.e+]+|fccvdb:.*' | tr '\n' ' '; echo; }
+source "$HERE/tools/device/pt_data.sh"
 for round in 1 2; do
   for knob in "" flat half nosort noblend; do
-    echo "-- tetrahedra $RES [$knob] round $round"
+    echo "-- tetrahedra 1080p [$knob] round $round"
     FCCVDB_TETRA_KNOB="$knob" timeout 300 fccvdb bench render pt_bcc.vdb --mode dvr --tf viridis --dvr-method tetrahedra \
-      --res $RES --variants skip+analytic --layout auto --frames $FR --warmup 3 --json | fps
+      --res 1920x1080 --variants skip+analytic --layout auto --frames $FR --warmup 3 --json | fps
   done
 done
