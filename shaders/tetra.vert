@@ -34,10 +34,12 @@ const int kFaceVertices[12] = int[12](1, 2, 3, 0, 3, 2, 0, 1, 3, 0, 2, 1);
 // face's fragment where the ray's direction d has dot(n, d) < 0 (the eye outside the tetrahedron); a
 // ray that meets the face's plane in front of the eye has dot(n, d) of the sign of w - dot(n, o), so
 // with the eye on the inner side of the plane by more than the margin no fragment passes, whatever
-// the rounding of d (relative 1e-6 against the margin's 1e-4 of the distance). With the eye inside
-// the tetrahedron or near it, tetra.frag takes the faces the rays leave through: nothing is dropped.
+// the rounding of d (relative 1e-6 against the margin's 1e-4 of the distance) and of dot(n, o) - w
+// here (about 1e-7 of |o|: the margin has 1e-4 of it). With the eye inside the tetrahedron or near
+// it, tetra.frag takes the faces the rays leave through: nothing is dropped.
 bool noRayEnters(uint t, int f, vec3 o) {
-  float margin = 1e-4 * (4.0 + distance(o, tetrahedra[t].vertex[0].xyz));  // BCC tetrahedra are < 4 units across
+  // BCC tetrahedra are less than 4 index units across.
+  float margin = 1e-4 * (4.0 + distance(o, tetrahedra[t].vertex[0].xyz) + length(o));
   bool eyeClearlyOutside = false;
   for (int k = 0; k < 4; ++k)
     eyeClearlyOutside = eyeClearlyOutside || dot(tetrahedra[t].plane[k].xyz, o) - tetrahedra[t].plane[k].w > margin;
