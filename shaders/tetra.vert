@@ -17,7 +17,7 @@ layout(std430, binding = 0) readonly buffer Tetrahedra { Tetrahedron tetrahedra[
 layout(std430, binding = 1) readonly buffer Order { uint order[]; };  // back to front
 
 uniform mat4 uWorldFromIndex;
-uniform mat4 uIndexFromWorld;
+uniform vec3 uEyeIndex;  // the eye in index space (the host's, as its sort uses it)
 uniform int uCullFaces;  // 0: every face rasterized, tetra.frag's test alone decides (the tests' reference)
 uniform vec3 uEye;      // world
 uniform vec3 uForward;  // world, unit
@@ -51,7 +51,7 @@ void main() {
   int corner = gl_VertexID % 12;
   vTetrahedron = t;
   vFace = corner / 3;
-  if (uCullFaces != 0 && noRayEnters(t, vFace, (uIndexFromWorld * vec4(uEye, 1.0)).xyz)) {
+  if (uCullFaces != 0 && noRayEnters(t, vFace, uEyeIndex)) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume, as the face's other two corners
     return;
   }

@@ -271,6 +271,7 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "uWorldFromIndex"), 1, GL_FALSE, &worldFromIndexF[0][0]);
   glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "uIndexFromWorld"), 1, GL_FALSE, &indexFromWorldF[0][0]);
   glProgramUniform1i(p, glGetUniformLocation(p, "uCullFaces"), options_.cullFaces ? 1 : 0);
+  glProgramUniform3fv(p, glGetUniformLocation(p, "uEyeIndex"), 1, &eye.x);
   glProgramUniformMatrix3fv(p, glGetUniformLocation(p, "uNormalFromIndex"), 1, GL_FALSE, &normalFromIndex[0][0]);
   glProgramUniform3fv(p, glGetUniformLocation(p, "uEye"), 1, &eyeWorld.x);
   glProgramUniform3fv(p, glGetUniformLocation(p, "uForward"), 1, &forward.x);
