@@ -16,12 +16,8 @@ layout(local_size_x = 64) in;
 #endif
 layout(std430, binding = 8) readonly buffer Staged { FCC_TEXEL staged[]; };
 #if FCC_POOL_LAYOUT >= 2
-#if defined(FCC_POOL_SCALAR) && defined(FCC_POOL_HALF)
-layout(binding = 3, r16f) uniform writeonly image3D uPoolImage;
-#elif defined(FCC_POOL_SCALAR)
+#if defined(FCC_POOL_SCALAR)
 layout(binding = 3, r32f) uniform writeonly image3D uPoolImage;
-#elif defined(FCC_POOL_HALF)
-layout(binding = 3, rgba16f) uniform writeonly image3D uPoolImage;
 #else
 layout(binding = 3, rgba32f) uniform writeonly image3D uPoolImage;
 #endif

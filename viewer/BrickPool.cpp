@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 
 #include "embedded_shaders.h"
@@ -95,21 +94,6 @@ std::size_t BrickPool::maxSlots(BrickLayout layout) {
   return std::size_t(maxBlock) / slotBytes(layout);
 }
 
-// Measurement knob (docs/RENDERER.md): FCCVDB_POOL_HALF=1 stores a texture layout's texels in half
-// precision (R16F, RGBA16F), rounding every coefficient: for what the pool's bytes cost the frame.
-bool BrickPool::halfTexels() const {
-  static const bool half = [] {
-    const char* v = std::getenv("FCCVDB_POOL_HALF");
-    return v && std::string(v) == "1";
-  }();
-  return half && isTexture(layout_);
-}
-
-GLenum BrickPool::textureFormat() const {
-  if (halfTexels()) return isScalar(layout_) ? GL_R16F : GL_RGBA16F;
-  return isScalar(layout_) ? GL_R32F : GL_RGBA32F;
-}
-
 BrickPool::BrickPool(BrickLayout layout, std::size_t slots, SlotBlock block)
     : layout_(layout), slots_(std::max<std::size_t>(slots, 1)), block_(block) {
   if (block != SlotBlock::FccPacked && !isScalar(layout)) {
@@ -132,7 +116,7 @@ BrickPool::BrickPool(BrickLayout layout, std::size_t slots, SlotBlock block)
   const int dim = slotDim(layout);
   grid_ = textureGrid(slots_, dim);
   glCreateTextures(GL_TEXTURE_3D, 1, &texture_);
-  glTextureStorage3D(texture_, 1, textureFormat(), grid_.x * dim, grid_.y * dim, grid_.z * dim);
+  glTextureStorage3D(texture_, 1, isScalar(layout) ? GL_R32F : GL_RGBA32F, grid_.x * dim, grid_.y * dim, grid_.z * dim);
   glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   setUniforms(scatter_);
@@ -146,7 +130,6 @@ BrickPool::~BrickPool() {
 std::string BrickPool::glslDefines() const {
   std::string defines = "#define FCC_POOL_LAYOUT " + std::to_string(int(layout_)) + "\n";
   if (block_ == SlotBlock::BccPacked) defines += "#define FCC_SLOT_BCC 1\n";  // pool.glsl's BCC site reader
-  if (halfTexels()) defines += "#define FCC_POOL_HALF 1\n";  // pool_upload.comp's image format
   return defines;
 }
 
@@ -174,7 +157,7 @@ void BrickPool::upload(const std::vector<uint32_t>& slots, const std::vector<con
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 8, staging_->id(), GLintptr(segmentOffset), GLsizeiptr(count * bytes));
     batchSlots_->bindBase(GL_SHADER_STORAGE_BUFFER, 9);
     if (buffer_) buffer_->bindBase(GL_SHADER_STORAGE_BUFFER, 10);
-    else glBindImageTexture(3, texture_, 0, GL_TRUE, 0, GL_WRITE_ONLY, textureFormat());
+    else glBindImageTexture(3, texture_, 0, GL_TRUE, 0, GL_WRITE_ONLY, isScalar(layout_) ? GL_R32F : GL_RGBA32F);
     scatter_.use();
     const GLuint texels = GLuint(slotDim(layout_) * slotDim(layout_) * slotDim(layout_));
     glDispatchCompute((texels + 63) / 64, GLuint(count), 1);

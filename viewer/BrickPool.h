@@ -53,8 +53,6 @@ class BrickPool {
   void bind() const;
 
  private:
-  bool halfTexels() const;
-  GLenum textureFormat() const;
   BrickLayout layout_;
   std::size_t slots_;
   SlotBlock block_;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Session 31, first call (issue 18): (a) the brick pool's texels in half precision (FCCVDB_POOL_HALF=1,
-# viewer/BrickPool.cpp: R16F / RGBA16F, every coefficient rounded; a measurement knob) against main,
+# viewer/BrickPool.cpp: R16F / RGBA16F, every coefficient rounded; a measurement knob, commit 173aa65, removed since: no difference) against main,
 # alternating, two rounds, the engine CT inferno and ML 160^3x4 FCC viridis at 1080p (the pool's bytes
 # through L1: what they cost the frame); (b) session 30's third call (measure_session30_call3.sh: the
 # final build's projected tetrahedra, which did not run then). Run as
