@@ -51,13 +51,17 @@ inline void writeCartesianFile(const std::string& path, const std::function<floa
 }
 
 // Writes values(x) at the BCC sites of [0, kDim)^3 (sparse/BccGrids.h) with worldFromIndex =
-// translate(origin) * scale(scale) for BCC index space.
+// translate(origin) * scale(scale) for BCC index space. `indexShift` (even, to keep the lattice) moves
+// the data to sites [indexShift, indexShift + kDim) with the same world positions and values: the same
+// volume far from the index origin, where float index coordinates round coarser.
 inline void writeBccFile(const std::string& path, const std::function<float(const glm::ivec3&)>& values, double scale,
-                         const openvdb::Vec3d& origin, float background = kBackground) {
+                         const openvdb::Vec3d& origin, float background = kBackground,
+                         const glm::ivec3& indexShift = glm::ivec3(0)) {
   initializeVdb();
   auto xform = openvdb::math::Transform::createLinearTransform(scale);
-  xform->postTranslate(origin);
-  const BccGrids grids = buildBccGrids(SiteBox{glm::ivec3(0), glm::ivec3(kDim - 1)}, background, values, *xform);
+  xform->postTranslate(origin - scale * openvdb::Vec3d(indexShift.x, indexShift.y, indexShift.z));
+  const BccGrids grids = buildBccGrids(SiteBox{indexShift, indexShift + glm::ivec3(kDim - 1)}, background,
+                                       [&](const glm::ivec3& ijk) { return values(ijk - indexShift); }, *xform);
   io::writeVdbAtomically(path, openvdb::GridCPtrVec{grids.primary, grids.secondary}, /*overwrite=*/true);
 }
 
