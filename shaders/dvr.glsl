@@ -24,13 +24,15 @@ layout(std430, binding = 14) readonly buffer TfLevels { vec2 tfLevels[]; };
 uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
 
 // 1: gradient shading (RenderOptions::dvrShading, `--shading on`): each sub-step's emission times a
-// headlight's two-sided Lambert term of the reconstruction's analytic gradient at its midpoint, over an
-// ambient floor: kDvrAmbient + (1 - kDvrAmbient) |cos| of the angle between the world gradient and the
-// ray, 1 where the gradient is 0 (sparse/ReferenceDvr.h's dvrShade, the same formula), plus a white
-// specular term uDvrSpecular |cos|^uDvrSpecularPower (Blinn-Phong's with the light at the eye: the half
-// vector is the ray; 0 where the gradient is 0; ReferenceDvr.h's dvrSpecular) emitted in proportion
-// to the sub-step's opacity. Absorption is unchanged, so opacity and depth are those of the unshaded
-// image. 0: the unshaded code, unchanged.
+// two-sided Lambert term of the reconstruction's analytic gradient at its midpoint, over an ambient
+// floor: kDvrAmbient + (1 - kDvrAmbient) |cos| of the angle between the world gradient and the
+// direction towards the light, 1 where the gradient is 0 (sparse/ReferenceDvr.h's dvrShadeLit, the
+// same formula), plus a white specular term uDvrSpecular |cos|^uDvrSpecularPower of the angle between
+// the gradient and Blinn-Phong's half vector (0 where the gradient is 0) emitted in proportion to the
+// sub-step's opacity. The light (RenderOptions::dvrHeadlight): a headlight, at the eye, so that the
+// direction towards it is the ray's own and the half vector the ray; or the directional light
+// uLightDir (RenderOptions::lightInCamera, as the isosurface's). Absorption is unchanged, so opacity
+// and depth are those of the unshaded image. 0: the unshaded code, unchanged.
 #ifndef FCC_DVR_SHADING
 #define FCC_DVR_SHADING 0
 #endif
@@ -75,6 +77,10 @@ uniform float uDvrSpecularPower;  // RenderOptions::dvrSpecularPower: > 0
 // The ray and the unit cell integrateCell is in (dvrBeginCell), for the gradient at a sub-step.
 vec3 gDvrO, gDvrD;
 ivec3 gDvrCell;
+uniform int uDvrHeadlight;        // RenderOptions::dvrHeadlight: 1 the light at the eye, 0 uLightDir
+// The directional light's half vector for the ray (dvrBeginRay): between uLightDir and the direction
+// towards the eye, world space, unit (0 where they are opposite: no highlight).
+vec3 gDvrHalfWorld = vec3(0.0);
 // 2^-k while a pyramid level k is marched (raycast.comp's FCC_LOD path; 1 otherwise): its index space is
 // level 0's scaled by 2^-k, so its gradient is 2^k times level 0's while its d is 2^-k times, and
 // uNormalFromIndex (level 0's) needs the gradient scaled back.
@@ -88,12 +94,30 @@ vec3 dvrGradient(ivec3 cell, vec3 xyz);
 // world unit) gives dot(world gradient, unit world direction).
 vec2 dvrShadeAt(float t) {
   vec3 g = dvrGradient(gDvrCell, gDvrO + t * gDvrD);
-  float len = length(uNormalFromIndex * g) * gDvrLevelScale;
+  vec3 n = uNormalFromIndex * g;  // the world gradient, up to the level's scale
+  float len = length(n) * gDvrLevelScale;
   if (!(len > 0.0)) return vec2(1.0, 0.0);
-  float c = min(abs(dot(g, gDvrD)) / len, 1.0);
-  return vec2(kDvrAmbient + (1.0 - kDvrAmbient) * c, uDvrSpecular > 0.0 ? uDvrSpecular * pow(c, uDvrSpecularPower) : 0.0);
+  // Headlight: both angles the ray's (dot(g, d) is the world gradient along the unit world ray, the
+  // same at every level). Directional: n's angles with the light and with the half vector.
+  float cLight, cHalf;
+  if (uDvrHeadlight != 0) {
+    cLight = cHalf = min(abs(dot(g, gDvrD)) / len, 1.0);
+  } else {
+    cLight = min(abs(dot(n, uLightDir)) * gDvrLevelScale / len, 1.0);
+    cHalf = min(abs(dot(n, gDvrHalfWorld)) * gDvrLevelScale / len, 1.0);
+  }
+  return vec2(kDvrAmbient + (1.0 - kDvrAmbient) * cLight, uDvrSpecular > 0.0 ? uDvrSpecular * pow(cHalf, uDvrSpecularPower) : 0.0);
 }
 #endif
+
+// Called once a ray, before its cells, with the ray's unit world direction: the directional light's
+// half vector (nothing without shading).
+void dvrBeginRay(vec3 dirWorld) {
+#if FCC_DVR_SHADING
+  vec3 sum = uLightDir - dirWorld;
+  gDvrHalfWorld = dot(sum, sum) > 0.0 ? normalize(sum) : vec3(0.0);
+#endif
+}
 
 // What one integrateCell hands the next in the walk of a brick (march_fcc.glsl's chain of pieces; the
 // other lattices leave it at kDvrCarryNone): the entry piece of the cell the walk finds next along the

@@ -504,6 +504,7 @@ void main() {
   hit.t = 0.0;
   hit.gradient = vec3(0.0);
 #if FCC_MODE_DVR
+  dvrBeginRay(dirWorld);
   DvrState st;
   if (uFirstPass != 0) {
     st.color = vec3(0.0);

@@ -27,6 +27,7 @@ uniform vec3 uRight;
 uniform vec3 uUp;
 uniform mat4 uIndexFromWorld;
 uniform mat3 uNormalFromIndex;  // dvr.glsl's shading: world gradient from index-space gradient
+uniform vec3 uLightDir;         // dvr.glsl's shading: world, unit, towards the directional light
 
 #include "dvr.glsl"
 
@@ -71,6 +72,7 @@ void main() {
   st.depthHalf = 1.0 / 0.0;
 #if FCC_DVR_SHADING
   gTetGradient = tet.field.xyz;
+  dvrBeginRay(dirWorld);
   dvrBeginCell(ivec3(0), o, d);
 #endif
   dvrSegment3(fcc_linear_as_bernstein3(vIn, vOut), tIn, tOut, st);

@@ -50,6 +50,7 @@ struct Accumulator {
   const DvrOptions& options;
   DvrPixel pixel;
   double transmittance = 1.0;
+  glm::dvec3 towardsEyeWorld{0.0};  // the ray's unit world direction reversed (a directional light's half vector)
 
   // Nothing further can show once the transmittance is 0; otherwise the termination opacity (>= 1: never).
   bool done() const {
@@ -90,9 +91,11 @@ void integrateSpan(const Reconstruction& recon, const SiteValue& at, const DvrMe
       // e is premultiplied by the extinction: the white highlight too.
       const glm::dvec3 g(vg.gradient);
       const DvrOptions& o = acc.options;
-      e = glm::dvec4(glm::dvec3(e) * dvrShade(g, ray.d, o.normalFromIndex) +
-                         e.a * dvrSpecular(g, ray.d, o.normalFromIndex, o.specular, o.specularPower),
-                     e.a);
+      const glm::dvec2 lit = o.headlight ? glm::dvec2(dvrShade(g, ray.d, o.normalFromIndex),
+                                                      dvrSpecular(g, ray.d, o.normalFromIndex, o.specular, o.specularPower))
+                                         : dvrShadeLit(g, o.normalFromIndex, o.lightWorld, acc.towardsEyeWorld, o.specular,
+                                                       o.specularPower);
+      e = glm::dvec4(glm::dvec3(e) * lit.x + e.a * lit.y, e.a);
     }
     acc.add(e, t, h);
   }
@@ -113,11 +116,27 @@ double dvrSpecular(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, co
   return strength * std::pow(std::min(std::abs(glm::dot(gradientIndex, dIndex)) / len, 1.0), power);
 }
 
+glm::dvec2 dvrShadeLit(const glm::dvec3& gradientIndex, const glm::dmat3& normalFromIndex, const glm::dvec3& towardsLightWorld,
+                       const glm::dvec3& towardsEyeWorld, double strength, double power) {
+  const glm::dvec3 n = normalFromIndex * gradientIndex;
+  const double len = glm::length(n);
+  if (!(len > 0.0)) return glm::dvec2(1.0, 0.0);
+  const double cLight = std::min(std::abs(glm::dot(n, towardsLightWorld)) / len, 1.0);
+  const glm::dvec3 sum = towardsLightWorld + towardsEyeWorld;
+  const double sumLength = glm::length(sum);
+  const double cHalf = sumLength > 0.0 ? std::min(std::abs(glm::dot(n, sum)) / (len * sumLength), 1.0) : 0.0;
+  return glm::dvec2(kDvrShadingAmbient + (1.0 - kDvrShadingAmbient) * cLight,
+                    strength > 0.0 ? strength * std::pow(cHalf, power) : 0.0);
+}
+
 DvrPixel integrateDvrRay(const Reconstruction& recon, const SiteValue& at, const CellBounds* bounds,
                          const DvrMedium& medium, const DvrRay& ray, const DvrOptions& options) {
   if (!std::isfinite(options.step) || !(options.step > 0.0))
     throw ValueError("the DVR reference step must be a positive number of world units, not " + std::to_string(options.step));
   Accumulator acc{options, DvrPixel{}};
+  // The world direction: ray.d is indexFromWorld's linear part (normalFromIndex's transpose) times it.
+  if (options.shading && !options.headlight)
+    acc.towardsEyeWorld = -glm::normalize(glm::inverse(glm::transpose(options.normalFromIndex)) * ray.d);
   if (!(ray.t1 > ray.t0)) return acc.pixel;
   if (!std::isfinite(ray.t0) || !std::isfinite(ray.t1))
     throw ValueError("a DVR reference ray needs a finite interval [t0, t1]");

@@ -66,10 +66,23 @@ double dvrShade(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, const
 double dvrSpecular(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, const glm::dmat3& normalFromIndex,
                    double strength, double power);
 
+// Gradient shading under a directional light (shaders/dvr.glsl without its headlight): x, the
+// emission's factor kDvrShadingAmbient + (1 - kDvrShadingAmbient) |cos| of the angle between the world
+// gradient and towardsLightWorld; y, the white specular term strength |cos|^power of its angle with the
+// half vector between towardsLightWorld and towardsEyeWorld (none where they are opposite); (1, 0)
+// where the gradient is 0. Both directions unit, world space. With both the reversed ray's direction it
+// is the headlight's dvrShade and dvrSpecular.
+glm::dvec2 dvrShadeLit(const glm::dvec3& gradientIndex, const glm::dmat3& normalFromIndex, const glm::dvec3& towardsLightWorld,
+                       const glm::dvec3& towardsEyeWorld, double strength, double power);
+
 struct DvrOptions {
   double step = 1e-3;                 // world units: the longest sub-step
   bool shading = false;               // gradient shading (dvrShade), with this normalFromIndex
   double specular = 0.0, specularPower = 20.0;  // with shading: dvrSpecular's strength and power
+  // With shading, the light: the headlight (dvrShade, dvrSpecular), or else the directional light
+  // towards lightWorld (unit, world space; dvrShadeLit).
+  bool headlight = true;
+  glm::dvec3 lightWorld{0.0, 0.0, 1.0};
   glm::dmat3 normalFromIndex{1.0};
   double terminationOpacity = 0.995;  // stop once the accumulated opacity reaches it (>= 1: only when the
                                       // transmittance is exactly 0)

@@ -91,6 +91,8 @@ void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& opti
   options.dvrShading = flags.shading == "on";
   if (flags.specular > 0.0 && !options.dvrShading)
     throw ValueError("--specular lights the gradient shading: add --shading on");
+  if (!flags.light.empty() && !options.dvrShading)
+    throw ValueError("--light lights the gradient shading in --mode dvr: add --shading on");
   options.dvrSpecular = float(flags.specular);
   options.dvrSpecularPower = float(flags.specularPower);
   options.transfer = dvrTransfer(flags).table();
@@ -137,6 +139,8 @@ std::unique_ptr<render::ProjectedTetrahedra> RenderData::projectedTetrahedra(con
   o.shading = options.dvrShading;
   o.specular = options.dvrSpecular;
   o.specularPower = options.dvrSpecularPower;
+  o.headlight = options.dvrHeadlight;
+  o.lightInCamera = options.lightInCamera;
   o.timeGpu = options.timeGpu;
   return std::make_unique<render::ProjectedTetrahedra>(*source_, o);
 }

@@ -69,15 +69,20 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
   app.add_option("--stop-opacity", flags.terminationOpacity, "DVR: a ray stops once this opaque (and reads no brick behind)")
       ->capture_default_str()->check(CLI::Range(0.5, 1.0));
   app.add_option("--shading", flags.shading,
-                 "DVR: on shades the emission by the reconstruction's gradient (a headlight's Lambert term over an "
-                 "ambient of 0.3; opacity unchanged); off: unshaded emission")
+                 "DVR: on shades the emission by the reconstruction's gradient (the light's, --light, Lambert term over "
+                 "an ambient of 0.3; opacity unchanged); off: unshaded emission")
       ->capture_default_str()->check(CLI::IsMember({"on", "off"}));
   app.add_option("--specular", flags.specular,
                  "DVR with --shading on: a white highlight of this strength, K |cos|^P of the angle between the "
-                 "gradient and the ray (Blinn-Phong, light at the eye); 0: none")
+                 "gradient and Blinn-Phong's half vector (the ray itself under the headlight); 0: none")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--specular-power", flags.specularPower, "DVR: the highlight's exponent P (larger: smaller highlights)")
       ->capture_default_str()->check(CLI::Range(1e-3, 1000.0));
+  app.add_option("--light", flags.light,
+                 "The light, fixed to the camera: headlight (at the eye; DVR's default) or AZIMUTH,ELEVATION in "
+                 "degrees, a directional light that far right of the view axis and above it (the isosurface's "
+                 "default is 17,30); DVR: lights --shading on")
+      ->type_name("headlight|AZ,EL");
   app.add_option("--dvr-method", flags.dvrMethod,
                  "DVR: ray (the raycaster's integration through the reconstruction), or tetrahedra: paper 002's "
                  "projected tetrahedra, in core, for a BCC dataset with the barycentric reconstruction (render and "
@@ -265,6 +270,21 @@ render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags) {
       throw ValueError("--clip '" + flags.clip + "': expected six finite numbers X0,Y0,Z0,X1,Y1,Z1 (the box's corners, world space)");
     options.clipLo = glm::min(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]));
     options.clipHi = glm::max(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]));
+  }
+  if (!flags.light.empty()) {
+    double azimuth = 0.0, elevation = 0.0;
+    char rest = 0;
+    if (flags.light == "headlight") {
+      options.lightInCamera = glm::vec3(0.0f, 0.0f, 1.0f);
+      options.dvrHeadlight = true;
+    } else if (std::sscanf(flags.light.c_str(), "%lf,%lf%c", &azimuth, &elevation, &rest) == 2 &&
+               azimuth >= -180.0 && azimuth <= 180.0 && elevation >= -90.0 && elevation <= 90.0) {
+      options.lightInCamera = render::lightInCameraFromAngles(float(azimuth), float(elevation));
+      options.dvrHeadlight = false;
+    } else {
+      throw ValueError("--light '" + flags.light + "': valid are headlight, or AZIMUTH,ELEVATION in degrees (azimuth "
+                       "-180 to 180 right of the view axis, elevation -90 to 90 above it), e.g. 30,45");
+    }
   }
   options.lookahead = flags.lookahead;
   if (flags.layout != "auto") {

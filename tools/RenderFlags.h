@@ -33,6 +33,7 @@ struct RenderFlags {
   double terminationOpacity = 0.995;             // DVR: a ray stops once this opaque
   std::string shading = "off";                   // DVR: on | off, gradient shading (docs/DVR.md)
   double specular = 0.0, specularPower = 20.0;    // DVR with shading: the specular term
+  std::string light;                             // "headlight" or "AZIMUTH,ELEVATION" (degrees); empty: the mode's default
   std::string dvrMethod = "ray";                 // DVR: ray | tetrahedra (BCC barycentric: viewer/ProjectedTetrahedra.h)
   std::string clip;                              // "X0,Y0,Z0,X1,Y1,Z1": the clipping box, world space
   // Several isosurfaces (tools/SurfaceFlags.h): --iso holds 1 to 4 values; a colour and an opacity each.

@@ -45,4 +45,15 @@ Camera frameBox(const glm::dvec3& lo, const glm::dvec3& hi, double fovYDegrees, 
   return c;
 }
 
+glm::vec3 lightTowardsWorld(const CameraFrame& frame, const glm::vec3& l) {
+  const glm::vec3 sum = l.x * glm::vec3(glm::normalize(frame.right)) + l.y * glm::vec3(glm::normalize(frame.up)) -
+                        l.z * glm::vec3(frame.forward);
+  return glm::length(sum) > 0.0f ? glm::normalize(sum) : -glm::vec3(frame.forward);
+}
+
+glm::vec3 lightInCameraFromAngles(float azimuthDegrees, float elevationDegrees) {
+  const float a = glm::radians(azimuthDegrees), e = glm::radians(elevationDegrees);
+  return glm::vec3(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
+}
+
 }  // namespace fcc::render

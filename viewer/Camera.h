@@ -26,6 +26,14 @@ CameraFrame cameraFrame(const Camera& camera, double aspect);
 // The unit world direction of the ray through the centre of pixel (px, py) of a width x height image.
 glm::dvec3 pixelRay(const CameraFrame& frame, int px, int py, int width, int height);
 
+// A light fixed to the camera (RenderOptions::lightInCamera): `lightInCamera` is the direction towards
+// it in camera space (x right, y up, z towards the viewer; any length but 0). Its unit world direction
+// in `frame` (-forward for a zero vector: the light behind the eye).
+glm::vec3 lightTowardsWorld(const CameraFrame& frame, const glm::vec3& lightInCamera);
+// The unit direction towards a light at `azimuthDegrees` from the view axis towards the right and
+// `elevationDegrees` above it, in camera space: (0, 0) is (0, 0, 1), from behind the eye.
+glm::vec3 lightInCameraFromAngles(float azimuthDegrees, float elevationDegrees);
+
 // A camera that frames the world box [lo, hi] (its bounding sphere fits the field of view), looking
 // at its centre from an oblique direction, y up.
 Camera frameBox(const glm::dvec3& lo, const glm::dvec3& hi, double fovYDegrees, double aspect);

@@ -252,6 +252,13 @@ void Raycaster::setDvrSpecular(float strength, float power) {
   ++settings_;
 }
 
+void Raycaster::setDvrHeadlight(bool on) {
+  if (options_.dvrHeadlight == on) return;
+  options_.dvrHeadlight = on;
+  if (dvrTable_) setTransferUniforms();  // uDvrHeadlight (inactive in unshaded programs)
+  ++settings_;
+}
+
 void Raycaster::setTerminationOpacity(float opacity) {
   if (!(opacity > 0.0f && opacity <= 1.0f))
     throw ValueError("stop opacity " + std::to_string(opacity) + ": valid are (0, 1]");
@@ -285,6 +292,7 @@ void Raycaster::setTransferUniforms() {
     // The shaded programs' (location -1, ignored, in the others).
     glProgramUniform1f(program->id(), glGetUniformLocation(program->id(), "uDvrSpecular"), options_.dvrSpecular);
     glProgramUniform1f(program->id(), glGetUniformLocation(program->id(), "uDvrSpecularPower"), options_.dvrSpecularPower);
+    glProgramUniform1i(program->id(), glGetUniformLocation(program->id(), "uDvrHeadlight"), options_.dvrHeadlight ? 1 : 0);
   }
 }
 
@@ -606,10 +614,7 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   const glm::dmat4 indexFromWorld = glm::inverse(source_.worldFromIndex());
   const glm::mat4 indexFromWorldF(indexFromWorld);
   const glm::mat3 normalFromIndex = glm::transpose(glm::mat3(indexFromWorldF));
-  const glm::vec3 l = options_.lightInCamera;
-  const glm::vec3 lightSum = l.x * glm::vec3(glm::normalize(frame.right)) + l.y * glm::vec3(glm::normalize(frame.up)) -
-                             l.z * glm::vec3(frame.forward);
-  const glm::vec3 lightDir = glm::length(lightSum) > 0.0f ? glm::normalize(lightSum) : -glm::vec3(frame.forward);
+  const glm::vec3 lightDir = lightTowardsWorld(frame, options_.lightInCamera);
   glProgramUniform2i(p, u.resolution, width, height);
   const glm::vec3 eye(frame.eye), forward(frame.forward), right(frame.right), up(frame.up);
   glProgramUniform3fv(p, u.eye, 1, &eye.x);

@@ -66,6 +66,18 @@ bool colourEdit(const char* label, glm::vec3& srgb, ImRectF* swatch = nullptr) {
 
 }  // namespace
 
+void ViewerSession::drawLightSliders() {
+  // Light direction in camera space as azimuth (from the view axis towards the right) and elevation;
+  // written back only when moved, so the default light stays bit-exact.
+  const glm::vec3 l = glm::normalize(settings_.lightInCamera);
+  float azimuth = glm::degrees(std::atan2(l.x, l.z)), elevation = glm::degrees(std::asin(std::clamp(l.y, -1.0f, 1.0f)));
+  bool lightMoved = ImGui::SliderFloat("light azimuth", &azimuth, -180.0f, 180.0f, "%.0f deg");
+  layout_.lightAzimuthSlider = lastItemRect();
+  lightMoved |= ImGui::SliderFloat("light elevation", &elevation, -89.0f, 89.0f, "%.0f deg");
+  layout_.lightElevationSlider = lastItemRect();
+  if (lightMoved) settings_.lightInCamera = lightInCameraFromAngles(azimuth, elevation);
+}
+
 void ViewerSession::drawPanel(int windowHeight) {
   if (!settings_.showPanel) return;
   ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
@@ -82,7 +94,8 @@ void ViewerSession::drawPanel(int windowHeight) {
 
   layout_.isoLabel = layout_.isoSlider = layout_.transferCombo = layout_.densitySlider = {};
   layout_.unitDistanceSlider = layout_.stopOpacitySlider = layout_.shadingCheckbox = {};
-  layout_.specularSlider = layout_.specularPowerSlider = {};
+  layout_.specularSlider = layout_.specularPowerSlider = layout_.headlightCheckbox = {};
+  layout_.lightAzimuthSlider = layout_.lightElevationSlider = {};
   layout_.colorMapCombo = layout_.transferPathField = layout_.transferLoad = layout_.transferSave = {};
   layout_.transferUndo = layout_.transferRedo = {};
   layout_.opacityPoints.clear();
@@ -95,16 +108,7 @@ void ViewerSession::drawPanel(int windowHeight) {
     drawSurfacesSection();  // viewer/PanelSurfaces.cpp: the surfaces, their values, colours and opacities
   }
   if (!dvr() && ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) {
-    // Light direction in camera space as azimuth (from the view axis towards the right) and
-    // elevation; written back only when moved, so the default light stays bit-exact.
-    const glm::vec3 l = glm::normalize(settings_.lightInCamera);
-    float azimuth = glm::degrees(std::atan2(l.x, l.z)), elevation = glm::degrees(std::asin(std::clamp(l.y, -1.0f, 1.0f)));
-    bool lightMoved = ImGui::SliderFloat("light azimuth", &azimuth, -180.0f, 180.0f, "%.0f deg");
-    lightMoved |= ImGui::SliderFloat("light elevation", &elevation, -89.0f, 89.0f, "%.0f deg");
-    if (lightMoved) {
-      const float a = glm::radians(azimuth), e = glm::radians(elevation);
-      settings_.lightInCamera = glm::vec3(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
-    }
+    drawLightSliders();
     // The renderer's colours are linear; the swatches and fields show them as drawn on screen (sRGB),
     // and an edit is converted back (only then: the defaults stay bit-exact). The surfaces' colours
     // are in their section.
@@ -131,6 +135,10 @@ void ViewerSession::drawPanel(int windowHeight) {
         ImGui::SliderFloat("specular power", &settings_.dvrSpecularPower, 1.0f, 200.0f, "%.3g",
                            ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
         layout_.specularPowerSlider = lastItemRect();
+        // The light: the headlight (along each ray), or one fixed to the camera (the isosurface's).
+        ImGui::Checkbox("headlight", &settings_.dvrHeadlight);
+        layout_.headlightCheckbox = lastItemRect();
+        if (!settings_.dvrHeadlight) drawLightSliders();
       }
     }
     row("mode", dvr() ? "direct volume rendering" : "isosurface");

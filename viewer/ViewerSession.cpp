@@ -80,6 +80,7 @@ void ViewerSession::init(const RenderOptions& options) {
   settings_.dvrShading = options.dvrShading;
   settings_.dvrSpecular = options.dvrSpecular;
   settings_.dvrSpecularPower = options.dvrSpecularPower;
+  settings_.dvrHeadlight = options.dvrHeadlight;
   if (dvr_) {
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
@@ -303,6 +304,7 @@ bool ViewerSession::applySettings() {
         notify(e.what());
       }
     }
+    if (settings_.dvrHeadlight != o.dvrHeadlight) raycaster_.setDvrHeadlight(settings_.dvrHeadlight);
     if (settings_.stopOpacity != o.terminationOpacity) {
       try {
         raycaster_.setTerminationOpacity(settings_.stopOpacity);
@@ -324,7 +326,8 @@ bool ViewerSession::applySettings() {
          now.finiteDifferenceNormals != o.finiteDifferenceNormals || now.surfaceColor != o.surfaceColor ||
          now.lightInCamera != o.lightInCamera || now.clipLo != o.clipLo || now.clipHi != o.clipHi ||
          now.dvrShading != o.dvrShading || now.terminationOpacity != o.terminationOpacity ||
-         now.dvrSpecular != o.dvrSpecular || now.dvrSpecularPower != o.dvrSpecularPower;
+         now.dvrSpecular != o.dvrSpecular || now.dvrSpecularPower != o.dvrSpecularPower ||
+         now.dvrHeadlight != o.dvrHeadlight;
 }
 
 std::vector<Isosurface> ViewerSession::surfacesOfSettings() const {

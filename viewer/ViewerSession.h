@@ -55,6 +55,8 @@ struct ViewerSettings {
   // The shading's specular term (RenderOptions::dvrSpecular, dvrSpecularPower): uniforms, no rebuild.
   float dvrSpecular = 0.0f;
   float dvrSpecularPower = 20.0f;
+  // The shading's light (RenderOptions::dvrHeadlight): the headlight, or lightInCamera (a uniform).
+  bool dvrHeadlight = true;
   // The clipping box, world space (RenderOptions::clipLo/clipHi); the panel's sliders span the data.
   glm::dvec3 clipLo{-1e30}, clipHi{1e30};
   // The reconstruction the source is rendered with (its name; the panel's combo for a Cartesian grid).
@@ -76,7 +78,8 @@ struct PanelLayout {
   ImRectF isoLabel, isoSlider, histogram, backgroundSwatch;
   ImRectF transferCombo, densitySlider;  // DVR mode's (empty in isosurface mode, as the iso ones in DVR)
   ImRectF unitDistanceSlider, stopOpacitySlider, shadingCheckbox;  // DVR mode's too
-  ImRectF specularSlider, specularPowerSlider;  // DVR with gradient shading on
+  ImRectF specularSlider, specularPowerSlider, headlightCheckbox;  // DVR with gradient shading on
+  ImRectF lightAzimuthSlider, lightElevationSlider;  // the isosurface's light, or DVR's without headlight
   // DVR's editor (viewer/PanelTransfer.cpp): the colour-map combo, the file field and its buttons, and
   // a small square around each opacity point drawn over the histogram (the editor's order).
   ImRectF colorMapCombo, transferPathField, transferLoad, transferSave, transferUndo, transferRedo;
@@ -267,6 +270,7 @@ class ViewerSession {
   void useTransfer(DvrTransfer next);  // applyTransfer's: `next` in use (its table on the GPU), or a throw
   void drawTransferSection();  // viewer/ViewerPanel.cpp
   void drawReconstructionChoice();  // viewer/ViewerPanel.cpp
+  void drawLightSliders();  // viewer/ViewerPanel.cpp: lightInCamera as azimuth and elevation
   void drawSurfacesSection();  // viewer/PanelSurfaces.cpp
   std::vector<Isosurface> surfacesOfSettings() const;  // settings_'s surfaces, the first from iso/surfaceColor
   float& selectedIso();        // the isovalue the keys and the histogram move

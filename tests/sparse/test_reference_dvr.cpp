@@ -320,6 +320,36 @@ TEST(ReferenceDvr, SpecularIsBlinnPhongWithTheLightAtTheEye) {
               0.5, 1e-12);
 }
 
+// A directional light: the Lambert term by the angle with the light (two-sided: ambient across it, 1
+// along it either way), the highlight by the angle with the half vector between the light and the eye
+// (none where they are opposite), (1, 0) where the gradient is 0; the headlight's terms where light and
+// eye are the reversed ray; in world space (a stretched index space changes the angles as it does the
+// headlight's).
+TEST(ReferenceDvr, ADirectionalLightShadesByItsAngleAndTheHalfVector) {
+  const glm::dmat3 identity(1.0);
+  const glm::dvec3 x(1.0, 0.0, 0.0), y(0.0, 1.0, 0.0), z(0.0, 0.0, 1.0);
+  const double strength = 0.7, power = 10.0;
+  EXPECT_EQ(dvrShadeLit(glm::dvec3(0.0), identity, x, z, strength, power), glm::dvec2(1.0, 0.0));
+  EXPECT_DOUBLE_EQ(dvrShadeLit(glm::dvec3(0.0, 0.0, 2.0), identity, x, z, strength, power).x, kDvrShadingAmbient);
+  EXPECT_DOUBLE_EQ(dvrShadeLit(glm::dvec3(-3.0, 0.0, 0.0), identity, x, z, strength, power).x, 1.0);
+  const glm::dvec3 half = glm::normalize(x + z);
+  EXPECT_NEAR(dvrShadeLit(half * 5.0, identity, x, z, strength, power).y, strength, 1e-12) << "along the half vector";
+  EXPECT_NEAR(dvrShadeLit(y, identity, x, z, strength, power).y, 0.0, 1e-15) << "across it";
+  EXPECT_EQ(dvrShadeLit(x, identity, x, -x, strength, power).y, 0.0) << "light and eye opposite";
+  EXPECT_EQ(dvrShadeLit(half, identity, x, z, 0.0, power).y, 0.0) << "strength 0: none";
+  const glm::dvec3 d60(std::sin(M_PI / 3.0), 0.0, std::cos(M_PI / 3.0));
+  const glm::dvec2 at60 = dvrShadeLit(z, identity, d60, d60, strength, 3.0);
+  EXPECT_NEAR(at60.x, kDvrShadingAmbient + (1.0 - kDvrShadingAmbient) * 0.5, 1e-12);
+  EXPECT_NEAR(at60.y, strength * 0.125, 1e-12);
+  // The headlight's terms where the light and the eye are the reversed ray, in a stretched index space.
+  const glm::dmat3 indexFromWorld(glm::dvec3(4.0, 0.0, 0.0), glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0, 0.3, 2.0));
+  const glm::dmat3 normalFromIndex = glm::transpose(indexFromWorld);
+  const glm::dvec3 dWorld = glm::normalize(glm::dvec3(1.0, -0.4, 1.0)), gIndex(0.25, 0.5, -0.1);
+  const glm::dvec2 reversed = dvrShadeLit(gIndex, normalFromIndex, -dWorld, -dWorld, strength, power);
+  EXPECT_NEAR(reversed.x, dvrShade(gIndex, indexFromWorld * dWorld, normalFromIndex), 1e-12);
+  EXPECT_NEAR(reversed.y, dvrSpecular(gIndex, indexFromWorld * dWorld, normalFromIndex, strength, power), 1e-12);
+}
+
 // Through the sphere with the highlight: opacity and depth as without it, each colour channel up by
 // the same amount (white light), by at most the strength times the opacity, and visibly somewhere.
 TEST(ReferenceDvr, SpecularAddsWhiteLightOnly) {

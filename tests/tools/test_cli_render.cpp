@@ -126,6 +126,29 @@ TEST(CliRender, DvrShadingAndNamedParaViewMaps) {
   const auto tooStrong = runFccvdb("render " + vdb + " " + unlit + common + " --shading on --specular 2");
   EXPECT_NE(tooStrong.status, 0);
   EXPECT_THAT(tooStrong.err, HasSubstr("--specular"));
+  // --light: headlight is the default's image, byte for byte; AZIMUTH,ELEVATION another; without
+  // --shading on, or malformed, one line and no output. The isosurface takes it too.
+  const std::string headlight = dir / "headlight.png", side = dir / "side.png";
+  const std::string litFlags = common + " --shading on --specular 0.8 --specular-power 4";
+  ASSERT_EQ(runFccvdb("render " + vdb + " " + headlight + litFlags + " --light headlight").status, 0);
+  EXPECT_EQ(readText(headlight), readText(lit)) << "--light headlight is the default";
+  const auto sideLit = runFccvdb("render " + vdb + " " + side + litFlags + " --light 70,-20");
+  ASSERT_EQ(sideLit.status, 0) << sideLit.err;
+  EXPECT_NE(readText(side), readText(lit)) << "--light must show";
+  for (const std::string& bad : {" --light 200,0", " --light 30", " --light 30,40,50", " --light up"}) {
+    const auto r = runFccvdb("render " + vdb + " " + unlit + litFlags + bad);
+    EXPECT_NE(r.status, 0) << bad;
+    EXPECT_THAT(r.err, HasSubstr("valid are headlight, or AZIMUTH,ELEVATION in degrees")) << bad;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  const auto lightUnshaded = runFccvdb("render " + vdb + " " + unlit + common + " --light 30,45");
+  EXPECT_NE(lightUnshaded.status, 0);
+  EXPECT_THAT(lightUnshaded.err, HasSubstr("--light lights the gradient shading in --mode dvr: add --shading on"));
+  EXPECT_FALSE(std::filesystem::exists(unlit));
+  const std::string isoDefault = dir / "iso.png", isoSide = dir / "iso_side.png";
+  ASSERT_EQ(runFccvdb("render " + vdb + " " + isoDefault + " --res 40x30 --quiet").status, 0);
+  ASSERT_EQ(runFccvdb("render " + vdb + " " + isoSide + " --res 40x30 --quiet --light -60,10").status, 0);
+  EXPECT_NE(readText(isoDefault), readText(isoSide)) << "the isosurface's light must move";
 
   const std::string maps = dir / "maps.json";
   std::ofstream(maps) << R"([{"Name": "First", "RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1]},

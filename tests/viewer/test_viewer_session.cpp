@@ -791,6 +791,34 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   h.session->settings().dvrSpecular = 0.0f;
   ASSERT_TRUE(h.settle());
   EXPECT_EQ(differingChannels(shaded, h.pixels(), panel), 0) << "no highlight: the shaded image";
+  // The headlight checkbox, clicked: a light fixed to the camera, whose sliders then show and move it;
+  // ticked again, the headlight's image.
+  EXPECT_TRUE(h.session->panelLayout().lightAzimuthSlider.empty()) << "no light sliders under the headlight";
+  ASSERT_FALSE(layout.headlightCheckbox.empty()) << "no headlight checkbox with shading on";
+  // On its box (the rect's left square), scrolled into the small window's view first.
+  const auto clickHeadlight = [&] {
+    for (int i = 0; i < 30 && layout.headlightCheckbox.y1 > float(h.height); ++i)
+      h.frame([](ImGuiIO& io) {
+        io.MousePos = ImVec2(100.0f, 100.0f);
+        io.MouseWheel = -2.0f;
+      });
+    const render::ImRectF r = layout.headlightCheckbox;
+    ASSERT_LE(r.y1, float(h.height)) << "the headlight checkbox cannot be scrolled into view";
+    h.click(r.x0 + 0.5f * (r.y1 - r.y0), r.centreY());
+  };
+  clickHeadlight();
+  ASSERT_TRUE(h.settle());
+  EXPECT_FALSE(h.session->renderOptions().dvrHeadlight) << "the click must turn the headlight off";
+  EXPECT_FALSE(h.session->panelLayout().lightAzimuthSlider.empty()) << "the light's sliders must show";
+  const std::vector<unsigned char> sideLit = h.pixels();
+  EXPECT_GT(differingChannels(shaded, sideLit, panel), 0) << "another light must change the image";
+  h.session->settings().lightInCamera = render::lightInCameraFromAngles(-70.0f, -30.0f);
+  ASSERT_TRUE(h.settle());
+  EXPECT_GT(differingChannels(sideLit, h.pixels(), panel), 0) << "the light moved must change the image";
+  clickHeadlight();
+  ASSERT_TRUE(h.settle());
+  EXPECT_TRUE(h.session->renderOptions().dvrHeadlight);
+  EXPECT_EQ(differingChannels(shaded, h.pixels(), panel), 0) << "the headlight again: its image";
   h.session->settings().dvrShading = false;
   ASSERT_TRUE(h.settle());
   EXPECT_EQ(differingChannels(first, h.pixels(), panel), 0) << "unshaded again: the first image";
