@@ -116,7 +116,7 @@ void ViewerSession::drawPanel(int windowHeight) {
     if (colourEdit("background", background, &layout_.backgroundSwatch))
       settings_.background = linearFromSrgb(background);
   } else if (dvr() && ImGui::CollapsingHeader("Background", ImGuiTreeNodeFlags_DefaultOpen)) {
-    // DVR has no lighting (yet): only the colour the volume is composited over.
+    // The colour the volume is composited over (DVR's light is under Renderer, with its shading).
     glm::vec3 background = srgbFromLinear(settings_.background);
     if (colourEdit("background", background, &layout_.backgroundSwatch))
       settings_.background = linearFromSrgb(background);
