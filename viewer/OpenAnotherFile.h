@@ -22,7 +22,9 @@ namespace fcc::render {
 // the image ("cannot open it: ...", "cannot switch to NAME: ..."). Else the old session is destroyed,
 // then the old dataset (`data` is assigned: the session reads it, so never the other way round), and
 // `makeSession(data)` builds the new one, which for the same data takes on the old one's view (camera,
-// settings, transfer function: ViewerSession::restoreView); `opened(request)` is called after.
+// settings, transfer function: ViewerSession::restoreView) and for another file the transfer-function
+// editor's undo history (ViewerSession::continueTransferHistory: its own function, and ctrl + Z brings
+// back the last file's); `opened(request)` is called after.
 template <class Dataset, class Run, class Open, class Reopen, class MakeSession, class Opened>
 void runOpeningFiles(Dataset& data, std::unique_ptr<ViewerSession>& session, Run&& run, Open&& open, Reopen&& reopen,
                      MakeSession&& makeSession, Opened&& opened) {
@@ -38,11 +40,14 @@ void runOpeningFiles(Dataset& data, std::unique_ptr<ViewerSession>& session, Run
       continue;
     }
     std::optional<SessionView> kept;
+    std::optional<TransferFunctionEditor> history;
     if (sameData) kept = session->view();
+    else if (session->transferEditor()) history = *session->transferEditor();
     session.reset();  // before the data it reads
     data = std::move(*candidate);
     session = makeSession(data);
     if (kept) session->restoreView(*kept);
+    if (history) session->continueTransferHistory(*history);
     opened(*next);
   }
 }

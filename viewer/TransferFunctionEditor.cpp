@@ -70,6 +70,19 @@ void TransferFunctionEditor::restore(State s) {
   base_ = std::move(s.base);
   gesture_ = Gesture{};
   ++revision_;
+  // A step from another file's history may lie beyond this axis (continueHistory).
+  for (const OpacityPoint& p : points_) lo_ = std::min(lo_, p.x), hi_ = std::max(hi_, p.x);
+  for (const ColorPoint& c : colors_) lo_ = std::min(lo_, c.x), hi_ = std::max(hi_, c.x);
+}
+
+void TransferFunctionEditor::continueHistory(const TransferFunctionEditor& previous) {
+  std::vector<State> steps = previous.undo_;
+  steps.push_back(previous.state());
+  steps.insert(steps.end(), undo_.begin(), undo_.end());
+  if (steps.size() > kUndoSteps) steps.erase(steps.begin(), steps.end() - std::ptrdiff_t(kUndoSteps));
+  undo_ = std::move(steps);
+  redo_.clear();
+  gesture_ = Gesture{};
 }
 
 bool TransferFunctionEditor::undo() {

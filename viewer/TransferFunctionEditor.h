@@ -87,6 +87,11 @@ class TransferFunctionEditor {
   bool undo();
   bool redo();
   bool canUndo() const { return !undo_.empty(); }
+  // Another file's editor's history before this one's, with that editor's function as one more undo
+  // step: an undo brings back the function the other file had (in data values; the axis widens to its
+  // points, as it does to every function restored). This editor's function, axis and starting point
+  // stay; what could be redone is forgotten.
+  void continueHistory(const TransferFunctionEditor& previous);
   bool canRedo() const { return !redo_.empty(); }
 
   // The function edited: colours and opacity points, in data values (not normalized), named `name` or

@@ -104,6 +104,10 @@ SessionView ViewerSession::view() const {
   return SessionView{camera_, initialCamera_, settings_, dvr_, editor_, appliedRevision_, loadedFunctions_, pathRecorder_, outputDirectory_};
 }
 
+void ViewerSession::continueTransferHistory(const TransferFunctionEditor& previous) {
+  if (editor_) editor_->continueHistory(previous);
+}
+
 void ViewerSession::restoreView(const SessionView& view) {
   camera_ = view.camera;
   initialCamera_ = view.initialCamera;

@@ -235,6 +235,10 @@ class ViewerSession {
   // replaces the one this session was made with.
   SessionView view() const;
   void restoreView(const SessionView& view);
+  // Taking on the undo history of another file's transfer-function editor (transferEditor): this
+  // session's function stays in use, and ctrl + Z brings back the other file's
+  // (TransferFunctionEditor::continueHistory). Nothing outside DVR.
+  void continueTransferHistory(const TransferFunctionEditor& previous);
 
   const Camera& camera() const { return camera_; }
   void setCamera(const Camera& camera) { camera_ = camera; }

@@ -1176,6 +1176,80 @@ TEST_F(ViewerSession, DvrEditorSavesLoadsAndRenderReadsTheSameFunction) {
   EXPECT_EQ(tableInUse(h), edited) << "the edited function before the preset, bit for bit";
 }
 
+// DVR's editor history outlives another file opened (runOpeningFiles): the second file starts from
+// its own function (--tf fitted to it), and ctrl + Z brings back the first file's edited function, in
+// data values, and then the first file's own start; ctrl + shift + Z the second file's again. The
+// editor's axis widens to the restored points.
+TEST_F(ViewerSession, DvrEditorHistoryOutlivesAnotherFileOpened) {
+  TempDir dir;
+  const std::string first = test::writeSmallBlobs(dir), second = dir / "other-blobs.vdb";
+  ASSERT_EQ(test::runFccvdb("synth blobs " + second + " --dims 40,40,40 --seed 7 --quiet").status, 0);
+  struct DvrData {
+    std::shared_ptr<io::BrickStore> store;
+    std::shared_ptr<render::FccBrickSource> source;
+  };
+  const auto open = [](const std::string& path) {
+    DvrData d{std::make_shared<io::BrickStore>(path), nullptr};
+    d.source = std::make_shared<render::FccBrickSource>(*d.store, std::size_t(64) << 20);
+    return d;
+  };
+  const auto fitted = [](const DvrData& d) { return render::fitTransferFunction(transferFunctionPreset("grayscale"), *d.source); };
+  const auto makeSession = [&](const DvrData& d) {
+    render::RenderOptions options;
+    options.gpuCacheBytes = SessionHarness::kLargePoolBytes;
+    render::DvrTransfer dvr{"grayscale", fitted(d), OpticalScale{render::defaultUnitDistance(*d.source), 1.0}};
+    return std::make_unique<render::ViewerSession>(*d.source, &*d.store, options, test::smallBlobsCamera(),
+                                                   render::summarizeDataset(*d.store), std::move(dvr));
+  };
+  SessionHarness h(SessionHarness::NoSession{});
+  DvrData data = open(first);
+  h.session = makeSession(data);
+  TransferFunction firstEdited = fitted(data);
+  int runs = 0;
+  const auto run = [&](render::ViewerSession& s) -> std::optional<render::OpenRequest> {
+    const render::TransferFunctionEditor* editor = s.transferEditor();
+    EXPECT_NE(editor, nullptr);
+    if (!editor) return std::nullopt;
+    switch (runs++) {
+      case 0: {  // the first file: a point added on its histogram, then the second file opened
+        EXPECT_TRUE(h.settle());
+        h.frame();
+        const render::ImRectF plot = s.panelLayout().histogram;
+        EXPECT_FALSE(plot.empty());
+        h.click(0.6f * plot.x0 + 0.4f * plot.x1, 0.3f * plot.y0 + 0.7f * plot.y1);
+        EXPECT_EQ(editor->points().size(), 3u) << "the click added no point";
+        EXPECT_TRUE(h.settle());
+        firstEdited = s.transfer()->function;
+        s.requestOpen(second);
+        return s.takeOpenRequest();
+      }
+      default: {  // the second file: its own function; undo, undo, redo
+        EXPECT_EQ(s.summary().file, second);
+        const TransferFunction own = fitted(data);
+        EXPECT_EQ(s.transfer()->function.opacities(), own.opacities()) << "the second file starts from its own function";
+        EXPECT_TRUE(editor->canUndo()) << "the first file's history is gone";
+        EXPECT_TRUE(h.settle());
+        h.press(GLFW_KEY_Z, /*shift=*/false, /*ctrl=*/true);
+        EXPECT_EQ(s.transfer()->function.opacities(), firstEdited.opacities()) << "ctrl + Z: the first file's edited function";
+        EXPECT_EQ(s.transfer()->function.colors(), firstEdited.colors());
+        for (const OpacityPoint& p : firstEdited.opacities()) {
+          EXPECT_LE(editor->lo(), p.x);
+          EXPECT_GE(editor->hi(), p.x);
+        }
+        h.press(GLFW_KEY_Z, false, true);
+        EXPECT_EQ(editor->points().size(), 2u) << "ctrl + Z again: the first file's start";
+        h.press(GLFW_KEY_Z, true, true);
+        h.press(GLFW_KEY_Z, true, true);
+        EXPECT_EQ(s.transfer()->function.opacities(), own.opacities()) << "redone: the second file's function";
+        EXPECT_FALSE(editor->canRedo());
+        return std::nullopt;
+      }
+    }
+  };
+  const auto noReconstructions = [](const std::string&) -> DvrData { throw ValueError("FCC data has one reconstruction"); };
+  render::runOpeningFiles(data, h.session, run, open, noReconstructions, makeSession, [](const render::OpenRequest&) {});
+  EXPECT_EQ(runs, 2);
+}
 // `view --mode dvr` of a Cartesian grid (`--reconstruction trilinear`): choosing tricubic in the panel's
 // combo goes through the same path as in isosurface mode (takeOpenRequest, view's loop over the same
 // store, the new session taking on the old one's view), and the session stays a DVR session: the mode,
