@@ -91,6 +91,7 @@ RenderFlags flagsForAnotherFile(const RenderFlags& first, const std::string& pat
   f.shading = first.shading;
   f.specular = first.specular;
   f.specularPower = first.specularPower;
+  f.light = first.light;
   return f;
 }
 
