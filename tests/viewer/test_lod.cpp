@@ -390,6 +390,32 @@ TEST_F(Lod, DvrDrawsEachBrickFromItsLevel) {
   shadedDifference /= double(shadedFullImage.rgba.size());
   std::printf("shaded, bias 1: mean difference %.4g\n", shadedDifference);
   EXPECT_LT(shadedDifference, 0.01) << "the coarser levels' shading differs from level 0's";
+  // The same under a directional light with a highlight (--light), whose angles take the level's
+  // gradient scaled back too.
+  render::RenderOptions lit = dvrOptions();
+  lit.dvrShading = true;
+  lit.dvrHeadlight = false;
+  lit.lightInCamera = render::lightInCameraFromAngles(50.0f, 30.0f);
+  lit.dvrSpecular = 0.5f;
+  render::Raycaster litFull(opened.level0, lit);
+  litFull.render(nearCamera(), kW, kH);
+  const render::FrameImages litFullImage = litFull.readImages();
+  lit.coarserLevels = opened.levels.sources();
+  lit.lodBias = 1.0f;
+  render::Raycaster litLevels(opened.level0, lit);
+  litLevels.render(nearCamera(), kW, kH);
+  const render::FrameImages litLevelsImage = litLevels.readImages();
+  double litDifference = 0.0, fromHeadlight = 0.0;
+  for (std::size_t i = 0; i < litFullImage.rgba.size(); ++i) {
+    litDifference += std::abs(double(litLevelsImage.rgba[i]) - litFullImage.rgba[i]);
+    fromHeadlight += std::abs(double(litFullImage.rgba[i]) - shadedFullImage.rgba[i]);
+  }
+  litDifference /= double(litFullImage.rgba.size());
+  fromHeadlight /= double(litFullImage.rgba.size());
+  std::printf("directional light, bias 1: mean difference %.4g (the light against the headlight: %.4g)\n", litDifference,
+              fromHeadlight);
+  EXPECT_LT(litDifference, 0.01) << "the coarser levels' light differs from level 0's";
+  EXPECT_GT(fromHeadlight, litDifference) << "the light must show more than the levels do";
 
   // Out of core through the levels: a pool of a few dozen slots, the bias held, the same image.
   render::RenderOptions small = dvrOptions(test::kSmallPoolBytes);
