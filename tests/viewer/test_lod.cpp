@@ -373,49 +373,40 @@ TEST_F(Lod, DvrDrawsEachBrickFromItsLevel) {
   }
 
   // Shaded: a coarser level's gradient is in its own index space (2^k times level 0's): shading by it
-  // must come out as level 0's would, close to the full-resolution shaded image.
+  // must come out as level 0's would, close to the full-resolution shaded image; under the headlight
+  // and under a directional light with a highlight (--light), whose angles take the level's gradient
+  // scaled back too.
+  const auto meanDifferenceOf = [](const render::FrameImages& a, const render::FrameImages& b) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i) sum += std::abs(double(a.rgba[i]) - b.rgba[i]);
+    return sum / double(a.rgba.size());
+  };
+  // Level 0's image and the levels' at bias 1 with `options`.
+  const auto fullAndLevels = [&](render::RenderOptions options) {
+    render::Raycaster full(opened.level0, options);
+    full.render(nearCamera(), kW, kH);
+    options.coarserLevels = opened.levels.sources();
+    options.lodBias = 1.0f;
+    render::Raycaster levels(opened.level0, options);
+    levels.render(nearCamera(), kW, kH);
+    return std::make_pair(full.readImages(), levels.readImages());
+  };
   render::RenderOptions shaded = dvrOptions();
   shaded.dvrShading = true;
-  render::Raycaster shadedFull(opened.level0, shaded);
-  shadedFull.render(nearCamera(), kW, kH);
-  const render::FrameImages shadedFullImage = shadedFull.readImages();
-  shaded.coarserLevels = opened.levels.sources();
-  shaded.lodBias = 1.0f;
-  render::Raycaster shadedLevels(opened.level0, shaded);
-  shadedLevels.render(nearCamera(), kW, kH);
-  const render::FrameImages shadedLevelsImage = shadedLevels.readImages();
-  double shadedDifference = 0.0;
-  for (std::size_t i = 0; i < shadedFullImage.rgba.size(); ++i)
-    shadedDifference += std::abs(double(shadedLevelsImage.rgba[i]) - shadedFullImage.rgba[i]);
-  shadedDifference /= double(shadedFullImage.rgba.size());
+  const auto [shadedFull, shadedLevels] = fullAndLevels(shaded);
+  const double shadedDifference = meanDifferenceOf(shadedLevels, shadedFull);
   std::printf("shaded, bias 1: mean difference %.4g\n", shadedDifference);
   EXPECT_LT(shadedDifference, 0.01) << "the coarser levels' shading differs from level 0's";
-  // The same under a directional light with a highlight (--light), whose angles take the level's
-  // gradient scaled back too.
-  render::RenderOptions lit = dvrOptions();
-  lit.dvrShading = true;
+  render::RenderOptions lit = shaded;
   lit.dvrHeadlight = false;
   lit.lightInCamera = render::lightInCameraFromAngles(50.0f, 30.0f);
   lit.dvrSpecular = 0.5f;
-  render::Raycaster litFull(opened.level0, lit);
-  litFull.render(nearCamera(), kW, kH);
-  const render::FrameImages litFullImage = litFull.readImages();
-  lit.coarserLevels = opened.levels.sources();
-  lit.lodBias = 1.0f;
-  render::Raycaster litLevels(opened.level0, lit);
-  litLevels.render(nearCamera(), kW, kH);
-  const render::FrameImages litLevelsImage = litLevels.readImages();
-  double litDifference = 0.0, fromHeadlight = 0.0;
-  for (std::size_t i = 0; i < litFullImage.rgba.size(); ++i) {
-    litDifference += std::abs(double(litLevelsImage.rgba[i]) - litFullImage.rgba[i]);
-    fromHeadlight += std::abs(double(litFullImage.rgba[i]) - shadedFullImage.rgba[i]);
-  }
-  litDifference /= double(litFullImage.rgba.size());
-  fromHeadlight /= double(litFullImage.rgba.size());
+  const auto [litFull, litLevels] = fullAndLevels(lit);
+  const double litDifference = meanDifferenceOf(litLevels, litFull), fromHeadlight = meanDifferenceOf(litFull, shadedFull);
   std::printf("directional light, bias 1: mean difference %.4g (the light against the headlight: %.4g)\n", litDifference,
               fromHeadlight);
   EXPECT_LT(litDifference, 0.01) << "the coarser levels' light differs from level 0's";
-  EXPECT_GT(fromHeadlight, litDifference) << "the light must show more than the levels do";
+  EXPECT_GT(fromHeadlight, 10.0 * litDifference) << "the light must show more than the levels do";
 
   // Out of core through the levels: a pool of a few dozen slots, the bias held, the same image.
   render::RenderOptions small = dvrOptions(test::kSmallPoolBytes);
