@@ -95,16 +95,17 @@ vec3 dvrGradient(ivec3 cell, vec3 xyz);
 vec2 dvrShadeAt(float t) {
   vec3 g = dvrGradient(gDvrCell, gDvrO + t * gDvrD);
   vec3 n = uNormalFromIndex * g;  // the world gradient, up to the level's scale
-  float len = length(n) * gDvrLevelScale;
+  float lenN = length(n), len = lenN * gDvrLevelScale;
   if (!(len > 0.0)) return vec2(1.0, 0.0);
   // Headlight: both angles the ray's (dot(g, d) is the world gradient along the unit world ray, the
-  // same at every level). Directional: n's angles with the light and with the half vector.
+  // same at every level, against len, level 0's length). Directional: n's angles with the light and
+  // with the half vector (the level's scale cancels).
   float cLight, cHalf;
   if (uDvrHeadlight != 0) {
     cLight = cHalf = min(abs(dot(g, gDvrD)) / len, 1.0);
   } else {
-    cLight = min(abs(dot(n, uLightDir)) * gDvrLevelScale / len, 1.0);
-    cHalf = min(abs(dot(n, gDvrHalfWorld)) * gDvrLevelScale / len, 1.0);
+    cLight = min(abs(dot(n, uLightDir)) / lenN, 1.0);
+    cHalf = min(abs(dot(n, gDvrHalfWorld)) / lenN, 1.0);
   }
   return vec2(kDvrAmbient + (1.0 - kDvrAmbient) * cLight, uDvrSpecular > 0.0 ? uDvrSpecular * pow(cHalf, uDvrSpecularPower) : 0.0);
 }
