@@ -26,6 +26,10 @@ CameraFrame cameraFrame(const Camera& camera, double aspect);
 // The unit world direction of the ray through the centre of pixel (px, py) of a width x height image.
 glm::dvec3 pixelRay(const CameraFrame& frame, int px, int py, int width, int height);
 
+// The isosurface's default light in camera space (RenderOptions::lightInCamera): above and right of
+// the view axis, about azimuth 17, elevation 30 degrees.
+inline const glm::vec3 kDefaultLightInCamera{0.3f, 0.6f, 1.0f};
+
 // A light fixed to the camera (RenderOptions::lightInCamera): `lightInCamera` is the direction towards
 // it in camera space (x right, y up, z towards the viewer; any length but 0). Its unit world direction
 // in `frame` (-forward for a zero vector: the light behind the eye).

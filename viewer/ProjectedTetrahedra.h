@@ -32,7 +32,7 @@ class ProjectedTetrahedra {
     bool shading = false;                            // dvr.glsl's gradient shading (the tetrahedron's gradient)
     float specular = 0.0f, specularPower = 20.0f;    // its specular term (RenderOptions::dvrSpecular)
     bool headlight = true;                           // its light (RenderOptions::dvrHeadlight) ...
-    glm::vec3 lightInCamera{0.3f, 0.6f, 1.0f};       // ... or this one (RenderOptions::lightInCamera)
+    glm::vec3 lightInCamera = kDefaultLightInCamera;  // ... or this one (RenderOptions::lightInCamera)
     bool timeGpu = false;                            // FrameStats::gpuSeconds
     std::size_t maxTetrahedra = std::size_t(8) << 20;
     // Faces no ray enters through dropped before rasterization (shaders/tetra.vert; the same image bit

@@ -110,7 +110,7 @@ struct RenderOptions {
   // transmittance falls below 1 - terminationOpacity; else the first crossing is the pixel, as always.
   std::vector<Isosurface> moreSurfaces;
   // Direction towards the light in camera space: x right, y up, z towards the viewer.
-  glm::vec3 lightInCamera{0.3f, 0.6f, 1.0f};
+  glm::vec3 lightInCamera = kDefaultLightInCamera;
   // Level of detail (docs/RENDERER.md, "Level of detail"): the pyramid's coarser levels, level 1 first
   // (sources whose index space is level 0's scaled by 2^-k; they outlive the raycaster). Empty: level 0
   // only, the full-resolution program and image, as without a pyramid. Drawn for the single opaque

@@ -32,7 +32,7 @@ namespace fcc::render {
 // What the panel edits.
 struct ViewerSettings {
   float iso = 0.0f;                             // the first surface's
-  glm::vec3 lightInCamera{0.3f, 0.6f, 1.0f};   // as RenderOptions
+  glm::vec3 lightInCamera = kDefaultLightInCamera;  // as RenderOptions
   glm::vec3 surfaceColor{0.85f, 0.72f, 0.52f};  // linear; the first surface's
   float surfaceOpacity = 1.0f;                  // the first surface's
   // Surfaces 2 to kMaxIsosurfaces (the panel's Surfaces section adds and removes them), and the one the
