@@ -29,10 +29,12 @@ uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
 // direction towards the light, 1 where the gradient is 0 (sparse/ReferenceDvr.h's dvrShadeLit, the
 // same formula), plus a white specular term uDvrSpecular |cos|^uDvrSpecularPower of the angle between
 // the gradient and Blinn-Phong's half vector (0 where the gradient is 0) emitted in proportion to the
-// sub-step's opacity. The light (RenderOptions::dvrHeadlight): a headlight, at the eye, so that the
-// direction towards it is the ray's own and the half vector the ray; or the directional light
-// uLightDir (RenderOptions::lightInCamera, as the isosurface's). Absorption is unchanged, so opacity
-// and depth are those of the unshaded image. 0: the unshaded code, unchanged.
+// sub-step's opacity. The light (RenderOptions::dvrLight, uDvrLight): a headlight, at the eye, so that
+// the direction towards it is the ray's own and the half vector the ray; or the directional light
+// uLightDir (RenderOptions::lightInCamera, as the isosurface's); or the light kit (viewer/DvrLight.h:
+// four directional lights and the headlight, whose weights add up to 1), each |cos| term its lights'
+// weighted sum. Absorption is unchanged, so opacity and depth are those of the unshaded image. 0: the
+// unshaded code, unchanged.
 #ifndef FCC_DVR_SHADING
 #define FCC_DVR_SHADING 0
 #endif
@@ -77,10 +79,17 @@ uniform float uDvrSpecularPower;  // RenderOptions::dvrSpecularPower: > 0
 // The ray and the unit cell integrateCell is in (dvrBeginCell), for the gradient at a sub-step.
 vec3 gDvrO, gDvrD;
 ivec3 gDvrCell;
-uniform int uDvrHeadlight;        // RenderOptions::dvrHeadlight: 1 the light at the eye, 0 uLightDir
-// The directional light's half vector for the ray (dvrBeginRay): between uLightDir and the direction
-// towards the eye, world space, unit (0 where they are opposite: no highlight).
-vec3 gDvrHalfWorld = vec3(0.0);
+// RenderOptions::dvrLight (viewer/DvrLight.h): 0 the light at the eye, 1 uLightDir, 2 the light kit:
+// uDvrKitLights (world, unit, towards them) weighted by uDvrKitWeights, and the headlight by
+// uDvrKitHeadWeight.
+uniform int uDvrLight;
+uniform vec3 uDvrKitLights[4];
+uniform vec4 uDvrKitWeights;
+uniform float uDvrKitHeadWeight;
+// For the ray (dvrBeginRay), world space, unit: under the directional light its half vector between
+// uLightDir and the direction towards the eye (0 where they are opposite: no highlight); under the
+// kit the direction towards the eye itself (the kit's half vectors are taken where they are needed).
+vec3 gDvrRayLightWorld = vec3(0.0);
 // 2^-k while a pyramid level k is marched (raycast.comp's FCC_LOD path; 1 otherwise): its index space is
 // level 0's scaled by 2^-k, so its gradient is 2^k times level 0's while its d is 2^-k times, and
 // uNormalFromIndex (level 0's) needs the gradient scaled back.
@@ -99,24 +108,37 @@ vec2 dvrShadeAt(float t) {
   if (!(len > 0.0)) return vec2(1.0, 0.0);
   // Headlight: both angles the ray's (dot(g, d) is the world gradient along the unit world ray, the
   // same at every level, against len, level 0's length). Directional: n's angles with the light and
-  // with the half vector (the level's scale cancels).
-  float cLight, cHalf;
-  if (uDvrHeadlight != 0) {
-    cLight = cHalf = min(abs(dot(g, gDvrD)) / len, 1.0);
-  } else {
-    cLight = min(abs(dot(n, uLightDir)) / lenN, 1.0);
-    cHalf = min(abs(dot(n, gDvrHalfWorld)) / lenN, 1.0);
+  // with the half vector (the level's scale cancels). The kit: both, per light.
+  if (uDvrLight == 0) {
+    float cHead = min(abs(dot(g, gDvrD)) / len, 1.0);
+    return vec2(kDvrAmbient + (1.0 - kDvrAmbient) * cHead, uDvrSpecular > 0.0 ? uDvrSpecular * pow(cHead, uDvrSpecularPower) : 0.0);
   }
-  return vec2(kDvrAmbient + (1.0 - kDvrAmbient) * cLight, uDvrSpecular > 0.0 ? uDvrSpecular * pow(cHalf, uDvrSpecularPower) : 0.0);
+  if (uDvrLight == 1) {
+    float cLight = min(abs(dot(n, uLightDir)) / lenN, 1.0), cHalf = min(abs(dot(n, gDvrRayLightWorld)) / lenN, 1.0);
+    return vec2(kDvrAmbient + (1.0 - kDvrAmbient) * cLight, uDvrSpecular > 0.0 ? uDvrSpecular * pow(cHalf, uDvrSpecularPower) : 0.0);
+  }
+  // The kit: the headlight's terms and each directional light's, weighted.
+  float cHead = min(abs(dot(g, gDvrD)) / len, 1.0);
+  float diffuse = uDvrKitHeadWeight * cHead, specular = 0.0;
+  if (uDvrSpecular > 0.0) specular = uDvrKitHeadWeight * pow(cHead, uDvrSpecularPower);
+  for (int k = 0; k < 4; ++k) {
+    diffuse += uDvrKitWeights[k] * min(abs(dot(n, uDvrKitLights[k])) / lenN, 1.0);
+    if (uDvrSpecular > 0.0) {
+      vec3 sum = uDvrKitLights[k] + gDvrRayLightWorld;
+      float lenSum = length(sum);  // 0 where the light is opposite the eye: no highlight
+      if (lenSum > 0.0) specular += uDvrKitWeights[k] * pow(min(abs(dot(n, sum)) / (lenN * lenSum), 1.0), uDvrSpecularPower);
+    }
+  }
+  return vec2(kDvrAmbient + (1.0 - kDvrAmbient) * min(diffuse, 1.0), uDvrSpecular * specular);
 }
 #endif
 
-// Called once a ray, before its cells, with the ray's unit world direction: the directional light's
-// half vector (nothing without shading).
+// Called once a ray, before its cells, with the ray's unit world direction: gDvrRayLightWorld
+// (nothing without shading).
 void dvrBeginRay(vec3 dirWorld) {
 #if FCC_DVR_SHADING
   vec3 sum = uLightDir - dirWorld;
-  gDvrHalfWorld = dot(sum, sum) > 0.0 ? normalize(sum) : vec3(0.0);
+  gDvrRayLightWorld = uDvrLight == 2 ? -dirWorld : (dot(sum, sum) > 0.0 ? normalize(sum) : vec3(0.0));
 #endif
 }
 

@@ -91,10 +91,12 @@ void integrateSpan(const Reconstruction& recon, const SiteValue& at, const DvrMe
       // e is premultiplied by the extinction: the white highlight too.
       const glm::dvec3 g(vg.gradient);
       const DvrOptions& o = acc.options;
-      const glm::dvec2 lit = o.headlight ? glm::dvec2(dvrShade(g, ray.d, o.normalFromIndex),
-                                                      dvrSpecular(g, ray.d, o.normalFromIndex, o.specular, o.specularPower))
-                                         : dvrShadeLit(g, o.normalFromIndex, o.lightWorld, acc.towardsEyeWorld, o.specular,
-                                                       o.specularPower);
+      const glm::dvec2 lit =
+          o.headlight ? glm::dvec2(dvrShade(g, ray.d, o.normalFromIndex),
+                                   dvrSpecular(g, ray.d, o.normalFromIndex, o.specular, o.specularPower))
+          : !o.kit.empty() ? dvrShadeKit(g, ray.d, o.normalFromIndex, o.kit, o.kitHeadWeight, acc.towardsEyeWorld,
+                                         o.specular, o.specularPower)
+                           : dvrShadeLit(g, o.normalFromIndex, o.lightWorld, acc.towardsEyeWorld, o.specular, o.specularPower);
       e = glm::dvec4(glm::dvec3(e) * lit.x + e.a * lit.y, e.a);
     }
     acc.add(e, t, h);
@@ -127,6 +129,16 @@ glm::dvec2 dvrShadeLit(const glm::dvec3& gradientIndex, const glm::dmat3& normal
   const double cHalf = sumLength > 0.0 ? std::min(std::abs(glm::dot(n, sum)) / (len * sumLength), 1.0) : 0.0;
   return glm::dvec2(kDvrShadingAmbient + (1.0 - kDvrShadingAmbient) * cLight,
                     strength > 0.0 ? strength * std::pow(cHalf, power) : 0.0);
+}
+
+glm::dvec2 dvrShadeKit(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, const glm::dmat3& normalFromIndex,
+                       const std::vector<DvrKitLight>& kit, double headWeight, const glm::dvec3& towardsEyeWorld,
+                       double strength, double power) {
+  glm::dvec2 sum = headWeight * glm::dvec2(dvrShade(gradientIndex, dIndex, normalFromIndex),
+                                           dvrSpecular(gradientIndex, dIndex, normalFromIndex, strength, power));
+  for (const DvrKitLight& light : kit)
+    sum += light.weight * dvrShadeLit(gradientIndex, normalFromIndex, light.towardsWorld, towardsEyeWorld, strength, power);
+  return sum;
 }
 
 DvrPixel integrateDvrRay(const Reconstruction& recon, const SiteValue& at, const CellBounds* bounds,

@@ -75,6 +75,19 @@ double dvrSpecular(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, co
 glm::dvec2 dvrShadeLit(const glm::dvec3& gradientIndex, const glm::dmat3& normalFromIndex, const glm::dvec3& towardsLightWorld,
                        const glm::dvec3& towardsEyeWorld, double strength, double power);
 
+// A light of a light kit: the unit world direction towards it and its weight.
+struct DvrKitLight {
+  glm::dvec3 towardsWorld{0.0, 0.0, 1.0};
+  double weight = 0.0;
+};
+// Gradient shading under a light kit (shaders/dvr.glsl's uDvrLight 2): directional lights `kit` and the
+// headlight of weight headWeight, the weights adding up to 1; x and y are the weighted sums of each
+// light's (dvrShadeLit's for the directional lights, dvrShade's and dvrSpecular's for the headlight;
+// towardsEyeWorld is the reversed ray, unit, world).
+glm::dvec2 dvrShadeKit(const glm::dvec3& gradientIndex, const glm::dvec3& dIndex, const glm::dmat3& normalFromIndex,
+                       const std::vector<DvrKitLight>& kit, double headWeight, const glm::dvec3& towardsEyeWorld,
+                       double strength, double power);
+
 struct DvrOptions {
   double step = 1e-3;                 // world units: the longest sub-step
   bool shading = false;               // gradient shading (dvrShade), with this normalFromIndex
@@ -83,6 +96,10 @@ struct DvrOptions {
   // towards lightWorld (unit, world space; dvrShadeLit).
   bool headlight = true;
   glm::dvec3 lightWorld{0.0, 0.0, 1.0};
+  // ... or, where `kit` is not empty (headlight false), a light kit: its lights and the headlight of
+  // weight kitHeadWeight (dvrShadeKit).
+  std::vector<DvrKitLight> kit;
+  double kitHeadWeight = 0.0;
   glm::dmat3 normalFromIndex{1.0};
   double terminationOpacity = 0.995;  // stop once the accumulated opacity reaches it (>= 1: only when the
                                       // transmittance is exactly 0)

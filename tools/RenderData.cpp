@@ -86,6 +86,8 @@ void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& opti
       throw ValueError("--shading on applies to --mode dvr (the isosurface is always shaded)");
     if (flags.specular > 0.0)
       throw ValueError("--specular applies to --mode dvr --shading on");
+    if (flags.light == "kit")
+      throw ValueError("--light kit lights --mode dvr --shading on; the isosurface takes headlight or AZIMUTH,ELEVATION");
     return;
   }
   options.dvrShading = flags.shading == "on";
@@ -139,7 +141,7 @@ std::unique_ptr<render::ProjectedTetrahedra> RenderData::projectedTetrahedra(con
   o.shading = options.dvrShading;
   o.specular = options.dvrSpecular;
   o.specularPower = options.dvrSpecularPower;
-  o.headlight = options.dvrHeadlight;
+  o.light = options.dvrLight;
   o.lightInCamera = options.lightInCamera;
   o.timeGpu = options.timeGpu;
   return std::make_unique<render::ProjectedTetrahedra>(*source_, o);

@@ -79,10 +79,11 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
   app.add_option("--specular-power", flags.specularPower, "DVR: the highlight's exponent P (larger: smaller highlights)")
       ->capture_default_str()->check(CLI::Range(1e-3, 1000.0));
   app.add_option("--light", flags.light,
-                 "The light, fixed to the camera: headlight (at the eye; DVR's default) or AZIMUTH,ELEVATION in "
+                 "The light, fixed to the camera: headlight (at the eye; DVR's default), AZIMUTH,ELEVATION in "
                  "degrees, a directional light that far right of the view axis and above it (the isosurface's "
-                 "default is 17,30); DVR: lights --shading on")
-      ->type_name("headlight|AZ,EL");
+                 "default is 17,30), or kit (DVR: ParaView's light kit, key, fill, two back lights and the "
+                 "headlight); DVR: lights --shading on")
+      ->type_name("headlight|AZ,EL|kit");
   app.add_option("--dvr-method", flags.dvrMethod,
                  "DVR: ray (the raycaster's integration through the reconstruction), or tetrahedra: paper 002's "
                  "projected tetrahedra, in core, for a BCC dataset with the barycentric reconstruction (render and "
@@ -274,16 +275,18 @@ render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags) {
   if (!flags.light.empty()) {
     double azimuth = 0.0, elevation = 0.0;
     char rest = 0;
-    if (flags.light == "headlight") {
+    if (flags.light == "kit") {
+      options.dvrLight = render::DvrLight::Kit;  // DVR's only (RenderData::applyMode says so for the isosurface)
+    } else if (flags.light == "headlight") {
       options.lightInCamera = glm::vec3(0.0f, 0.0f, 1.0f);
-      options.dvrHeadlight = true;
+      options.dvrLight = render::DvrLight::Headlight;
     } else if (std::sscanf(flags.light.c_str(), "%lf,%lf%c", &azimuth, &elevation, &rest) == 2 &&
                azimuth >= -180.0 && azimuth <= 180.0 && elevation >= -90.0 && elevation <= 90.0) {
       options.lightInCamera = render::lightInCameraFromAngles(float(azimuth), float(elevation));
-      options.dvrHeadlight = false;
+      options.dvrLight = render::DvrLight::Directional;
     } else {
-      throw ValueError("--light '" + flags.light + "': valid are headlight, or AZIMUTH,ELEVATION in degrees (azimuth "
-                       "-180 to 180 right of the view axis, elevation -90 to 90 above it), e.g. 30,45");
+      throw ValueError("--light '" + flags.light + "': valid are headlight, kit, or AZIMUTH,ELEVATION in degrees "
+                       "(azimuth -180 to 180 right of the view axis, elevation -90 to 90 above it), e.g. 30,45");
     }
   }
   options.lookahead = flags.lookahead;

@@ -78,6 +78,22 @@ std::string levelMixList(const std::vector<uint64_t>& bricksPerLevel) {
 constexpr int kCpuFrames = 8, kCpuWarmup = 1;
 constexpr const char* kCpuRes = "128x128";
 
+// The frame's shading: null for DVR without gradient shading; else its light ("headlight",
+// "directional" with light_in_camera, the direction towards it in camera space, or "kit") and, for DVR,
+// the highlight's strength and power.
+std::string shadingJson(const render::RenderOptions& o) {
+  const bool dvr = o.mode == render::RenderMode::Dvr;
+  if (dvr && !o.dvrShading) return "null";
+  // The isosurface's light is lightInCamera always (--light headlight sets it to the view axis).
+  const render::DvrLight light = dvr ? o.dvrLight : render::DvrLight::Directional;
+  std::string s = "{\"light\": " + jsonString(render::dvrLightName(light));
+  if (light == render::DvrLight::Directional)
+    s += ", \"light_in_camera\": [" + jsonNumber(o.lightInCamera.x) + ", " + jsonNumber(o.lightInCamera.y) + ", " +
+         jsonNumber(o.lightInCamera.z) + "]";
+  if (dvr) s += ", \"specular\": " + jsonNumber(o.dvrSpecular) + ", \"specular_power\": " + jsonNumber(o.dvrSpecularPower);
+  return s + "}";
+}
+
 }  // namespace
 
 Command addBenchRenderCommand(CLI::App& bench) {
@@ -253,7 +269,7 @@ Command addBenchRenderCommand(CLI::App& bench) {
                             "\"gpu_frame_ms\": %s, \"passes_per_frame\": %s, \"bricks_streamed_per_second\": %s, "
                             "\"first_frame_seconds\": %s, \"first_frame_bricks\": %llu, \"pool_mib\": %s, "
                             "\"device\": %s, \"file\": %s, \"reconstruction\": %s, \"mode\": %s, \"tf\": %s, "
-                            "\"level_mix\": [%s], \"full_resolution_fraction\": %s, \"lod_bias\": %s}",
+                            "\"level_mix\": [%s], \"full_resolution_fraction\": %s, \"lod_bias\": %s, \"shading\": %s}",
                             i ? "," : "", jsonString(m.variant).c_str(), jsonString(m.layout).c_str(), m.skip ? "true" : "false",
                             jsonString(m.normals).c_str(), width, height, jsonNumber(args->arc).c_str(), jsonNumber(iso).c_str(), m.frames,
                             jsonNumber(m.frames / m.seconds).c_str(), jsonNumber(1e3 * m.seconds / m.frames).c_str(),
@@ -265,7 +281,8 @@ Command addBenchRenderCommand(CLI::App& bench) {
                             jsonString(args->flags.mode).c_str(),
                             options.mode == render::RenderMode::Dvr ? jsonString(args->flags.tf).c_str() : "null",
                             levelMixList(lod ? m.bricksPerLevel : cold.bricksPerLevel).c_str(),
-                            jsonNumber(lod ? m.fullResolutionFraction : 1.0).c_str(), jsonNumber(m.lodBias).c_str());
+                            jsonNumber(lod ? m.fullResolutionFraction : 1.0).c_str(), jsonNumber(m.lodBias).c_str(),
+                            shadingJson(options).c_str());
               }
               std::printf("\n]\n");
               return 0;

@@ -223,7 +223,7 @@ ProjectedTetrahedra::ProjectedTetrahedra(const BrickSource& source, Options opti
   checkDvrSpecular(options_.specular, options_.specularPower);
   glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "uDvrSpecular"), options_.specular);  // shaded only
   glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "uDvrSpecularPower"), options_.specularPower);
-  glProgramUniform1i(program_.id(), glGetUniformLocation(program_.id(), "uDvrHeadlight"), options_.headlight ? 1 : 0);
+  setDvrLightUniforms(program_.id(), options_.light);
   if (options_.timeGpu) timer_ = std::make_unique<GpuInterval>();  // before the objects the destructor frees
   glCreateVertexArrays(1, &vertexArray_);
   glCreateFramebuffers(1, &framebuffer_);
@@ -281,6 +281,7 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   glProgramUniform2i(p, glGetUniformLocation(p, "uResolution"), width, height);
   const glm::vec3 lightDir = lightTowardsWorld(frame, options_.lightInCamera);
   glProgramUniform3fv(p, glGetUniformLocation(p, "uLightDir"), 1, &lightDir.x);  // shaded only
+  setDvrLightFrameUniforms(p, frame);
 
   if (timer_) timer_->begin();
   {

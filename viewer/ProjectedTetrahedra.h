@@ -31,8 +31,8 @@ class ProjectedTetrahedra {
     std::shared_ptr<const TransferTable> transfer;  // required
     bool shading = false;                            // dvr.glsl's gradient shading (the tetrahedron's gradient)
     float specular = 0.0f, specularPower = 20.0f;    // its specular term (RenderOptions::dvrSpecular)
-    bool headlight = true;                           // its light (RenderOptions::dvrHeadlight) ...
-    glm::vec3 lightInCamera = kDefaultLightInCamera;  // ... or this one (RenderOptions::lightInCamera)
+    DvrLight light = DvrLight::Headlight;            // its light (RenderOptions::dvrLight) ...
+    glm::vec3 lightInCamera = kDefaultLightInCamera;  // ... the directional one (RenderOptions::lightInCamera)
     bool timeGpu = false;                            // FrameStats::gpuSeconds
     std::size_t maxTetrahedra = std::size_t(8) << 20;
     // Faces no ray enters through dropped before rasterization (shaders/tetra.vert; the same image bit

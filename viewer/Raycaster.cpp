@@ -252,10 +252,10 @@ void Raycaster::setDvrSpecular(float strength, float power) {
   ++settings_;
 }
 
-void Raycaster::setDvrHeadlight(bool on) {
-  if (options_.dvrHeadlight == on) return;
-  options_.dvrHeadlight = on;
-  if (dvrTable_) setTransferUniforms();  // uDvrHeadlight (inactive in unshaded programs)
+void Raycaster::setDvrLight(DvrLight light) {
+  if (options_.dvrLight == light) return;
+  options_.dvrLight = light;
+  if (dvrTable_) setTransferUniforms();  // uDvrLight (inactive in unshaded programs)
   ++settings_;
 }
 
@@ -292,7 +292,7 @@ void Raycaster::setTransferUniforms() {
     // The shaded programs' (location -1, ignored, in the others).
     glProgramUniform1f(program->id(), glGetUniformLocation(program->id(), "uDvrSpecular"), options_.dvrSpecular);
     glProgramUniform1f(program->id(), glGetUniformLocation(program->id(), "uDvrSpecularPower"), options_.dvrSpecularPower);
-    glProgramUniform1i(program->id(), glGetUniformLocation(program->id(), "uDvrHeadlight"), options_.dvrHeadlight ? 1 : 0);
+    setDvrLightUniforms(program->id(), options_.dvrLight);
   }
 }
 
@@ -639,6 +639,8 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   glProgramUniform1i(p, u.finiteDifferenceNormals, options_.finiteDifferenceNormals ? 1 : 0);
   glProgramUniform3fv(p, u.surfaceColor, 1, &options_.surfaceColor.x);
   glProgramUniform3fv(p, u.lightDir, 1, &lightDir.x);
+  if (options_.mode == RenderMode::Dvr && options_.dvrShading && options_.dvrLight == DvrLight::Kit)
+    setDvrLightFrameUniforms(p, frame);
   const glm::vec3 clipLo(glm::clamp(options_.clipLo, glm::dvec3(-1e30), glm::dvec3(1e30)));
   const glm::vec3 clipHi(glm::clamp(options_.clipHi, glm::dvec3(-1e30), glm::dvec3(1e30)));
   glProgramUniform3fv(p, u.clipLo, 1, &clipLo.x);

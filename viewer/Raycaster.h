@@ -21,6 +21,7 @@
 
 #include "BrickLoader.h"
 #include "BrickPool.h"
+#include "DvrLight.h"
 #include "DvrTableGpu.h"
 #include "BrickSource.h"
 #include "Camera.h"
@@ -64,9 +65,10 @@ struct RenderOptions {
   // uniforms of the shaded programs (checkDvrSpecular's ranges).
   float dvrSpecular = 0.0f;
   float dvrSpecularPower = 20.0f;
-  // DVR with shading: the light. true: a headlight, at the eye (the direction towards it is each ray's
-  // own); false: the directional light lightInCamera, as the isosurface's (shaders/dvr.glsl).
-  bool dvrHeadlight = true;
+  // DVR with shading: the light (viewer/DvrLight.h). A headlight, at the eye (the direction towards it
+  // is each ray's own); the directional light lightInCamera, as the isosurface's; or the light kit
+  // (shaders/dvr.glsl).
+  DvrLight dvrLight = DvrLight::Headlight;
   // FCC DVR: gather every piece of a unit cell's chord and sub-step each by itself, instead of the chord
   // from its two end pieces sub-stepped as one (shaders/march_fcc.glsl; docs/DVR.md, "A cell's chord
   // from its end pieces"). Slower; the images differ only by where the sub-steps lie: the reference the
@@ -301,9 +303,9 @@ class Raycaster {
   // The specular term (RenderOptions::dvrSpecular, dvrSpecularPower; ValueError outside their ranges,
   // nothing changes); it shows while shading is on.
   void setDvrSpecular(float strength, float power);
-  // The shading's light (RenderOptions::dvrHeadlight; a uniform, no rebuild). The directional light's
+  // The shading's light (RenderOptions::dvrLight; a uniform, no rebuild). The directional light's
   // direction is setLightInCamera's.
-  void setDvrHeadlight(bool on);
+  void setDvrLight(DvrLight light);
   void setTerminationOpacity(float opacity);
   void setCountBricksDrawn(bool on) { options_.countBricksDrawn = on; }
 

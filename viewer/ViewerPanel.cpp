@@ -94,7 +94,8 @@ void ViewerSession::drawPanel(int windowHeight) {
 
   layout_.isoLabel = layout_.isoSlider = layout_.transferCombo = layout_.densitySlider = {};
   layout_.unitDistanceSlider = layout_.stopOpacitySlider = layout_.shadingCheckbox = {};
-  layout_.specularSlider = layout_.specularPowerSlider = layout_.headlightCheckbox = {};
+  layout_.specularSlider = layout_.specularPowerSlider = {};
+  layout_.lightButtons = {};
   layout_.lightAzimuthSlider = layout_.lightElevationSlider = {};
   layout_.colorMapCombo = layout_.transferPathField = layout_.transferLoad = layout_.transferSave = {};
   layout_.transferUndo = layout_.transferRedo = {};
@@ -135,10 +136,14 @@ void ViewerSession::drawPanel(int windowHeight) {
         ImGui::SliderFloat("specular power", &settings_.dvrSpecularPower, 1.0f, 200.0f, "%.3g",
                            ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
         layout_.specularPowerSlider = lastItemRect();
-        // The light: the headlight (along each ray), or one fixed to the camera (the isosurface's).
-        ImGui::Checkbox("headlight", &settings_.dvrHeadlight);
-        layout_.headlightCheckbox = lastItemRect();
-        if (!settings_.dvrHeadlight) drawLightSliders();
+        // The light: the headlight (along each ray), one fixed to the camera (the isosurface's, with
+        // its sliders) or the light kit (viewer/DvrLight.h).
+        for (DvrLight light : {DvrLight::Headlight, DvrLight::Directional, DvrLight::Kit}) {
+          if (light != DvrLight::Headlight) ImGui::SameLine();
+          if (ImGui::RadioButton(dvrLightName(light).c_str(), settings_.dvrLight == light)) settings_.dvrLight = light;
+          layout_.lightButtons[std::size_t(light)] = lastItemRect();
+        }
+        if (settings_.dvrLight == DvrLight::Directional) drawLightSliders();
       }
     }
     row("mode", dvr() ? "direct volume rendering" : "isosurface");

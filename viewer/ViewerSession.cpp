@@ -80,7 +80,7 @@ void ViewerSession::init(const RenderOptions& options) {
   settings_.dvrShading = options.dvrShading;
   settings_.dvrSpecular = options.dvrSpecular;
   settings_.dvrSpecularPower = options.dvrSpecularPower;
-  settings_.dvrHeadlight = options.dvrHeadlight;
+  settings_.dvrLight = options.dvrLight;
   if (dvr_) {
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
@@ -308,7 +308,7 @@ bool ViewerSession::applySettings() {
         notify(e.what());
       }
     }
-    if (settings_.dvrHeadlight != o.dvrHeadlight) raycaster_.setDvrHeadlight(settings_.dvrHeadlight);
+    if (settings_.dvrLight != o.dvrLight) raycaster_.setDvrLight(settings_.dvrLight);
     if (settings_.stopOpacity != o.terminationOpacity) {
       try {
         raycaster_.setTerminationOpacity(settings_.stopOpacity);
@@ -331,7 +331,7 @@ bool ViewerSession::applySettings() {
          now.lightInCamera != o.lightInCamera || now.clipLo != o.clipLo || now.clipHi != o.clipHi ||
          now.dvrShading != o.dvrShading || now.terminationOpacity != o.terminationOpacity ||
          now.dvrSpecular != o.dvrSpecular || now.dvrSpecularPower != o.dvrSpecularPower ||
-         now.dvrHeadlight != o.dvrHeadlight;
+         now.dvrLight != o.dvrLight;
 }
 
 std::vector<Isosurface> ViewerSession::surfacesOfSettings() const {

@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -55,8 +56,9 @@ struct ViewerSettings {
   // The shading's specular term (RenderOptions::dvrSpecular, dvrSpecularPower): uniforms, no rebuild.
   float dvrSpecular = 0.0f;
   float dvrSpecularPower = 20.0f;
-  // The shading's light (RenderOptions::dvrHeadlight): the headlight, or lightInCamera (a uniform).
-  bool dvrHeadlight = true;
+  // The shading's light (RenderOptions::dvrLight): the headlight, lightInCamera or the light kit (a
+  // uniform).
+  DvrLight dvrLight = DvrLight::Headlight;
   // The clipping box, world space (RenderOptions::clipLo/clipHi); the panel's sliders span the data.
   glm::dvec3 clipLo{-1e30}, clipHi{1e30};
   // The reconstruction the source is rendered with (its name; the panel's combo for a Cartesian grid).
@@ -78,7 +80,8 @@ struct PanelLayout {
   ImRectF isoLabel, isoSlider, histogram, backgroundSwatch;
   ImRectF transferCombo, densitySlider;  // DVR mode's (empty in isosurface mode, as the iso ones in DVR)
   ImRectF unitDistanceSlider, stopOpacitySlider, shadingCheckbox;  // DVR mode's too
-  ImRectF specularSlider, specularPowerSlider, headlightCheckbox;  // DVR with gradient shading on
+  ImRectF specularSlider, specularPowerSlider;  // DVR with gradient shading on
+  std::array<ImRectF, 3> lightButtons;          // and its light's: headlight, directional, kit (DvrLight)
   ImRectF lightAzimuthSlider, lightElevationSlider;  // the isosurface's light, or DVR's without headlight
   // DVR's editor (viewer/PanelTransfer.cpp): the colour-map combo, the file field and its buttons, and
   // a small square around each opacity point drawn over the histogram (the editor's order).

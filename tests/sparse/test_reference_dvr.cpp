@@ -350,6 +350,43 @@ TEST(ReferenceDvr, ADirectionalLightShadesByItsAngleAndTheHalfVector) {
   EXPECT_NEAR(reversed.y, dvrSpecular(gIndex, indexFromWorld * dWorld, normalFromIndex, strength, power), 1e-12);
 }
 
+// A light kit's terms are its lights' weighted: one light of weight 1 is dvrShadeLit, the headlight of
+// weight 1 the headlight's dvrShade and dvrSpecular, a kit whose lights are all the reversed ray the
+// headlight again; weights adding up to 1 keep the emission's factor in [ambient, 1]; no gradient, no
+// shading.
+TEST(ReferenceDvr, ALightKitIsItsLightsWeighted) {
+  constexpr double kTol = 1e-12;
+  const glm::dmat3 indexFromWorld(glm::dvec3(4.0, 0.0, 0.0), glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0, 0.3, 2.0));
+  const glm::dmat3 normalFromIndex = glm::transpose(indexFromWorld);
+  const glm::dvec3 dWorld = glm::normalize(glm::dvec3(1.0, -0.4, 1.0)), dIndex = indexFromWorld * dWorld;
+  const double strength = 0.7, power = 10.0;
+  const glm::dvec3 a = glm::normalize(glm::dvec3(0.3, 0.8, -0.2)), b = glm::normalize(glm::dvec3(-0.9, 0.1, 0.4));
+  for (const glm::dvec3& gIndex : {glm::dvec3(0.25, 0.5, -0.1), glm::dvec3(-1.0, 0.2, 3.0), glm::dvec3(0.0, 0.0, 0.7)}) {
+    SCOPED_TRACE(testing::Message() << "gradient " << gIndex.x << ", " << gIndex.y << ", " << gIndex.z);
+    const glm::dvec2 one = dvrShadeKit(gIndex, dIndex, normalFromIndex, {{a, 1.0}}, 0.0, -dWorld, strength, power);
+    const glm::dvec2 lit = dvrShadeLit(gIndex, normalFromIndex, a, -dWorld, strength, power);
+    EXPECT_NEAR(one.x, lit.x, kTol);
+    EXPECT_NEAR(one.y, lit.y, kTol);
+    const glm::dvec2 head = dvrShadeKit(gIndex, dIndex, normalFromIndex, {}, 1.0, -dWorld, strength, power);
+    EXPECT_NEAR(head.x, dvrShade(gIndex, dIndex, normalFromIndex), kTol);
+    EXPECT_NEAR(head.y, dvrSpecular(gIndex, dIndex, normalFromIndex, strength, power), kTol);
+    const glm::dvec2 reversed =
+        dvrShadeKit(gIndex, dIndex, normalFromIndex, {{-dWorld, 0.5}, {-dWorld, 0.2}}, 0.3, -dWorld, strength, power);
+    EXPECT_NEAR(reversed.x, head.x, kTol);
+    EXPECT_NEAR(reversed.y, head.y, kTol);
+    // Weights 0.5, 0.3 and the head 0.2: between the ambient floor and 1, and the weighted sum of the
+    // three lights' own terms.
+    const glm::dvec2 kit = dvrShadeKit(gIndex, dIndex, normalFromIndex, {{a, 0.5}, {b, 0.3}}, 0.2, -dWorld, strength, power);
+    EXPECT_GE(kit.x, kDvrShadingAmbient - kTol);
+    EXPECT_LE(kit.x, 1.0 + kTol);
+    const glm::dvec2 sum = 0.5 * lit + 0.3 * dvrShadeLit(gIndex, normalFromIndex, b, -dWorld, strength, power) + 0.2 * head;
+    EXPECT_NEAR(kit.x, sum.x, kTol);
+    EXPECT_NEAR(kit.y, sum.y, kTol);
+  }
+  EXPECT_EQ(dvrShadeKit(glm::dvec3(0.0), dIndex, normalFromIndex, {{a, 0.5}, {b, 0.3}}, 0.2, -dWorld, strength, power),
+            glm::dvec2(1.0, 0.0));
+}
+
 // Through the sphere with the highlight: opacity and depth as without it, each colour channel up by
 // the same amount (white light), by at most the strength times the opacity, and visibly somewhere.
 TEST(ReferenceDvr, SpecularAddsWhiteLightOnly) {

@@ -138,9 +138,27 @@ TEST(CliRender, DvrShadingAndNamedParaViewMaps) {
   for (const std::string& bad : {" --light 200,0", " --light 30", " --light 30,40,50", " --light up"}) {
     const auto r = runFccvdb("render " + vdb + " " + unlit + litFlags + bad);
     EXPECT_NE(r.status, 0) << bad;
-    EXPECT_THAT(r.err, HasSubstr("valid are headlight, or AZIMUTH,ELEVATION in degrees")) << bad;
+    EXPECT_THAT(r.err, HasSubstr("valid are headlight, kit, or AZIMUTH,ELEVATION in degrees")) << bad;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+  // --light kit: another image again; the isosurface refuses it in one line.
+  const std::string kit = dir / "kit.png";
+  const auto kitLit = runFccvdb("render " + vdb + " " + kit + litFlags + " --light kit");
+  ASSERT_EQ(kitLit.status, 0) << kitLit.err;
+  EXPECT_NE(readText(kit), readText(lit)) << "--light kit must show";
+  EXPECT_NE(readText(kit), readText(side)) << "--light kit is not the directional light";
+  const auto isoKit = runFccvdb("render " + vdb + " " + unlit + " --res 40x30 --quiet --light kit");
+  EXPECT_NE(isoKit.status, 0);
+  EXPECT_THAT(isoKit.err, HasSubstr("--light kit lights --mode dvr --shading on"));
+  EXPECT_EQ(std::count(isoKit.err.begin(), isoKit.err.end(), '\n'), 1) << isoKit.err;
+  // bench render's JSON says how the frame was shaded.
+  const auto bench = runFccvdb("bench render " + vdb + " --res 16x12 --frames 1 --warmup 0 --layout auto "
+                               "--variants skip+analytic --json --mode dvr --tf viridis --shading on --specular 0.5 --light kit");
+  ASSERT_EQ(bench.status, 0) << bench.err;
+  EXPECT_EQ(checkJsonWithPython(dir, bench.out,
+                                "assert rows[0]['shading'] == {'light': 'kit', 'specular': 0.5, 'specular_power': 20}, rows\n"),
+            0)
+      << bench.out;
   const auto lightUnshaded = runFccvdb("render " + vdb + " " + unlit + common + " --light 30,45");
   EXPECT_NE(lightUnshaded.status, 0);
   EXPECT_THAT(lightUnshaded.err, HasSubstr("--light lights the gradient shading in --mode dvr: add --shading on"));
@@ -246,7 +264,8 @@ TEST(CliRender, BenchRenderJsonHasTheDocumentedKeys) {
       "assert r['variant'] == 'skip+analytic' and r['layout'] == 'texture-vec4', r\n"
       "assert r['arc_degrees'] == 10 and r['res'] == [32, 24] and r['frames'] == 3, r\n"
       "assert r['fps'] > 0 and r['frame_ms'] > 0 and r['first_frame_seconds'] > 0, r\n"
-      "assert r['gpu_frame_ms'] is not None and 0 < r['gpu_frame_ms'] <= 1.5 * r['frame_ms'], r\n";
+      "assert r['gpu_frame_ms'] is not None and 0 < r['gpu_frame_ms'] <= 1.5 * r['frame_ms'], r\n"
+      "assert r['shading']['light'] == 'directional' and len(r['shading']['light_in_camera']) == 3, r\n";
   EXPECT_EQ(checkJsonWithPython(dir, r.out, check), 0) << r.out;
 }
 

@@ -398,7 +398,7 @@ TEST_F(Lod, DvrDrawsEachBrickFromItsLevel) {
   std::printf("shaded, bias 1: mean difference %.4g\n", shadedDifference);
   EXPECT_LT(shadedDifference, 0.01) << "the coarser levels' shading differs from level 0's";
   render::RenderOptions lit = shaded;
-  lit.dvrHeadlight = false;
+  lit.dvrLight = render::DvrLight::Directional;
   lit.lightInCamera = render::lightInCameraFromAngles(50.0f, 30.0f);
   lit.dvrSpecular = 0.5f;
   const auto [litFull, litLevels] = fullAndLevels(lit);
@@ -407,6 +407,14 @@ TEST_F(Lod, DvrDrawsEachBrickFromItsLevel) {
               fromHeadlight);
   EXPECT_LT(litDifference, 0.01) << "the coarser levels' light differs from level 0's";
   EXPECT_GT(fromHeadlight, 10.0 * litDifference) << "the light must show more than the levels do";
+  // The light kit (its headlight's term takes the level's scale as the headlight does; its directional
+  // lights' as the directional light does).
+  render::RenderOptions kit = lit;
+  kit.dvrLight = render::DvrLight::Kit;
+  const auto [kitFull, kitLevels] = fullAndLevels(kit);
+  const double kitDifference = meanDifferenceOf(kitLevels, kitFull);
+  std::printf("light kit, bias 1: mean difference %.4g\n", kitDifference);
+  EXPECT_LT(kitDifference, 0.01) << "the coarser levels' light kit differs from level 0's";
 
   // Out of core through the levels: a pool of a few dozen slots, the bias held, the same image.
   render::RenderOptions small = dvrOptions(test::kSmallPoolBytes);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "viewer/AxisIndicator.h"
+#include "viewer/DvrLight.h"
 #include "viewer/OrbitControls.h"
 
 namespace fcc::render {
@@ -159,6 +160,33 @@ TEST(AxisIndicator, WorldAxesAsTheCameraSeesThem) {
   expectNear(rolled[0], glm::dvec3(0, -1, 0), "x after a quarter roll");
   expectNear(rolled[1], glm::dvec3(1, 0, 0), "y after a quarter roll");
   expectNear(rolled[2], glm::dvec3(0, 0, 1), "z after a quarter roll");
+}
+
+// The light kit (viewer/DvrLight.h) is VTK's default: a key light above and right of the view axis
+// (elevation 50, azimuth 10 degrees), a fill light below and left (-75, -10), two back lights beside
+// and behind (0, +-110), all unit, with the weights 0.75, 0.25, 0.75 / 3.5 twice and the headlight's
+// 0.25, over their sum.
+TEST(LightKit, IsVtksDefaultKitWeightedToAddUpToOne) {
+  const LightKit& kit = defaultLightKit();
+  const double elevation[4] = {50.0, -75.0, 0.0, 0.0}, azimuth[4] = {10.0, -10.0, 110.0, -110.0};
+  const double intensity[4] = {0.75, 0.25, 0.75 / 3.5, 0.75 / 3.5}, head = 0.25;
+  const double sum = intensity[0] + intensity[1] + intensity[2] + intensity[3] + head;
+  double weights = kit.headWeight;
+  for (int k = 0; k < 4; ++k) {
+    SCOPED_TRACE(k);
+    const glm::dvec3 l(kit.inCamera[k]);
+    EXPECT_NEAR(glm::length(l), 1.0, 1e-6);
+    EXPECT_NEAR(glm::degrees(std::asin(l.y)), elevation[k], 1e-4);
+    if (std::abs(elevation[k]) < 89.0) {
+      EXPECT_NEAR(glm::degrees(std::atan2(l.x, l.z)), azimuth[k], 1e-4);
+    }
+    EXPECT_NEAR(kit.weight[k], intensity[k] / sum, 1e-6);
+    weights += kit.weight[k];
+  }
+  EXPECT_NEAR(kit.headWeight, head / sum, 1e-6);
+  EXPECT_NEAR(weights, 1.0, 1e-6);
+  EXPECT_LT(kit.inCamera[2].z, 0.0) << "the back lights are behind the object";
+  EXPECT_EQ(dvrLightName(DvrLight::Kit), "kit");
 }
 
 }  // namespace

@@ -616,13 +616,13 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
     rayPixels[i].rgba = glm::dvec4(ray.rgba[4 * i], ray.rgba[4 * i + 1], ray.rgba[4 * i + 2], ray.rgba[4 * i + 3]);
   EXPECT_GE(psnr(tetra, rayPixels), kMinPsnrDb) << "shaded";
   // Under a directional light with a highlight (--light, --specular), as the raycaster lights it.
-  shadedOptions.headlight = false;
+  shadedOptions.light = render::DvrLight::Directional;
   shadedOptions.lightInCamera = render::lightInCameraFromAngles(-50.0f, 40.0f);
   shadedOptions.specular = 0.5f;
   render::ProjectedTetrahedra lit(source, shadedOptions);
   lit.render(camera, w, h);
   render::RenderOptions litRay = shadedRay;
-  litRay.dvrHeadlight = false;
+  litRay.dvrLight = render::DvrLight::Directional;
   litRay.lightInCamera = shadedOptions.lightInCamera;
   litRay.dvrSpecular = shadedOptions.specular;
   const render::FrameImages litRayImage = renderSource(source, camera, w, h, litRay), litTetra = lit.readImages();
@@ -631,6 +631,17 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
                                    litRayImage.rgba[4 * i + 3]);
   EXPECT_GE(psnr(litTetra, rayPixels), kMinPsnrDb) << "under a directional light";
   EXPECT_NE(litTetra.rgba, tetra.rgba) << "the light must show";
+  // And under the light kit.
+  shadedOptions.light = render::DvrLight::Kit;
+  render::ProjectedTetrahedra kitLit(source, shadedOptions);
+  kitLit.render(camera, w, h);
+  litRay.dvrLight = render::DvrLight::Kit;
+  const render::FrameImages kitRayImage = renderSource(source, camera, w, h, litRay), kitTetra = kitLit.readImages();
+  for (std::size_t i = 0; i < rayPixels.size(); ++i)
+    rayPixels[i].rgba = glm::dvec4(kitRayImage.rgba[4 * i], kitRayImage.rgba[4 * i + 1], kitRayImage.rgba[4 * i + 2],
+                                   kitRayImage.rgba[4 * i + 3]);
+  EXPECT_GE(psnr(kitTetra, rayPixels), kMinPsnrDb) << "under the light kit";
+  EXPECT_NE(kitTetra.rgba, litTetra.rgba) << "the kit must show";
   // Other data, or another reconstruction: one line saying what it draws.
   const render::BccBrickSource sheared(path, findReconstruction("sheared-trilinear"));
   EXPECT_THROW(render::ProjectedTetrahedra(sheared, ptOptions), ValueError);
@@ -1259,12 +1270,13 @@ TEST_F(RenderDvr, SpecularAddsWhiteLightOnlyAndMatchesTheCpuReference) {
   }
 }
 
-// A directional light fixed to the camera (--light AZIMUTH,ELEVATION: RenderOptions::dvrHeadlight
-// false, lightInCamera) instead of the headlight: opacity and depth stay the headlight's bit for bit,
-// the colours change (the light comes from elsewhere), and on every lattice it agrees with the CPU
-// reference lit the same way (45 dB), the specular term's half vector too. On a live renderer the
-// setters give a fresh one's image, and the headlight again gives the headlight's image.
-TEST_F(RenderDvr, ADirectionalLightMatchesTheCpuReference) {
+// A directional light fixed to the camera (--light AZIMUTH,ELEVATION: RenderOptions::dvrLight
+// Directional, lightInCamera) and the light kit (--light kit: viewer/DvrLight.h) instead of the
+// headlight: opacity and depth stay the headlight's bit for bit, the colours change (the light comes
+// from elsewhere), and on every lattice each agrees with the CPU reference lit the same way (45 dB),
+// the specular term's half vectors too. On a live renderer the setters give a fresh one's image, and
+// the headlight again gives the headlight's image.
+TEST_F(RenderDvr, ADirectionalLightAndTheLightKitMatchTheCpuReference) {
   const ShadingScenes scenes;
   const int w = scenes.w, h = scenes.h;
   const glm::vec3 lightInCamera = render::lightInCameraFromAngles(60.0f, 35.0f);
@@ -1275,37 +1287,53 @@ TEST_F(RenderDvr, ADirectionalLightMatchesTheCpuReference) {
     headlightOptions.dvrShading = true;
     headlightOptions.dvrSpecular = strength;
     headlightOptions.dvrSpecularPower = power;
-    render::RenderOptions litOptions = headlightOptions;
-    litOptions.dvrHeadlight = false;
-    litOptions.lightInCamera = lightInCamera;
     const render::FrameImages headlit = renderSource(*c.source, c.camera, w, h, headlightOptions);
-    const render::FrameImages lit = renderSource(*c.source, c.camera, w, h, litOptions);
-    int changed = 0;
-    for (std::size_t i = 0; i < std::size_t(w) * h; ++i) {
-      EXPECT_EQ(lit.rgba[4 * i + 3], headlit.rgba[4 * i + 3]) << "the light changed the opacity of pixel " << i;
-      EXPECT_EQ(lit.normalDepth[4 * i + 3], headlit.normalDepth[4 * i + 3]) << "the light changed the depth of pixel " << i;
-      changed += std::abs(lit.rgba[4 * i] - headlit.rgba[4 * i]) > 0.02f;
-    }
-    std::printf("%s: the directional light changed %d of %d pixels\n", c.name, changed, w * h);
-    EXPECT_GT(changed, w * h / 20) << "the light must show";
-    DvrOptions reference;
-    reference.shading = true;
-    reference.specular = strength;
-    reference.specularPower = power;
-    reference.headlight = false;
     const render::CameraFrame frame = render::cameraFrame(c.camera, double(w) / h);
-    reference.lightWorld = glm::dvec3(render::lightTowardsWorld(frame, lightInCamera));
-    const double db = psnr(lit, scenes.reference(c, reference));
-    std::printf("%s under a directional light: PSNR %.1f dB against the CPU reference lit the same way\n", c.name, db);
-    EXPECT_GE(db, kMinPsnrDb);
+    render::FrameImages litImages[2];
+    for (render::DvrLight light : {render::DvrLight::Directional, render::DvrLight::Kit}) {
+      const std::string lightName = render::dvrLightName(light);
+      render::RenderOptions litOptions = headlightOptions;
+      litOptions.dvrLight = light;
+      litOptions.lightInCamera = lightInCamera;
+      const render::FrameImages lit = renderSource(*c.source, c.camera, w, h, litOptions);
+      int changed = 0;
+      for (std::size_t i = 0; i < std::size_t(w) * h; ++i) {
+        EXPECT_EQ(lit.rgba[4 * i + 3], headlit.rgba[4 * i + 3]) << lightName << " changed the opacity of pixel " << i;
+        EXPECT_EQ(lit.normalDepth[4 * i + 3], headlit.normalDepth[4 * i + 3]) << lightName << " changed the depth of pixel " << i;
+        changed += std::abs(lit.rgba[4 * i] - headlit.rgba[4 * i]) > 0.02f;
+      }
+      std::printf("%s: the %s light changed %d of %d pixels\n", c.name, lightName.c_str(), changed, w * h);
+      EXPECT_GT(changed, w * h / 20) << "the " << lightName << " light must show";
+      DvrOptions reference;
+      reference.shading = true;
+      reference.specular = strength;
+      reference.specularPower = power;
+      reference.headlight = false;
+      reference.lightWorld = glm::dvec3(render::lightTowardsWorld(frame, lightInCamera));
+      if (light == render::DvrLight::Kit) {
+        const render::LightKit& kit = render::defaultLightKit();
+        for (std::size_t k = 0; k < kit.inCamera.size(); ++k)
+          reference.kit.push_back({glm::dvec3(render::lightTowardsWorld(frame, kit.inCamera[k])), double(kit.weight[k])});
+        reference.kitHeadWeight = kit.headWeight;
+      }
+      const double db = psnr(lit, scenes.reference(c, reference));
+      std::printf("%s under the %s light: PSNR %.1f dB against the CPU reference lit the same way\n", c.name,
+                  lightName.c_str(), db);
+      EXPECT_GE(db, kMinPsnrDb) << lightName;
+      litImages[light == render::DvrLight::Kit] = lit;
+    }
+    EXPECT_NE(litImages[0].rgba, litImages[1].rgba) << "the kit is not the directional light";
 
     if (c.source != scenes.boxSpline.get()) continue;
     render::Raycaster live(*c.source, headlightOptions);
-    live.setDvrHeadlight(false);
+    live.setDvrLight(render::DvrLight::Directional);
     live.setLightInCamera(lightInCamera);
     live.render(c.camera, w, h);
-    EXPECT_EQ(live.readImages().rgba, lit.rgba) << "a live change must give a fresh renderer's image";
-    live.setDvrHeadlight(true);
+    EXPECT_EQ(live.readImages().rgba, litImages[0].rgba) << "a live change must give a fresh renderer's image";
+    live.setDvrLight(render::DvrLight::Kit);
+    live.render(c.camera, w, h);
+    EXPECT_EQ(live.readImages().rgba, litImages[1].rgba) << "the kit, live";
+    live.setDvrLight(render::DvrLight::Headlight);
     live.render(c.camera, w, h);
     EXPECT_EQ(live.readImages().rgba, headlit.rgba) << "the headlight again";
   }

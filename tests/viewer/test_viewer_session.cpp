@@ -791,33 +791,41 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   h.session->settings().dvrSpecular = 0.0f;
   ASSERT_TRUE(h.settle());
   EXPECT_EQ(differingChannels(shaded, h.pixels(), panel), 0) << "no highlight: the shaded image";
-  // The headlight checkbox, clicked: a light fixed to the camera, whose sliders then show and move it;
-  // ticked again, the headlight's image.
+  // The light's buttons, clicked: "directional", a light fixed to the camera, whose sliders then show
+  // and move it; "kit", the light kit, another image; "headlight" again, the headlight's image.
   EXPECT_TRUE(h.session->panelLayout().lightAzimuthSlider.empty()) << "no light sliders under the headlight";
-  ASSERT_FALSE(layout.headlightCheckbox.empty()) << "no headlight checkbox with shading on";
-  // On its box (the rect's left square), scrolled into the small window's view first.
-  const auto clickHeadlight = [&] {
-    for (int i = 0; i < 30 && layout.headlightCheckbox.y1 > float(h.height); ++i)
+  for (const render::ImRectF& r : layout.lightButtons) ASSERT_FALSE(r.empty()) << "no light buttons with shading on";
+  // On a button's circle (the rect's left square), scrolled into the small window's view first.
+  const auto clickLight = [&](render::DvrLight light) {
+    const std::size_t k = std::size_t(light);
+    for (int i = 0; i < 30 && layout.lightButtons[k].y1 > float(h.height); ++i)
       h.frame([](ImGuiIO& io) {
         io.MousePos = ImVec2(100.0f, 100.0f);
         io.MouseWheel = -2.0f;
       });
-    const render::ImRectF r = layout.headlightCheckbox;
-    ASSERT_LE(r.y1, float(h.height)) << "the headlight checkbox cannot be scrolled into view";
+    const render::ImRectF r = layout.lightButtons[k];
+    ASSERT_LE(r.y1, float(h.height)) << "the light's buttons cannot be scrolled into view";
     h.click(r.x0 + 0.5f * (r.y1 - r.y0), r.centreY());
   };
-  clickHeadlight();
+  clickLight(render::DvrLight::Directional);
   ASSERT_TRUE(h.settle());
-  EXPECT_FALSE(h.session->renderOptions().dvrHeadlight) << "the click must turn the headlight off";
+  EXPECT_EQ(h.session->renderOptions().dvrLight, render::DvrLight::Directional) << "the click must choose the directional light";
   EXPECT_FALSE(h.session->panelLayout().lightAzimuthSlider.empty()) << "the light's sliders must show";
   const std::vector<unsigned char> sideLit = h.pixels();
   EXPECT_GT(differingChannels(shaded, sideLit, panel), 0) << "another light must change the image";
   h.session->settings().lightInCamera = render::lightInCameraFromAngles(-70.0f, -30.0f);
   ASSERT_TRUE(h.settle());
-  EXPECT_GT(differingChannels(sideLit, h.pixels(), panel), 0) << "the light moved must change the image";
-  clickHeadlight();
+  const std::vector<unsigned char> moved = h.pixels();
+  EXPECT_GT(differingChannels(sideLit, moved, panel), 0) << "the light moved must change the image";
+  clickLight(render::DvrLight::Kit);
   ASSERT_TRUE(h.settle());
-  EXPECT_TRUE(h.session->renderOptions().dvrHeadlight);
+  EXPECT_EQ(h.session->renderOptions().dvrLight, render::DvrLight::Kit) << "the click must choose the light kit";
+  EXPECT_TRUE(h.session->panelLayout().lightAzimuthSlider.empty()) << "no light sliders under the kit";
+  EXPECT_GT(differingChannels(shaded, h.pixels(), panel), 0) << "the kit must change the headlight's image";
+  EXPECT_GT(differingChannels(moved, h.pixels(), panel), 0) << "the kit must change the directional light's image";
+  clickLight(render::DvrLight::Headlight);
+  ASSERT_TRUE(h.settle());
+  EXPECT_EQ(h.session->renderOptions().dvrLight, render::DvrLight::Headlight);
   EXPECT_EQ(differingChannels(shaded, h.pixels(), panel), 0) << "the headlight again: its image";
   h.session->settings().dvrShading = false;
   ASSERT_TRUE(h.settle());
