@@ -611,10 +611,14 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
   render::RenderOptions shadedRay = dvrOptions(table);
   shadedRay.dvrShading = true;
   const render::FrameImages ray = renderSource(source, camera, w, h, shadedRay), tetra = shaded.readImages();
-  std::vector<DvrPixel> rayPixels(std::size_t(w) * h);
-  for (std::size_t i = 0; i < rayPixels.size(); ++i)
-    rayPixels[i].rgba = glm::dvec4(ray.rgba[4 * i], ray.rgba[4 * i + 1], ray.rgba[4 * i + 2], ray.rgba[4 * i + 3]);
-  EXPECT_GE(psnr(tetra, rayPixels), kMinPsnrDb) << "shaded";
+  // The raycaster's image as the pixels psnr compares with.
+  const auto pixelsOf = [](const render::FrameImages& image) {
+    std::vector<DvrPixel> pixels(image.rgba.size() / 4);
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+      pixels[i].rgba = glm::dvec4(image.rgba[4 * i], image.rgba[4 * i + 1], image.rgba[4 * i + 2], image.rgba[4 * i + 3]);
+    return pixels;
+  };
+  EXPECT_GE(psnr(tetra, pixelsOf(ray)), kMinPsnrDb) << "shaded";
   // Under a directional light with a highlight (--light, --specular), as the raycaster lights it.
   shadedOptions.light = render::DvrLight::Directional;
   shadedOptions.lightInCamera = render::lightInCameraFromAngles(-50.0f, 40.0f);
@@ -626,10 +630,7 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
   litRay.lightInCamera = shadedOptions.lightInCamera;
   litRay.dvrSpecular = shadedOptions.specular;
   const render::FrameImages litRayImage = renderSource(source, camera, w, h, litRay), litTetra = lit.readImages();
-  for (std::size_t i = 0; i < rayPixels.size(); ++i)
-    rayPixels[i].rgba = glm::dvec4(litRayImage.rgba[4 * i], litRayImage.rgba[4 * i + 1], litRayImage.rgba[4 * i + 2],
-                                   litRayImage.rgba[4 * i + 3]);
-  EXPECT_GE(psnr(litTetra, rayPixels), kMinPsnrDb) << "under a directional light";
+  EXPECT_GE(psnr(litTetra, pixelsOf(litRayImage)), kMinPsnrDb) << "under a directional light";
   EXPECT_NE(litTetra.rgba, tetra.rgba) << "the light must show";
   // And under the light kit.
   shadedOptions.light = render::DvrLight::Kit;
@@ -637,10 +638,7 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
   kitLit.render(camera, w, h);
   litRay.dvrLight = render::DvrLight::Kit;
   const render::FrameImages kitRayImage = renderSource(source, camera, w, h, litRay), kitTetra = kitLit.readImages();
-  for (std::size_t i = 0; i < rayPixels.size(); ++i)
-    rayPixels[i].rgba = glm::dvec4(kitRayImage.rgba[4 * i], kitRayImage.rgba[4 * i + 1], kitRayImage.rgba[4 * i + 2],
-                                   kitRayImage.rgba[4 * i + 3]);
-  EXPECT_GE(psnr(kitTetra, rayPixels), kMinPsnrDb) << "under the light kit";
+  EXPECT_GE(psnr(kitTetra, pixelsOf(kitRayImage)), kMinPsnrDb) << "under the light kit";
   EXPECT_NE(kitTetra.rgba, litTetra.rgba) << "the kit must show";
   // Other data, or another reconstruction: one line saying what it draws.
   const render::BccBrickSource sheared(path, findReconstruction("sheared-trilinear"));
