@@ -55,6 +55,14 @@ render::RenderOptions dvrOptions(const TransferTable& table) {
   return options;
 }
 
+// A GPU image as the pixels psnr compares with (another renderer's image as the reference).
+std::vector<DvrPixel> pixelsOf(const render::FrameImages& image) {
+  std::vector<DvrPixel> pixels(image.rgba.size() / 4);
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    pixels[i].rgba = glm::dvec4(image.rgba[4 * i], image.rgba[4 * i + 1], image.rgba[4 * i + 2], image.rgba[4 * i + 3]);
+  return pixels;
+}
+
 double psnr(const render::FrameImages& image, const std::vector<DvrPixel>& reference) {
   double sum = 0.0;
   for (std::size_t i = 0; i < reference.size(); ++i)
@@ -587,10 +595,7 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
     const double dbRef = psnr(tetra, ref), dbRay = psnr(ray, ref);
     // The tetrahedra against the raycaster directly: their sub-steps differ (the raycaster's segments
     // are also cut at unit cells), the field and the compositing do not.
-    std::vector<DvrPixel> rayPixels(std::size_t(w) * h);
-    for (std::size_t i = 0; i < rayPixels.size(); ++i)
-      rayPixels[i].rgba = glm::dvec4(ray.rgba[4 * i], ray.rgba[4 * i + 1], ray.rgba[4 * i + 2], ray.rgba[4 * i + 3]);
-    const double dbBoth = psnr(tetra, rayPixels);
+    const double dbBoth = psnr(tetra, pixelsOf(ray));
     double opaque = 0.0;
     for (std::size_t i = 3; i < tetra.rgba.size(); i += 4) opaque = std::max(opaque, double(tetra.rgba[i]));
     std::printf("projected tetrahedra: %.1f dB against the CPU reference (the raycaster %.1f dB), %.1f dB against "
@@ -611,13 +616,6 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
   render::RenderOptions shadedRay = dvrOptions(table);
   shadedRay.dvrShading = true;
   const render::FrameImages ray = renderSource(source, camera, w, h, shadedRay), tetra = shaded.readImages();
-  // The raycaster's image as the pixels psnr compares with.
-  const auto pixelsOf = [](const render::FrameImages& image) {
-    std::vector<DvrPixel> pixels(image.rgba.size() / 4);
-    for (std::size_t i = 0; i < pixels.size(); ++i)
-      pixels[i].rgba = glm::dvec4(image.rgba[4 * i], image.rgba[4 * i + 1], image.rgba[4 * i + 2], image.rgba[4 * i + 3]);
-    return pixels;
-  };
   EXPECT_GE(psnr(tetra, pixelsOf(ray)), kMinPsnrDb) << "shaded";
   // Under a directional light with a highlight (--light, --specular), as the raycaster lights it.
   shadedOptions.light = render::DvrLight::Directional;
@@ -706,13 +704,9 @@ TEST_F(RenderDvr, ProjectedTetrahedraCullingHoldsFarFromTheIndexOrigin) {
     for (std::size_t i = 0; i < culled.rgba.size(); ++i) changed += culled.rgba[i] != unculled.rgba[i] ? 1 : 0;
     EXPECT_EQ(changed, 0u) << "components culling changed far from the origin, of " << culled.rgba.size()
                            << " (eye offset " << offset.x << ", " << offset.y << ", " << offset.z << ")";
-    std::vector<DvrPixel> nearPixels(std::size_t(w) * h);
     double opaque = 0.0;
-    for (std::size_t i = 0; i < nearPixels.size(); ++i) {
-      nearPixels[i].rgba = glm::dvec4(nearImage.rgba[4 * i], nearImage.rgba[4 * i + 1], nearImage.rgba[4 * i + 2], nearImage.rgba[4 * i + 3]);
-      opaque = std::max(opaque, double(culled.rgba[4 * i + 3]));
-    }
-    const double db = psnr(culled, nearPixels);
+    for (std::size_t i = 3; i < culled.rgba.size(); i += 4) opaque = std::max(opaque, double(culled.rgba[i]));
+    const double db = psnr(culled, pixelsOf(nearImage));
     std::printf("far from the index origin: %.1f dB against the near volume's image, largest opacity %.3f\n", db, opaque);
     EXPECT_GE(db, kFarPsnrDb) << "eye offset " << offset.x << ", " << offset.y << ", " << offset.z;
     EXPECT_GT(opaque, 0.5) << "the volume must be seen";
