@@ -281,7 +281,7 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   glProgramUniform2i(p, glGetUniformLocation(p, "uResolution"), width, height);
   const glm::vec3 lightDir = lightTowardsWorld(frame, options_.lightInCamera);
   glProgramUniform3fv(p, glGetUniformLocation(p, "uLightDir"), 1, &lightDir.x);  // shaded only
-  setDvrLightFrameUniforms(p, frame);
+  if (options_.shading && options_.light == DvrLight::Kit) setDvrLightFrameUniforms(p, frame);  // as the raycaster's
 
   if (timer_) timer_->begin();
   {
