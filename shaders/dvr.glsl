@@ -72,6 +72,26 @@ struct DvrState {
   float depthHalf;     // where the opacity first reached 0.5 (+inf: not yet)
 };
 
+// raycast.comp's FCC_DVR_CLOCK (a measurement knob): the SM clock at the last phase boundary, and
+// dvrClock(k) adds the cycles since then to phase k (0-2: st.color's R, G, B; 3: st.depthHalf).
+#ifndef FCC_DVR_CLOCK
+#define FCC_DVR_CLOCK 0
+#endif
+#if FCC_DVR_CLOCK
+uint gDvrClockMark = 0u;
+void dvrClock(int k, inout DvrState st) {
+  uint now = clock2x32ARB().x;
+  float cycles = float(now - gDvrClockMark);  // unsigned: right across the counter's wrap
+  gDvrClockMark = now;
+  if (k == 0) st.color.r += cycles;
+  else if (k == 1) st.color.g += cycles;
+  else if (k == 2) st.color.b += cycles;
+  else st.depthHalf += cycles;
+}
+#else
+void dvrClock(int k, inout DvrState st) {}
+#endif
+
 #if FCC_DVR_SHADING
 const float kDvrAmbient = 0.3;
 uniform float uDvrSpecular;       // RenderOptions::dvrSpecular: 0 none, at most 1
@@ -316,7 +336,7 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
 #endif
   if (e.a <= 0.0) return;  // zero extinction emits nothing either (premultiplied entries)
   float a = dvrOpacity(e.a * h);
-#if FCC_DVR_COUNT
+#if FCC_DVR_COUNT || FCC_DVR_CLOCK
 #elif FCC_DVR_SHADING
   vec2 shade = dvrShadeAt(ta + 0.5 * h);
   st.color += st.transmittance * (e.rgb / e.a) * a * shade.x;
@@ -326,7 +346,9 @@ void dvrComposite(float v, float ta, float h, inout DvrState st) {
 #endif
   float before = st.transmittance;
   st.transmittance -= st.transmittance * a;  // not T (1 - a): 1 - a would round a thin sub-step's a
+#if !FCC_DVR_CLOCK
   if (isinf(st.depthHalf) && st.transmittance <= 0.5) st.depthHalf = ta + log(2.0 * before) / e.a;
+#endif
 }
 
 // The segment [s0, s1] of the ray where the field is the cubic with Bernstein coefficients bz. Returns

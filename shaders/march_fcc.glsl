@@ -163,6 +163,10 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   float beyond = coefficientAt(carries ? fcc_face_jump_beyond_site(frame, a) : frame.origin);
 #endif
   vec4 gathered = fcc_piece_taylor(fcc_cubic_t0(samples), frame, o, d, prepare ? t0 : t1);
+#if FCC_DVR_CLOCK
+  // The stamp waits for the piece (a branch on it), not only for the instructions before it to issue.
+  if (!(gathered.x == uStopTransmittance * -1e30)) dvrClock(1, st);
+#endif
   if (prepare) {
     gDvrCarry = DvrCarry(gathered, kDvrCarryEntry);
     return false;

@@ -18,6 +18,19 @@
 #if FCC_WARP_PROBE
 #extension GL_NV_shader_thread_group : require
 #endif
+// A measurement knob (docs/RENDERER.md), DVR's flat walk (FCC_DVR_FLAT) only: 1 writes, instead of
+// light, each ray's SM clock cycles (GL_ARB_shader_clock) by phase, summed over its passes: R the
+// rounds' finds (the cell walk to the next cell to integrate), G integrateCell's chord set-up, gather
+// and piece in Taylor form, B the rest of integrateCell (the sub-step rule and the sub-steps, or a
+// whole integrateCellPieces), and the EXR's Z everything else (the brick walk, the ray's set-up and
+// its end). Opacity and stopping are as without it. Where a whole phase waits, for memory or for a
+// dependent chain, shows here; what the profilers that do not see GL compute would tell.
+#ifndef FCC_DVR_CLOCK
+#define FCC_DVR_CLOCK 0
+#endif
+#if FCC_DVR_CLOCK
+#extension GL_ARB_shader_clock : require
+#endif
 // Only the chosen reconstruction's header is compiled (in the march file): the ids, the spline's types
 // that pool.glsl gathers in, and the pool.
 #include "ReconIds.h"
@@ -321,6 +334,7 @@ bool dvrStep(inout DvrCellWalk w, vec3 d, vec3 invD, float tExit, int axis) {
 // The walk stays on the cell it finds until integrateCell is done with it: a round that only gathered
 // the cell's entry piece (gDvrCarry's kDvrCarryEntry) leaves it for the next round to find again.
 bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, vec3 invD, inout DvrState st) {
+  dvrClock(3, st);
   bool have = false;
   ivec3 found;
   float foundT0 = 0.0, foundT1 = 0.0;
@@ -350,6 +364,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, vec3 invD, inout DvrState st)
       break;
     }
   }
+  dvrClock(0, st);
   if (!have) return false;
 #if FCC_DVR_WALK_ONLY
   st.transmittance *= 1.0 - 1e-3 * (foundT1 - foundT0);
@@ -363,6 +378,7 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, vec3 invD, inout DvrState st)
   gDvrExitAxis = foundAxis;
   gDvrBrickCellLo = w.cellLo;
   bool stop = integrateCell(found, o, d, foundT0, foundT1, st);
+  if (!(st.transmittance == -1.0)) dvrClock(2, st);  // (a branch on the result: the stamp waits for it)
 #endif
 #if FCC_DVR_COUNT == 2
   if (gDvrCarry.state == kDvrCarryEntry) st.color.b += 1.0;
@@ -516,6 +532,10 @@ void main() {
     st.transmittance = nd.x;
     st.depthHalf = nd.w;
   }
+#if FCC_DVR_CLOCK
+  if (uFirstPass != 0) st.depthHalf = 0.0;  // the cycles outside the phases, not a depth
+  gDvrClockMark = clock2x32ARB().x;
+#endif
 #endif
 
 #if FCC_MULTI_ISO
@@ -746,6 +766,7 @@ void main() {
   }
 #endif
 #if FCC_MODE_DVR
+  dvrClock(3, st);
   if (stopped && !found) {  // resumes next pass; meanwhile the pixel shows what it has so far
     imageStore(uColor, pixel, vec4(st.color, 1.0 - st.transmittance));
     imageStore(uNormalDepth, pixel, vec4(st.transmittance, 0.0, 0.0, st.depthHalf));
