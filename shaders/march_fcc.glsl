@@ -158,12 +158,20 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   for (int i = 0; i < 19; ++i) samples.v[i] = mix(gDvrCellBounds.x, gDvrCellBounds.y, fract(wiggle + float(i) * 0.37));
   float beyond = gDvrCellBounds.x;
 #else
+#if FCC_DVR_CLOCK == 2
+  dvrClock(0, st);
+#endif
   FccSamples samples = gatherStencil(frame);
   // Read inside the slot whatever (the piece's corner where the face does not carry).
   float beyond = coefficientAt(carries ? fcc_face_jump_beyond_site(frame, a) : frame.origin);
+#if FCC_DVR_CLOCK == 2
+  float arrived = beyond;  // a branch on all 20 values: the stamp waits for the last of them
+  for (int i = 0; i < 19; ++i) arrived += samples.v[i];
+  if (!(arrived == uStopTransmittance * -1e30)) dvrClock(1, st);
+#endif
 #endif
   vec4 gathered = fcc_piece_taylor(fcc_cubic_t0(samples), frame, o, d, prepare ? t0 : t1);
-#if FCC_DVR_CLOCK
+#if FCC_DVR_CLOCK == 1
   // The stamp waits for the piece (a branch on it), not only for the instructions before it to issue.
   if (!(gathered.x == uStopTransmittance * -1e30)) dvrClock(1, st);
 #endif

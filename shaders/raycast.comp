@@ -24,7 +24,9 @@
 // and piece in Taylor form, B the rest of integrateCell (the sub-step rule and the sub-steps, or a
 // whole integrateCellPieces), and the EXR's Z everything else (the brick walk, the ray's set-up and
 // its end). Opacity and stopping are as without it. Where a whole phase waits, for memory or for a
-// dependent chain, shows here; what the profilers that do not see GL compute would tell.
+// dependent chain, shows here; what the profilers that do not see GL compute would tell. 2: R the
+// finds and the chord's set-up up to the gather, G the gather until its 19 values are there, B the
+// piece's arithmetic, the rule and the sub-steps, Z as with 1 (other FCC_DVR_CLOCK values: as 1).
 #ifndef FCC_DVR_CLOCK
 #define FCC_DVR_CLOCK 0
 #endif
@@ -364,7 +366,9 @@ bool dvrRound(inout DvrCellWalk w, vec3 o, vec3 d, vec3 invD, inout DvrState st)
       break;
     }
   }
+#if FCC_DVR_CLOCK != 2
   dvrClock(0, st);
+#endif
   if (!have) return false;
 #if FCC_DVR_WALK_ONLY
   st.transmittance *= 1.0 - 1e-3 * (foundT1 - foundT0);

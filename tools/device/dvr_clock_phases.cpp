@@ -4,7 +4,7 @@
 // cycles by phase, their shares, and the cycles a ray and a warp tile of W x H pixels took (the tile's
 // largest lane: a warp ends with its last ray). Build:
 //   g++ -O2 -std=c++17 tools/device/dvr_clock_phases.cpp -I/usr/include/OpenEXR -I/usr/include/Imath -lOpenEXR-3_1 -lImath-3_1
-// Run: ./a.out out.exr 4 8
+// Run: ./a.out out.exr 4 8 [MODE]   (MODE: the knob's value, 1 or 2, for the phases' names)
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -15,7 +15,7 @@
 #include <vector>
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s CLOCK.exr [TILE_W TILE_H]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s CLOCK.exr [TILE_W TILE_H [MODE]]\n", argv[0]);
     return 2;
   }
   Imf::InputFile f(argv[1]);
@@ -56,7 +56,10 @@ int main(int argc, char** argv) {
       }
     }
   const double all = sum[0] + sum[1] + sum[2] + sum[3];
-  const char* what[4] = {"find", "gather+taylor", "chord (rule, sub-steps)", "rest (brick walk, set-up)"};
+  const bool mode2 = argc > 4 && std::atoi(argv[4]) == 2;
+  const char* what1[4] = {"find", "gather+taylor", "chord (rule, sub-steps)", "rest (brick walk, set-up)"};
+  const char* what2[4] = {"find+chord set-up", "gather's wait", "piece, rule, sub-steps", "rest (brick walk, set-up)"};
+  const char* const* what = mode2 ? what2 : what1;
   std::printf("%dx%d: %ld rays with rounds, %.0f busy %dx%d tiles\n", w, h, busy, busyTiles, tw, th);
   for (int c = 0; c < 4; ++c) std::printf("  %-28s %.4g cycles, %.1f %%\n", what[c], sum[c], 100.0 * sum[c] / all);
   std::printf("  mean cycles a busy ray %.4g; a busy tile's largest lane %.4g\n", busy ? busySum / busy : 0.0,

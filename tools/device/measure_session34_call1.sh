@@ -13,10 +13,13 @@ phases() {  # FILE TF DEFINES [render flags...]
   local file=$1 tf=$2 defs=$3; shift 3
   FCCVDB_SHADER_DEFINES="$defs" fccvdb render "$file" clock.exr --mode dvr --tf "$tf" --res $RES --lookahead 64 \
     --force --quiet "$@" || { echo "render failed"; return; }
-  fcc_dvr_clock_phases clock.exr 4 8
+  fcc_dvr_clock_phases clock.exr 4 8 "${defs:14:1}"
 }
 echo "== engine inferno, main";                        phases engine.vdb inferno "FCC_DVR_CLOCK=1"
 echo "== ML viridis, main";                            phases ml.vdb viridis "FCC_DVR_CLOCK=1"
+echo "== engine inferno, main, the gather's wait apart";  phases engine.vdb inferno "FCC_DVR_CLOCK=2"
+echo "== ML viridis, main, the gather's wait apart";      phases ml.vdb viridis "FCC_DVR_CLOCK=2"
+echo "== engine inferno, ssbo-scalar, the gather's wait apart"; phases engine.vdb inferno "FCC_DVR_CLOCK=2" --layout ssbo-scalar
 echo "== engine inferno, --layout ssbo-scalar";        phases engine.vdb inferno "FCC_DVR_CLOCK=1" --layout ssbo-scalar
 echo "== engine inferno, no reads for the pieces (FCC_DVR_CHAIN_PROBE=3, wrong)"; phases engine.vdb inferno "FCC_DVR_CLOCK=1;FCC_DVR_CHAIN_PROBE=3"
 echo "== engine inferno, one sub-step a chord (FCC_DVR_FIXED_STEPS=1, wrong)";    phases engine.vdb inferno "FCC_DVR_CLOCK=1;FCC_DVR_FIXED_STEPS=1"
