@@ -76,6 +76,13 @@
 #ifndef FCC_DVR_FLAT_WALK
 #define FCC_DVR_FLAT_WALK 1
 #endif
+// 1 (with FCC_DVR_FLAT): an iteration of the flat walk first takes the brick steps a ray needs, in a
+// loop of their own, then a round, so that rays between bricks join the warp's round in the same
+// iteration instead of each brick step taking one (the rays' work and images the same); 0: an
+// iteration is a round or a brick step. A measurement knob (docs/RENDERER.md).
+#ifndef FCC_DVR_BRICKS_FIRST
+#define FCC_DVR_BRICKS_FIRST 0
+#endif
 #if FCC_MODE_DVR && FCC_DVR_FLAT_WALK && !FCC_LOD
 #define FCC_DVR_FLAT 1
 #else
@@ -691,7 +698,7 @@ void main() {
   int rounds = 0;
 #endif
   while (t < tEnd && guard < 4096) {
-#if FCC_DVR_FLAT
+#if FCC_DVR_FLAT && !FCC_DVR_BRICKS_FIRST
     if (inBrick) {
       if (dvrRound(walk, o, d, invD, st)) {
         found = true;  // opaque enough: nothing behind is integrated or requested
@@ -703,6 +710,9 @@ void main() {
       }
       continue;
     }
+#endif
+#if FCC_DVR_FLAT && FCC_DVR_BRICKS_FIRST
+    while (!inBrick && t < tEnd && guard < 4096) {
 #endif
     ++guard;
     vec3 p = o + t * d;
@@ -767,6 +777,18 @@ void main() {
 #endif
     }
     t = tExitBrick > t ? tExitBrick : t + 1e-5 * abs(t) + 1e-6;
+#if FCC_DVR_FLAT && FCC_DVR_BRICKS_FIRST
+    }
+    if (!inBrick) break;  // past the last brick, or stopped for a missing one
+    if (dvrRound(walk, o, d, invD, st)) {
+      found = true;  // opaque enough: nothing behind is integrated or requested
+      break;
+    }
+    if (walk.done || ++rounds >= kDvrBrickRounds) {
+      inBrick = false;
+      t = walk.tb > t ? walk.tb : t + 1e-5 * abs(t) + 1e-6;
+    }
+#endif
   }
 #endif
 #if FCC_MODE_DVR
