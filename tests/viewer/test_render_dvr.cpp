@@ -799,6 +799,7 @@ TEST_F(RenderDvr, WalkSchedulesGiveTheSameImage) {
     // Each schedule against the flat walk with the same integration.
     const std::pair<const char*, const render::FrameImages*> schedules[] = {
         {"FCC_DVR_FIND_THEN_INTEGRATE=0", &main},
+        {"FCC_DVR_BRICKS_FIRST=1", &main},
         {"FCC_DVR_FIND_THEN_INTEGRATE=0;FCC_DVR_CHAIN=0", &twoGathers},
         {"FCC_DVR_FLAT_WALK=0", &twoGathers}};
     for (const auto& [schedule, expected] : schedules) {
