@@ -165,8 +165,12 @@ bool integrateCell(ivec3 cell, vec3 o, vec3 d, float t0, float t1, inout DvrStat
   // Read inside the slot whatever (the piece's corner where the face does not carry).
   float beyond = coefficientAt(carries ? fcc_face_jump_beyond_site(frame, a) : frame.origin);
 #if FCC_DVR_CLOCK == 2
-  float arrived = beyond;  // a branch on all 20 values: the stamp waits for the last of them
-  for (int i = 0; i < 19; ++i) arrived += samples.v[i];
+  // A branch on all 20 values: the stamp waits for the last of them. Constant indices, as pool.glsl's
+  // gatherStencil has them: a loop's dynamic index may put the array in local memory.
+  float arrived = beyond + samples.v[0] + samples.v[1] + samples.v[2] + samples.v[3] + samples.v[4] + samples.v[5] +
+                  samples.v[6] + samples.v[7] + samples.v[8] + samples.v[9] + samples.v[10] + samples.v[11] +
+                  samples.v[12] + samples.v[13] + samples.v[14] + samples.v[15] + samples.v[16] + samples.v[17] +
+                  samples.v[18];
   if (!(arrived == uStopTransmittance * -1e30)) dvrClock(1, st);
 #endif
 #endif
