@@ -29,7 +29,7 @@ uniform float uStopTransmittance;  // 1 - the opacity at which a ray stops
 // direction towards the light, 1 where the gradient is 0 (sparse/ReferenceDvr.h's dvrShadeLit, the
 // same formula), plus a white specular term uDvrSpecular |cos|^uDvrSpecularPower of the angle between
 // the gradient and Blinn-Phong's half vector (0 where the gradient is 0) emitted in proportion to the
-// sub-step's opacity. The light (RenderOptions::dvrLight, uDvrLight): a headlight, at the eye, so that
+// sub-step's opacity. The light (RenderOptions::dvrShading.light, uDvrLight): a headlight, at the eye, so that
 // the direction towards it is the ray's own and the half vector the ray; or the directional light
 // uLightDir (RenderOptions::lightInCamera, as the isosurface's); or the light kit (viewer/DvrLight.h:
 // four directional lights and the headlight, whose weights add up to 1), each |cos| term its lights'
@@ -94,12 +94,12 @@ void dvrClock(int k, inout DvrState st) {}
 
 #if FCC_DVR_SHADING
 const float kDvrAmbient = 0.3;
-uniform float uDvrSpecular;       // RenderOptions::dvrSpecular: 0 none, at most 1
-uniform float uDvrSpecularPower;  // RenderOptions::dvrSpecularPower: > 0
+uniform float uDvrSpecular;       // RenderOptions::dvrShading.specular: 0 none, at most 1
+uniform float uDvrSpecularPower;  // RenderOptions::dvrShading.specularPower: > 0
 // The ray and the unit cell integrateCell is in (dvrBeginCell), for the gradient at a sub-step.
 vec3 gDvrO, gDvrD;
 ivec3 gDvrCell;
-// RenderOptions::dvrLight (viewer/DvrLight.h): 0 the light at the eye, 1 uLightDir, 2 the light kit:
+// RenderOptions::dvrShading.light (viewer/DvrLight.h): 0 the light at the eye, 1 uLightDir, 2 the light kit:
 // uDvrKitLights (world, unit, towards them) weighted by uDvrKitWeights, and the headlight by
 // uDvrKitHeadWeight.
 uniform int uDvrLight;

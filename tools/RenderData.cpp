@@ -90,13 +90,13 @@ void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& opti
       throw ValueError("--light kit lights --mode dvr --shading on; the isosurface takes headlight or AZIMUTH,ELEVATION");
     return;
   }
-  options.dvrShading = flags.shading == "on";
-  if (flags.specular > 0.0 && !options.dvrShading)
+  options.dvrShading.on = flags.shading == "on";
+  if (flags.specular > 0.0 && !options.dvrShading.on)
     throw ValueError("--specular lights the gradient shading: add --shading on");
-  if (!flags.light.empty() && !options.dvrShading)
+  if (!flags.light.empty() && !options.dvrShading.on)
     throw ValueError("--light lights the gradient shading in --mode dvr: add --shading on");
-  options.dvrSpecular = float(flags.specular);
-  options.dvrSpecularPower = float(flags.specularPower);
+  options.dvrShading.specular = float(flags.specular);
+  options.dvrShading.specularPower = float(flags.specularPower);
   options.transfer = dvrTransfer(flags).table();
   const float background = source_->background();
   if (!options.transfer->zeroOn(background, background))
@@ -139,9 +139,6 @@ std::unique_ptr<render::ProjectedTetrahedra> RenderData::projectedTetrahedra(con
   render::ProjectedTetrahedra::Options o;
   o.transfer = options.transfer;
   o.shading = options.dvrShading;
-  o.specular = options.dvrSpecular;
-  o.specularPower = options.dvrSpecularPower;
-  o.light = options.dvrLight;
   o.lightInCamera = options.lightInCamera;
   o.timeGpu = options.timeGpu;
   return std::make_unique<render::ProjectedTetrahedra>(*source_, o);

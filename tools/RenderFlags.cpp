@@ -276,14 +276,14 @@ render::RenderOptions renderOptionsFromFlags(const RenderFlags& flags) {
     double azimuth = 0.0, elevation = 0.0;
     char rest = 0;
     if (flags.light == "kit") {
-      options.dvrLight = render::DvrLight::Kit;  // DVR's only (RenderData::applyMode says so for the isosurface)
+      options.dvrShading.light = render::DvrLight::Kit;  // DVR's only (RenderData::applyMode says so for the isosurface)
     } else if (flags.light == "headlight") {
       options.lightInCamera = glm::vec3(0.0f, 0.0f, 1.0f);
-      options.dvrLight = render::DvrLight::Headlight;
+      options.dvrShading.light = render::DvrLight::Headlight;
     } else if (std::sscanf(flags.light.c_str(), "%lf,%lf%c", &azimuth, &elevation, &rest) == 2 &&
                azimuth >= -180.0 && azimuth <= 180.0 && elevation >= -90.0 && elevation <= 90.0) {
       options.lightInCamera = render::lightInCameraFromAngles(float(azimuth), float(elevation));
-      options.dvrLight = render::DvrLight::Directional;
+      options.dvrShading.light = render::DvrLight::Directional;
     } else {
       throw ValueError("--light '" + flags.light + "': valid are headlight, kit, or AZIMUTH,ELEVATION in degrees "
                        "(azimuth -180 to 180 right of the view axis, elevation -90 to 90 above it), e.g. 30,45");

@@ -83,14 +83,15 @@ constexpr const char* kCpuRes = "128x128";
 // the highlight's strength and power.
 std::string shadingJson(const render::RenderOptions& o) {
   const bool dvr = o.mode == render::RenderMode::Dvr;
-  if (dvr && !o.dvrShading) return "null";
+  if (dvr && !o.dvrShading.on) return "null";
   // The isosurface's light is lightInCamera always (--light headlight sets it to the view axis).
-  const render::DvrLight light = dvr ? o.dvrLight : render::DvrLight::Directional;
+  const render::DvrLight light = dvr ? o.dvrShading.light : render::DvrLight::Directional;
   std::string s = "{\"light\": " + jsonString(render::dvrLightName(light));
   if (light == render::DvrLight::Directional)
     s += ", \"light_in_camera\": [" + jsonNumber(o.lightInCamera.x) + ", " + jsonNumber(o.lightInCamera.y) + ", " +
          jsonNumber(o.lightInCamera.z) + "]";
-  if (dvr) s += ", \"specular\": " + jsonNumber(o.dvrSpecular) + ", \"specular_power\": " + jsonNumber(o.dvrSpecularPower);
+  if (dvr)
+    s += ", \"specular\": " + jsonNumber(o.dvrShading.specular) + ", \"specular_power\": " + jsonNumber(o.dvrShading.specularPower);
   return s + "}";
 }
 

@@ -151,9 +151,9 @@ Command addViewCommand(CLI::App& parent) {
               // stand in while finer ones stream, and the view converges to the full-resolution image
               // where every brick wants level 0.
               if (!d.dvr) d.data->applyLevels(flags, /*levelsByDefault=*/true, false, options);
-              options.dvrShading = flags.shading == "on";
-              options.dvrSpecular = float(flags.specular);
-              options.dvrSpecularPower = float(flags.specularPower);
+              options.dvrShading.on = flags.shading == "on";
+              options.dvrShading.specular = float(flags.specular);
+              options.dvrShading.specularPower = float(flags.specularPower);
               const io::BrickStore* store = d.data->fccStore();
               auto session = std::make_unique<render::ViewerSession>(
                   d.data->source(), store, options, d.data->camera(flags, window.aspect()),

@@ -1,6 +1,7 @@
 #include "DvrLight.h"
 
 #include "Camera.h"
+#include "sparse/Error.h"
 
 namespace fcc::render {
 
@@ -11,6 +12,13 @@ std::string dvrLightName(DvrLight light) {
     case DvrLight::Kit: return "kit";
   }
   return "headlight";
+}
+
+void checkDvrShading(const DvrShading& shading) {
+  if (!(shading.specular >= 0.0f && shading.specular <= 1.0f))
+    throw ValueError("specular strength " + std::to_string(shading.specular) + ": valid are 0 (none) to 1");
+  if (!(shading.specularPower > 0.0f && shading.specularPower <= 1000.0f))
+    throw ValueError("specular power " + std::to_string(shading.specularPower) + ": valid are (0, 1000]");
 }
 
 const LightKit& defaultLightKit() {

@@ -1,5 +1,7 @@
-// DVR's light for gradient shading (RenderOptions::dvrLight; shaders/dvr.glsl; docs/DVR.md, "The
-// light"): the headlight, one directional light fixed to the camera, or VTK's and ParaView's light kit.
+// DVR's gradient shading as a user sets it (DvrShading: RenderOptions, ViewerSettings and
+// ProjectedTetrahedra::Options hold one each; shaders/dvr.glsl; docs/DVR.md, "Gradient shading") and
+// its light ("The light"): the headlight, one directional light fixed to the camera, or VTK's and
+// ParaView's light kit.
 #pragma once
 
 #include <array>
@@ -17,6 +19,24 @@ struct CameraFrame;
 enum class DvrLight { Headlight = 0, Directional = 1, Kit = 2 };
 // "headlight", "directional", "kit" (the bench's JSON, the viewer's list).
 std::string dvrLightName(DvrLight light);
+
+// Gradient shading's settings. `on` is a program's define (FCC_DVR_SHADING: the unshaded programs stay
+// as fast as without it), the others its uniforms, which show while it is on.
+struct DvrShading {
+  bool on = false;
+  // The white specular term: strength in [0, 1] (0: none) and power in (0, 1000] (checkDvrShading).
+  float specular = 0.0f;
+  float specularPower = 20.0f;
+  // The light: a headlight at the eye (the direction towards it is each ray's own), the directional
+  // light RenderOptions::lightInCamera (the isosurface's), or the light kit below.
+  DvrLight light = DvrLight::Headlight;
+  bool operator==(const DvrShading& o) const {
+    return on == o.on && specular == o.specular && specularPower == o.specularPower && light == o.light;
+  }
+  bool operator!=(const DvrShading& o) const { return !(*this == o); }
+};
+// ValueError naming the valid range of a specular strength or power outside it.
+void checkDvrShading(const DvrShading& shading);
 
 // VTK's default light kit (vtkLightKit, ParaView's "Light Kit"), fixed to the camera: a key light at
 // elevation 50, azimuth 10 degrees (render::lightInCameraFromAngles' angles), a fill light at -75, -10,

@@ -215,15 +215,16 @@ ProjectedTetrahedra::ProjectedTetrahedra(const BrickSource& source, Options opti
                                            tetrahedra.empty() ? nullptr : tetrahedra.data());
   orderBuffer_ = std::make_unique<GlBuffer>(std::max<std::size_t>(1, order_.size()) * sizeof(uint32_t));
   table_ = std::make_unique<DvrTableGpu>(table);
+  const DvrShading& shading = options_.shading;
+  checkDvrShading(shading);
   program_ = GlProgram::graphics(
       embedded::shaders("shaders/tetra.vert"),
-      withDefines(embedded::shaders("shaders/tetra.frag"), options_.shading ? "#define FCC_DVR_SHADING 1\n" : ""),
+      withDefines(embedded::shaders("shaders/tetra.frag"), shading.on ? "#define FCC_DVR_SHADING 1\n" : ""),
       "projected tetrahedra");
   table_->setUniforms(program_, -1.0f);  // no early stop inside a segment: segments composite afterwards
-  checkDvrSpecular(options_.specular, options_.specularPower);
-  glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "uDvrSpecular"), options_.specular);  // shaded only
-  glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "uDvrSpecularPower"), options_.specularPower);
-  setDvrLightUniforms(program_.id(), options_.light);
+  glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "uDvrSpecular"), shading.specular);  // shaded only
+  glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "uDvrSpecularPower"), shading.specularPower);
+  setDvrLightUniforms(program_.id(), shading.light);
   if (options_.timeGpu) timer_ = std::make_unique<GpuInterval>();  // before the objects the destructor frees
   glCreateVertexArrays(1, &vertexArray_);
   glCreateFramebuffers(1, &framebuffer_);
@@ -281,7 +282,7 @@ FrameStats ProjectedTetrahedra::render(const Camera& camera, int width, int heig
   glProgramUniform2i(p, glGetUniformLocation(p, "uResolution"), width, height);
   const glm::vec3 lightDir = lightTowardsWorld(frame, options_.lightInCamera);
   glProgramUniform3fv(p, glGetUniformLocation(p, "uLightDir"), 1, &lightDir.x);  // shaded only
-  if (options_.shading && options_.light == DvrLight::Kit) setDvrLightFrameUniforms(p, frame);  // as the raycaster's
+  if (options_.shading.on && options_.shading.light == DvrLight::Kit) setDvrLightFrameUniforms(p, frame);  // as the raycaster's
 
   if (timer_) timer_->begin();
   {

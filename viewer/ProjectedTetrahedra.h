@@ -29,10 +29,8 @@ class ProjectedTetrahedra {
  public:
   struct Options {
     std::shared_ptr<const TransferTable> transfer;  // required
-    bool shading = false;                            // dvr.glsl's gradient shading (the tetrahedron's gradient)
-    float specular = 0.0f, specularPower = 20.0f;    // its specular term (RenderOptions::dvrSpecular)
-    DvrLight light = DvrLight::Headlight;            // its light (RenderOptions::dvrLight) ...
-    glm::vec3 lightInCamera = kDefaultLightInCamera;  // ... the directional one (RenderOptions::lightInCamera)
+    DvrShading shading;  // dvr.glsl's gradient shading (the tetrahedron's gradient), as RenderOptions'
+    glm::vec3 lightInCamera = kDefaultLightInCamera;  // the directional light's (RenderOptions::lightInCamera)
     bool timeGpu = false;                            // FrameStats::gpuSeconds
     std::size_t maxTetrahedra = std::size_t(8) << 20;
     // Faces no ray enters through dropped before rasterization (shaders/tetra.vert; the same image bit

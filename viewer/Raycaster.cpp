@@ -122,7 +122,7 @@ Raycaster::Raycaster(const BrickSource& source, const RenderOptions& requested)
   std::string defines = pool_->glslDefines() + "#define FCC_RECON " + std::to_string(source.reconstruction().deviceId) + "\n";
   const bool dvr = options.mode == RenderMode::Dvr;
   if (dvr && !options.transfer) throw ValueError("direct volume rendering needs a transfer function");
-  checkDvrSpecular(options.dvrSpecular, options.dvrSpecularPower);
+  checkDvrShading(options.dvrShading);
   buildRaycastProgram();
   // A CPU rasteriser gets the cheap coefficient-hull cell bounds, a GPU the BB-coefficient ones
   // (both conservative; the image is the same, only the work skipped differs).
@@ -192,7 +192,7 @@ void Raycaster::buildRaycastProgram() {
   const RenderOptions& options = options_;
   const bool dvr = options.mode == RenderMode::Dvr;
   const std::string modeDefines =
-      dvr ? std::string("#define FCC_MODE_DVR 1\n") + (options.dvrShading ? "#define FCC_DVR_SHADING 1\n" : "") +
+      dvr ? std::string("#define FCC_MODE_DVR 1\n") + (options.dvrShading.on ? "#define FCC_DVR_SHADING 1\n" : "") +
                 (options.dvrGatherCentral ? "#define FCC_DVR_GATHER_CENTRAL 1\n" : "")
           : "";
   const std::string groupDefines = "#define FCC_GROUP_X " + std::to_string(options.workGroup.x) +
@@ -222,40 +222,22 @@ void Raycaster::buildRaycastProgram() {
   }
 }
 
-void Raycaster::setDvrShading(bool on) {
+void Raycaster::setDvrShading(const DvrShading& shading) {
   if (options_.mode != RenderMode::Dvr) throw Error("renderer: gradient shading outside DVR mode");
-  if (options_.dvrShading == on) return;
-  options_.dvrShading = on;
-  try {
-    buildRaycastProgram();  // FCC_DVR_SHADING is the program's: the unshaded one stays as fast as it was
-  } catch (...) {
-    options_.dvrShading = !on;  // the programs in use are still the old ones
-    throw;
+  checkDvrShading(shading);
+  if (options_.dvrShading == shading) return;
+  const DvrShading before = options_.dvrShading;
+  options_.dvrShading = shading;
+  if (shading.on != before.on) {
+    try {
+      buildRaycastProgram();  // FCC_DVR_SHADING is the program's: the unshaded one stays as fast as it was
+    } catch (...) {
+      options_.dvrShading = before;  // the programs in use are still the old ones
+      throw;
+    }
   }
-  setTransferUniforms();
-  ++settings_;
-}
-
-void checkDvrSpecular(float strength, float power) {
-  if (!(strength >= 0.0f && strength <= 1.0f))
-    throw ValueError("specular strength " + std::to_string(strength) + ": valid are 0 (none) to 1");
-  if (!(power > 0.0f && power <= 1000.0f))
-    throw ValueError("specular power " + std::to_string(power) + ": valid are (0, 1000]");
-}
-
-void Raycaster::setDvrSpecular(float strength, float power) {
-  checkDvrSpecular(strength, power);
-  if (options_.dvrSpecular == strength && options_.dvrSpecularPower == power) return;
-  options_.dvrSpecular = strength;
-  options_.dvrSpecularPower = power;
-  if (dvrTable_) setTransferUniforms();  // uDvrSpecular, uDvrSpecularPower (inactive in unshaded programs)
-  ++settings_;
-}
-
-void Raycaster::setDvrLight(DvrLight light) {
-  if (options_.dvrLight == light) return;
-  options_.dvrLight = light;
-  if (dvrTable_) setTransferUniforms();  // uDvrLight (inactive in unshaded programs)
+  // uDvrSpecular, uDvrSpecularPower, uDvrLight (inactive in unshaded programs).
+  if (dvrTable_) setTransferUniforms();
   ++settings_;
 }
 
@@ -290,9 +272,10 @@ void Raycaster::setTransferUniforms() {
     if (program->id() == 0) continue;
     dvrTable_->setUniforms(*program, 1.0f - options_.terminationOpacity);
     // The shaded programs' (location -1, ignored, in the others).
-    glProgramUniform1f(program->id(), glGetUniformLocation(program->id(), "uDvrSpecular"), options_.dvrSpecular);
-    glProgramUniform1f(program->id(), glGetUniformLocation(program->id(), "uDvrSpecularPower"), options_.dvrSpecularPower);
-    setDvrLightUniforms(program->id(), options_.dvrLight);
+    glProgramUniform1f(program->id(), glGetUniformLocation(program->id(), "uDvrSpecular"), options_.dvrShading.specular);
+    glProgramUniform1f(program->id(), glGetUniformLocation(program->id(), "uDvrSpecularPower"),
+                       options_.dvrShading.specularPower);
+    setDvrLightUniforms(program->id(), options_.dvrShading.light);
   }
 }
 
@@ -639,7 +622,7 @@ void Raycaster::dispatchPass(const CameraFrame& frame, int width, int height, in
   glProgramUniform1i(p, u.finiteDifferenceNormals, options_.finiteDifferenceNormals ? 1 : 0);
   glProgramUniform3fv(p, u.surfaceColor, 1, &options_.surfaceColor.x);
   glProgramUniform3fv(p, u.lightDir, 1, &lightDir.x);
-  if (options_.mode == RenderMode::Dvr && options_.dvrShading && options_.dvrLight == DvrLight::Kit)
+  if (options_.mode == RenderMode::Dvr && options_.dvrShading.on && options_.dvrShading.light == DvrLight::Kit)
     setDvrLightFrameUniforms(p, frame);
   const glm::vec3 clipLo(glm::clamp(options_.clipLo, glm::dvec3(-1e30), glm::dvec3(1e30)));
   const glm::vec3 clipHi(glm::clamp(options_.clipHi, glm::dvec3(-1e30), glm::dvec3(1e30)));

@@ -48,9 +48,6 @@ struct Isosurface {
   bool operator!=(const Isosurface& o) const { return !(*this == o); }
 };
 inline constexpr int kMaxIsosurfaces = 4;
-// The DVR specular term's ranges: strength in [0, 1], power in (0, 1000]; ValueError naming them.
-void checkDvrSpecular(float strength, float power);
-
 // The default colour of surface `index` (0: RenderOptions::surfaceColor's default), linear RGB.
 glm::vec3 defaultSurfaceColor(int index);
 
@@ -60,15 +57,8 @@ struct RenderOptions {
   // RenderMode::Dvr: the transfer function as the GPU reads it (sparse/TransferFunction.h; its optical
   // scale applied); bricks and cells whose values it maps to zero extinction are skipped.
   std::shared_ptr<const TransferTable> transfer;
-  bool dvrShading = false;  // DVR: gradient shading (shaders/dvr.glsl, FCC_DVR_SHADING; docs/DVR.md)
-  // DVR with shading: the white specular term's strength in [0, 1] (0: none) and its power (> 0),
-  // uniforms of the shaded programs (checkDvrSpecular's ranges).
-  float dvrSpecular = 0.0f;
-  float dvrSpecularPower = 20.0f;
-  // DVR with shading: the light (viewer/DvrLight.h). A headlight, at the eye (the direction towards it
-  // is each ray's own); the directional light lightInCamera, as the isosurface's; or the light kit
-  // (shaders/dvr.glsl).
-  DvrLight dvrLight = DvrLight::Headlight;
+  // DVR: gradient shading, its highlight and its light (viewer/DvrLight.h; shaders/dvr.glsl; docs/DVR.md).
+  DvrShading dvrShading;
   // FCC DVR: gather every piece of a unit cell's chord and sub-step each by itself, instead of the chord
   // from its two end pieces sub-stepped as one (shaders/march_fcc.glsl; docs/DVR.md, "A cell's chord
   // from its end pieces"). Slower; the images differ only by where the sub-steps lie: the reference the
@@ -297,15 +287,12 @@ class Raycaster {
   void setFiniteDifferenceNormals(bool on);
   void setSurfaceColor(const glm::vec3& rgb);
   void setLightInCamera(const glm::vec3& direction);
-  // DVR: gradient shading on or off (builds the raycasting programs again), and the opacity at which
-  // a ray stops, in (0, 1] (ValueError otherwise; nothing changes).
-  void setDvrShading(bool on);
-  // The specular term (RenderOptions::dvrSpecular, dvrSpecularPower; ValueError outside their ranges,
-  // nothing changes); it shows while shading is on.
-  void setDvrSpecular(float strength, float power);
-  // The shading's light (RenderOptions::dvrLight; a uniform, no rebuild). The directional light's
+  // DVR: gradient shading (RenderOptions::dvrShading). Turning it on or off builds the raycasting
+  // programs again; its highlight and light are uniforms. ValueError outside checkDvrShading's ranges,
+  // GlError where a program fails to build: either way nothing changes. The directional light's
   // direction is setLightInCamera's.
-  void setDvrLight(DvrLight light);
+  void setDvrShading(const DvrShading& shading);
+  // DVR: the opacity at which a ray stops, in (0, 1] (ValueError otherwise; nothing changes).
   void setTerminationOpacity(float opacity);
   void setCountBricksDrawn(bool on) { options_.countBricksDrawn = on; }
 

@@ -128,22 +128,23 @@ void ViewerSession::drawPanel(int windowHeight) {
     ImGui::Checkbox("empty-space skipping", &settings_.skipEmpty);
     if (!dvr()) ImGui::Checkbox("finite-difference normals", &settings_.finiteDifferenceNormals);
     if (dvr()) {
-      ImGui::Checkbox("gradient shading", &settings_.dvrShading);
+      ImGui::Checkbox("gradient shading", &settings_.dvrShading.on);
       layout_.shadingCheckbox = lastItemRect();
-      if (settings_.dvrShading) {  // the highlight: K |cos|^P (docs/DVR.md)
-        ImGui::SliderFloat("specular", &settings_.dvrSpecular, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_NoRoundToFormat);
+      if (settings_.dvrShading.on) {  // the highlight: K |cos|^P (docs/DVR.md)
+        ImGui::SliderFloat("specular", &settings_.dvrShading.specular, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_NoRoundToFormat);
         layout_.specularSlider = lastItemRect();
-        ImGui::SliderFloat("specular power", &settings_.dvrSpecularPower, 1.0f, 200.0f, "%.3g",
+        ImGui::SliderFloat("specular power", &settings_.dvrShading.specularPower, 1.0f, 200.0f, "%.3g",
                            ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat);
         layout_.specularPowerSlider = lastItemRect();
         // The light: the headlight (along each ray), one fixed to the camera (the isosurface's, with
         // its sliders) or the light kit (viewer/DvrLight.h).
         for (DvrLight light : {DvrLight::Headlight, DvrLight::Directional, DvrLight::Kit}) {
           if (light != DvrLight::Headlight) ImGui::SameLine();
-          if (ImGui::RadioButton(dvrLightName(light).c_str(), settings_.dvrLight == light)) settings_.dvrLight = light;
+          DvrLight& chosen = settings_.dvrShading.light;
+          if (ImGui::RadioButton(dvrLightName(light).c_str(), chosen == light)) chosen = light;
           layout_.lightButtons[std::size_t(light)] = lastItemRect();
         }
-        if (settings_.dvrLight == DvrLight::Directional) drawLightSliders();
+        if (settings_.dvrShading.light == DvrLight::Directional) drawLightSliders();
       }
     }
     row("mode", dvr() ? "direct volume rendering" : "isosurface");

@@ -78,9 +78,6 @@ void ViewerSession::init(const RenderOptions& options) {
   settings_.reconstruction = std::string(raycaster_.source().reconstruction().name);
   settings_.stopOpacity = options.terminationOpacity;
   settings_.dvrShading = options.dvrShading;
-  settings_.dvrSpecular = options.dvrSpecular;
-  settings_.dvrSpecularPower = options.dvrSpecularPower;
-  settings_.dvrLight = options.dvrLight;
   if (dvr_) {
     settings_.transferFunction = dvr_->spec;
     settings_.densityScale = appliedDensityScale_ = float(dvr_->scale.densityScale);
@@ -294,21 +291,11 @@ bool ViewerSession::applySettings() {
     if (settings_.dvrShading != o.dvrShading) {
       try {
         raycaster_.setDvrShading(settings_.dvrShading);
-      } catch (const Error& e) {  // the shaded program failed to build: the unshaded one stays
-        settings_.dvrShading = o.dvrShading;
+      } catch (const Error& e) {  // a strength typed out of range (ctrl + click), or the shaded program
+        settings_.dvrShading = o.dvrShading;  // failed to build: the settings go back
         notify(e.what());
       }
     }
-    if (settings_.dvrSpecular != o.dvrSpecular || settings_.dvrSpecularPower != o.dvrSpecularPower) {
-      try {
-        raycaster_.setDvrSpecular(settings_.dvrSpecular, settings_.dvrSpecularPower);
-      } catch (const Error& e) {  // typed out of range (ctrl + click): the settings go back
-        settings_.dvrSpecular = o.dvrSpecular;
-        settings_.dvrSpecularPower = o.dvrSpecularPower;
-        notify(e.what());
-      }
-    }
-    if (settings_.dvrLight != o.dvrLight) raycaster_.setDvrLight(settings_.dvrLight);
     if (settings_.stopOpacity != o.terminationOpacity) {
       try {
         raycaster_.setTerminationOpacity(settings_.stopOpacity);
@@ -329,9 +316,7 @@ bool ViewerSession::applySettings() {
   return raycaster_.surfaces() != surfaces || now.transfer != transfer || now.skipEmpty != o.skipEmpty ||
          now.finiteDifferenceNormals != o.finiteDifferenceNormals || now.surfaceColor != o.surfaceColor ||
          now.lightInCamera != o.lightInCamera || now.clipLo != o.clipLo || now.clipHi != o.clipHi ||
-         now.dvrShading != o.dvrShading || now.terminationOpacity != o.terminationOpacity ||
-         now.dvrSpecular != o.dvrSpecular || now.dvrSpecularPower != o.dvrSpecularPower ||
-         now.dvrLight != o.dvrLight;
+         now.dvrShading != o.dvrShading || now.terminationOpacity != o.terminationOpacity;
 }
 
 std::vector<Isosurface> ViewerSession::surfacesOfSettings() const {

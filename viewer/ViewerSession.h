@@ -48,17 +48,12 @@ struct ViewerSettings {
   std::string transferFunction;
   float densityScale = 1.0f;
   // The unit distance (world units; the panel's slider spans a hundredth to a hundred times the one
-  // the session started with), the opacity at which a ray stops, and gradient shading (which builds
-  // the raycasting program again): RenderOptions' terminationOpacity and dvrShading.
+  // the session started with), the opacity at which a ray stops (RenderOptions' terminationOpacity),
+  // and gradient shading, its highlight and its light (RenderOptions::dvrShading; turning it on or off
+  // builds the raycasting program again, the rest are uniforms).
   float unitDistance = 1.0f;
   float stopOpacity = 0.995f;
-  bool dvrShading = false;
-  // The shading's specular term (RenderOptions::dvrSpecular, dvrSpecularPower): uniforms, no rebuild.
-  float dvrSpecular = 0.0f;
-  float dvrSpecularPower = 20.0f;
-  // The shading's light (RenderOptions::dvrLight): the headlight, lightInCamera or the light kit (a
-  // uniform).
-  DvrLight dvrLight = DvrLight::Headlight;
+  DvrShading dvrShading;
   // The clipping box, world space (RenderOptions::clipLo/clipHi); the panel's sliders span the data.
   glm::dvec3 clipLo{-1e30}, clipHi{1e30};
   // The reconstruction the source is rendered with (its name; the panel's combo for a Cartesian grid).

@@ -392,15 +392,15 @@ TEST_F(Lod, DvrDrawsEachBrickFromItsLevel) {
     return std::make_pair(full.readImages(), levels.readImages());
   };
   render::RenderOptions shaded = dvrOptions();
-  shaded.dvrShading = true;
+  shaded.dvrShading.on = true;
   const auto [shadedFull, shadedLevels] = fullAndLevels(shaded);
   const double shadedDifference = meanDifferenceOf(shadedLevels, shadedFull);
   std::printf("shaded, bias 1: mean difference %.4g\n", shadedDifference);
   EXPECT_LT(shadedDifference, 0.01) << "the coarser levels' shading differs from level 0's";
   render::RenderOptions lit = shaded;
-  lit.dvrLight = render::DvrLight::Directional;
+  lit.dvrShading.light = render::DvrLight::Directional;
   lit.lightInCamera = render::lightInCameraFromAngles(50.0f, 30.0f);
-  lit.dvrSpecular = 0.5f;
+  lit.dvrShading.specular = 0.5f;
   const auto [litFull, litLevels] = fullAndLevels(lit);
   const double litDifference = meanDifferenceOf(litLevels, litFull), fromHeadlight = meanDifferenceOf(litFull, shadedFull);
   std::printf("directional light, bias 1: mean difference %.4g (the light against the headlight: %.4g)\n", litDifference,
@@ -410,7 +410,7 @@ TEST_F(Lod, DvrDrawsEachBrickFromItsLevel) {
   // The light kit (its headlight's term takes the level's scale as the headlight does; its directional
   // lights' as the directional light does).
   render::RenderOptions kit = lit;
-  kit.dvrLight = render::DvrLight::Kit;
+  kit.dvrShading.light = render::DvrLight::Kit;
   const auto [kitFull, kitLevels] = fullAndLevels(kit);
   const double kitDifference = meanDifferenceOf(kitLevels, kitFull);
   std::printf("light kit, bias 1: mean difference %.4g\n", kitDifference);

@@ -606,7 +606,7 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
   }
   // Shading: the tetrahedron's gradient, against the raycaster's shaded integration.
   render::ProjectedTetrahedra::Options shadedOptions = ptOptions;
-  shadedOptions.shading = true;
+  shadedOptions.shading.on = true;
   render::ProjectedTetrahedra shaded(source, shadedOptions);
   render::Camera camera;
   camera.lookat = lookat;
@@ -614,27 +614,26 @@ TEST_F(RenderDvr, ProjectedTetrahedraMatchTheRaycasterAndTheCpuReference) {
   camera.fovYDegrees = 35.0;
   shaded.render(camera, w, h);
   render::RenderOptions shadedRay = dvrOptions(table);
-  shadedRay.dvrShading = true;
+  shadedRay.dvrShading.on = true;
   const render::FrameImages ray = renderSource(source, camera, w, h, shadedRay), tetra = shaded.readImages();
   EXPECT_GE(psnr(tetra, pixelsOf(ray)), kMinPsnrDb) << "shaded";
   // Under a directional light with a highlight (--light, --specular), as the raycaster lights it.
-  shadedOptions.light = render::DvrLight::Directional;
+  shadedOptions.shading.light = render::DvrLight::Directional;
   shadedOptions.lightInCamera = render::lightInCameraFromAngles(-50.0f, 40.0f);
-  shadedOptions.specular = 0.5f;
+  shadedOptions.shading.specular = 0.5f;
   render::ProjectedTetrahedra lit(source, shadedOptions);
   lit.render(camera, w, h);
   render::RenderOptions litRay = shadedRay;
-  litRay.dvrLight = render::DvrLight::Directional;
+  litRay.dvrShading = shadedOptions.shading;
   litRay.lightInCamera = shadedOptions.lightInCamera;
-  litRay.dvrSpecular = shadedOptions.specular;
   const render::FrameImages litRayImage = renderSource(source, camera, w, h, litRay), litTetra = lit.readImages();
   EXPECT_GE(psnr(litTetra, pixelsOf(litRayImage)), kMinPsnrDb) << "under a directional light";
   EXPECT_NE(litTetra.rgba, tetra.rgba) << "the light must show";
   // And under the light kit.
-  shadedOptions.light = render::DvrLight::Kit;
+  shadedOptions.shading.light = render::DvrLight::Kit;
   render::ProjectedTetrahedra kitLit(source, shadedOptions);
   kitLit.render(camera, w, h);
-  litRay.dvrLight = render::DvrLight::Kit;
+  litRay.dvrShading.light = render::DvrLight::Kit;
   const render::FrameImages kitRayImage = renderSource(source, camera, w, h, litRay), kitTetra = kitLit.readImages();
   EXPECT_GE(psnr(kitTetra, pixelsOf(kitRayImage)), kMinPsnrDb) << "under the light kit";
   EXPECT_NE(kitTetra.rgba, litTetra.rgba) << "the kit must show";
@@ -1012,9 +1011,9 @@ TEST_F(RenderDvr, TransferShadingAndStopChangedOnALiveRendererGiveAFreshOnesImag
   // The viewer's other DVR settings on a live renderer: gradient shading (the programs built again)
   // and the stop opacity give a fresh renderer's image, and back off, the first again.
   render::RenderOptions shadedHalf = dvrOptions(third);
-  shadedHalf.dvrShading = true;
+  shadedHalf.dvrShading.on = true;
   shadedHalf.terminationOpacity = 0.5f;
-  live.setDvrShading(true);
+  live.setDvrShading(shadedHalf.dvrShading);
   live.setTerminationOpacity(0.5f);
   live.render(blobs.camera, w, h);
   const render::FrameImages liveShadedHalf = live.readImages();
@@ -1022,7 +1021,7 @@ TEST_F(RenderDvr, TransferShadingAndStopChangedOnALiveRendererGiveAFreshOnesImag
   EXPECT_EQ(liveShadedHalf.rgba, renderSource(blobs.source, blobs.camera, w, h, shadedHalf).rgba);
   EXPECT_THROW(live.setTerminationOpacity(0.0f), ValueError);
   EXPECT_EQ(live.options().terminationOpacity, 0.5f) << "a refused stop opacity changes nothing";
-  live.setDvrShading(false);
+  live.setDvrShading(render::DvrShading{});
   live.setTerminationOpacity(dvrOptions(third).terminationOpacity);
   live.render(blobs.camera, w, h);
   EXPECT_EQ(live.readImages().rgba, renderSource(blobs.source, blobs.camera, w, h, dvrOptions(third)).rgba);
@@ -1052,7 +1051,9 @@ TEST_F(RenderDvr, DumpedProgramsAreTheSourcesAsCompiled) {
   EXPECT_EQ(texts[0].find("#define FCC_DVR_SHADING 1"), std::string::npos);
   EXPECT_EQ(texts[0].find("#include"), std::string::npos) << "includes resolved";
   EXPECT_NO_THROW(GlProgram::compute(texts[0], "dumped raycast.comp"));
-  raycaster.setDvrShading(true);
+  render::DvrShading shaded;
+  shaded.on = true;
+  raycaster.setDvrShading(shaded);
   texts = raycastSources();
   ASSERT_EQ(texts.size(), 2u);
   EXPECT_EQ(std::count_if(texts.begin(), texts.end(),
@@ -1062,7 +1063,7 @@ TEST_F(RenderDvr, DumpedProgramsAreTheSourcesAsCompiled) {
 
 // Gradient shading whose program fails to build (here: a define that breaks the shaded code alone,
 // set after the renderer was made) is one error, and the renderer goes on as it was: unshaded, the
-// same image.
+// same image, and the highlight and light asked for with it not taken either.
 TEST_F(RenderDvr, ShadingThatFailsToBuildLeavesTheRendererAsItWas) {
   const SmallBlobs blobs;
   const int w = 32, h = 32;
@@ -1071,9 +1072,13 @@ TEST_F(RenderDvr, ShadingThatFailsToBuildLeavesTheRendererAsItWas) {
   const render::FrameImages before = live.readImages();
   {
     const test::ScopedEnv broken("FCCVDB_SHADER_DEFINES", "kDvrAmbient=1");  // "const float 1 = ...": shaded only
-    EXPECT_THROW(live.setDvrShading(true), GlError);
+    render::DvrShading shaded;
+    shaded.on = true;
+    shaded.specular = 0.5f;
+    shaded.light = render::DvrLight::Kit;
+    EXPECT_THROW(live.setDvrShading(shaded), GlError);
   }
-  EXPECT_FALSE(live.options().dvrShading);
+  EXPECT_EQ(live.options().dvrShading, render::DvrShading{}) << "nothing of the refused shading is taken";
   live.render(blobs.camera, w, h);
   EXPECT_EQ(live.readImages().rgba, before.rgba);
 }
@@ -1161,7 +1166,7 @@ TEST_F(RenderDvr, ShadingDarkensOnlyTheEmissionAndMatchesTheCpuReference) {
     SCOPED_TRACE(c.name);
     const render::Camera& camera = c.camera;
     render::RenderOptions off = dvrOptions(c.table), on = off;
-    on.dvrShading = true;
+    on.dvrShading.on = true;
     const render::FrameImages shaded = renderSource(*c.source, camera, w, h, on);
     const render::FrameImages unshaded = renderSource(*c.source, camera, w, h, off);
     render::FrameImages plain;  // with the shaded image's sub-steps
@@ -1220,10 +1225,10 @@ TEST_F(RenderDvr, SpecularAddsWhiteLightOnlyAndMatchesTheCpuReference) {
   for (const ShadingScenes::Case& c : scenes.cases) {
     SCOPED_TRACE(c.name);
     render::RenderOptions shadedOptions = dvrOptions(c.table);
-    shadedOptions.dvrShading = true;
+    shadedOptions.dvrShading.on = true;
     render::RenderOptions litOptions = shadedOptions;
-    litOptions.dvrSpecular = strength;
-    litOptions.dvrSpecularPower = power;
+    litOptions.dvrShading.specular = strength;
+    litOptions.dvrShading.specularPower = power;
     const render::FrameImages shaded = renderSource(*c.source, c.camera, w, h, shadedOptions);
     const render::FrameImages lit = renderSource(*c.source, c.camera, w, h, litOptions);
     int brighter = 0;
@@ -1251,19 +1256,25 @@ TEST_F(RenderDvr, SpecularAddsWhiteLightOnlyAndMatchesTheCpuReference) {
 
     if (c.source != scenes.boxSpline.get()) continue;
     render::Raycaster live(*c.source, shadedOptions);
-    live.setDvrSpecular(strength, power);
+    live.setDvrShading(litOptions.dvrShading);
     live.render(c.camera, w, h);
     EXPECT_EQ(live.readImages().rgba, lit.rgba) << "a live change must give a fresh renderer's image";
-    EXPECT_THROW(live.setDvrSpecular(1.5f, power), ValueError);
-    EXPECT_THROW(live.setDvrSpecular(strength, 0.0f), ValueError);
-    EXPECT_EQ(live.options().dvrSpecular, strength) << "a refused value changes nothing";
-    live.setDvrSpecular(0.0f, power);
+    render::DvrShading bad = litOptions.dvrShading;
+    bad.specular = 1.5f;
+    EXPECT_THROW(live.setDvrShading(bad), ValueError);
+    bad = litOptions.dvrShading;
+    bad.specularPower = 0.0f;
+    EXPECT_THROW(live.setDvrShading(bad), ValueError);
+    EXPECT_EQ(live.options().dvrShading, litOptions.dvrShading) << "a refused value changes nothing";
+    render::DvrShading none = litOptions.dvrShading;
+    none.specular = 0.0f;
+    live.setDvrShading(none);
     live.render(c.camera, w, h);
     EXPECT_EQ(live.readImages().rgba, shaded.rgba) << "strength 0: the shaded image";
   }
 }
 
-// A directional light fixed to the camera (--light AZIMUTH,ELEVATION: RenderOptions::dvrLight
+// A directional light fixed to the camera (--light AZIMUTH,ELEVATION: RenderOptions::dvrShading.light
 // Directional, lightInCamera) and the light kit (--light kit: viewer/DvrLight.h) instead of the
 // headlight: opacity and depth stay the headlight's bit for bit, the colours change (the light comes
 // from elsewhere), and on every lattice each agrees with the CPU reference lit the same way (45 dB),
@@ -1277,16 +1288,16 @@ TEST_F(RenderDvr, ADirectionalLightAndTheLightKitMatchTheCpuReference) {
   for (const ShadingScenes::Case& c : scenes.cases) {
     SCOPED_TRACE(c.name);
     render::RenderOptions headlightOptions = dvrOptions(c.table);
-    headlightOptions.dvrShading = true;
-    headlightOptions.dvrSpecular = strength;
-    headlightOptions.dvrSpecularPower = power;
+    headlightOptions.dvrShading.on = true;
+    headlightOptions.dvrShading.specular = strength;
+    headlightOptions.dvrShading.specularPower = power;
     const render::FrameImages headlit = renderSource(*c.source, c.camera, w, h, headlightOptions);
     const render::CameraFrame frame = render::cameraFrame(c.camera, double(w) / h);
     render::FrameImages litImages[2];
     for (render::DvrLight light : {render::DvrLight::Directional, render::DvrLight::Kit}) {
       const std::string lightName = render::dvrLightName(light);
       render::RenderOptions litOptions = headlightOptions;
-      litOptions.dvrLight = light;
+      litOptions.dvrShading.light = light;
       litOptions.lightInCamera = lightInCamera;
       const render::FrameImages lit = renderSource(*c.source, c.camera, w, h, litOptions);
       int changed = 0;
@@ -1319,14 +1330,19 @@ TEST_F(RenderDvr, ADirectionalLightAndTheLightKitMatchTheCpuReference) {
 
     if (c.source != scenes.boxSpline.get()) continue;
     render::Raycaster live(*c.source, headlightOptions);
-    live.setDvrLight(render::DvrLight::Directional);
+    const auto lightOnly = [&headlightOptions](render::DvrLight light) {
+      render::DvrShading shading = headlightOptions.dvrShading;
+      shading.light = light;
+      return shading;
+    };
+    live.setDvrShading(lightOnly(render::DvrLight::Directional));
     live.setLightInCamera(lightInCamera);
     live.render(c.camera, w, h);
     EXPECT_EQ(live.readImages().rgba, litImages[0].rgba) << "a live change must give a fresh renderer's image";
-    live.setDvrLight(render::DvrLight::Kit);
+    live.setDvrShading(lightOnly(render::DvrLight::Kit));
     live.render(c.camera, w, h);
     EXPECT_EQ(live.readImages().rgba, litImages[1].rgba) << "the kit, live";
-    live.setDvrLight(render::DvrLight::Headlight);
+    live.setDvrShading(lightOnly(render::DvrLight::Headlight));
     live.render(c.camera, w, h);
     EXPECT_EQ(live.readImages().rgba, headlit.rgba) << "the headlight again";
   }

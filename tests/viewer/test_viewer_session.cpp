@@ -771,10 +771,10 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   ASSERT_TRUE(h.settle());
   EXPECT_EQ(differingChannels(first, h.pixels(), panel), 0) << "the first stop opacity gives the first image";
 
-  ASSERT_FALSE(h.session->renderOptions().dvrShading);
-  h.session->settings().dvrShading = true;
+  ASSERT_FALSE(h.session->renderOptions().dvrShading.on);
+  h.session->settings().dvrShading.on = true;
   ASSERT_TRUE(h.settle());
-  EXPECT_TRUE(h.session->renderOptions().dvrShading);
+  EXPECT_TRUE(h.session->renderOptions().dvrShading.on);
   const std::vector<unsigned char> shaded = h.pixels();
   EXPECT_GT(differingChannels(first, shaded, panel), 0) << "shading must change the image";
   // With shading, the specular sliders (uniforms: no rebuild); a highlight changes the image (a
@@ -782,13 +782,13 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   h.frame();
   EXPECT_FALSE(h.session->panelLayout().specularSlider.empty()) << "no specular slider with shading on";
   EXPECT_FALSE(h.session->panelLayout().specularPowerSlider.empty());
-  h.session->settings().dvrSpecular = 0.8f;
-  h.session->settings().dvrSpecularPower = 4.0f;
+  h.session->settings().dvrShading.specular = 0.8f;
+  h.session->settings().dvrShading.specularPower = 4.0f;
   ASSERT_TRUE(h.settle());
-  EXPECT_EQ(h.session->renderOptions().dvrSpecular, 0.8f);
-  EXPECT_EQ(h.session->renderOptions().dvrSpecularPower, 4.0f);
+  EXPECT_EQ(h.session->renderOptions().dvrShading.specular, 0.8f);
+  EXPECT_EQ(h.session->renderOptions().dvrShading.specularPower, 4.0f);
   EXPECT_GT(differingChannels(shaded, h.pixels(), panel), 0) << "the highlight must change the image";
-  h.session->settings().dvrSpecular = 0.0f;
+  h.session->settings().dvrShading.specular = 0.0f;
   ASSERT_TRUE(h.settle());
   EXPECT_EQ(differingChannels(shaded, h.pixels(), panel), 0) << "no highlight: the shaded image";
   // The light's buttons, clicked: "directional", a light fixed to the camera, whose sliders then show
@@ -809,7 +809,7 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   };
   clickLight(render::DvrLight::Directional);
   ASSERT_TRUE(h.settle());
-  EXPECT_EQ(h.session->renderOptions().dvrLight, render::DvrLight::Directional) << "the click must choose the directional light";
+  EXPECT_EQ(h.session->renderOptions().dvrShading.light, render::DvrLight::Directional) << "the click must choose the directional light";
   EXPECT_FALSE(h.session->panelLayout().lightAzimuthSlider.empty()) << "the light's sliders must show";
   const std::vector<unsigned char> sideLit = h.pixels();
   EXPECT_GT(differingChannels(shaded, sideLit, panel), 0) << "another light must change the image";
@@ -819,15 +819,15 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   EXPECT_GT(differingChannels(sideLit, moved, panel), 0) << "the light moved must change the image";
   clickLight(render::DvrLight::Kit);
   ASSERT_TRUE(h.settle());
-  EXPECT_EQ(h.session->renderOptions().dvrLight, render::DvrLight::Kit) << "the click must choose the light kit";
+  EXPECT_EQ(h.session->renderOptions().dvrShading.light, render::DvrLight::Kit) << "the click must choose the light kit";
   EXPECT_TRUE(h.session->panelLayout().lightAzimuthSlider.empty()) << "no light sliders under the kit";
   EXPECT_GT(differingChannels(shaded, h.pixels(), panel), 0) << "the kit must change the headlight's image";
   EXPECT_GT(differingChannels(moved, h.pixels(), panel), 0) << "the kit must change the directional light's image";
   clickLight(render::DvrLight::Headlight);
   ASSERT_TRUE(h.settle());
-  EXPECT_EQ(h.session->renderOptions().dvrLight, render::DvrLight::Headlight);
+  EXPECT_EQ(h.session->renderOptions().dvrShading.light, render::DvrLight::Headlight);
   EXPECT_EQ(differingChannels(shaded, h.pixels(), panel), 0) << "the headlight again: its image";
-  h.session->settings().dvrShading = false;
+  h.session->settings().dvrShading.on = false;
   ASSERT_TRUE(h.settle());
   EXPECT_EQ(differingChannels(first, h.pixels(), panel), 0) << "unshaded again: the first image";
 
@@ -837,9 +837,9 @@ TEST_F(ViewerSession, DvrPanelSetsUnitDistanceStopOpacityAndShading) {
   EXPECT_EQ(h.session->settings().stopOpacity, stop) << "a refused stop opacity goes back";
   EXPECT_EQ(h.session->renderOptions().terminationOpacity, stop);
   EXPECT_NE(h.session->notice().find("stop opacity"), std::string::npos) << h.session->notice();
-  h.session->settings().dvrSpecular = 3.0f;
+  h.session->settings().dvrShading.specular = 3.0f;
   h.frame();
-  EXPECT_EQ(h.session->settings().dvrSpecular, 0.0f) << "a refused strength goes back";
+  EXPECT_EQ(h.session->settings().dvrShading.specular, 0.0f) << "a refused strength goes back";
   EXPECT_NE(h.session->notice().find("specular"), std::string::npos) << h.session->notice();
 }
 
@@ -1331,13 +1331,13 @@ TEST_F(ViewerSession, CartesianDvrSwitchesTheReconstructionKeepingModeAndTransfe
         s.settings().densityScale = 0.5f;
         s.settings().unitDistance *= 2.0f;
         s.settings().stopOpacity = 0.9f;
-        s.settings().dvrShading = true;
+        s.settings().dvrShading.on = true;
         s.setCamera(render::orbit(s.camera(), 60.0, -25.0));
         EXPECT_TRUE(h.settle());
         EXPECT_EQ(s.transfer()->spec, "ct-bone");
         EXPECT_EQ(s.transfer()->scale.densityScale, 0.5);
         EXPECT_EQ(s.transfer()->scale.unitDistance, double(s.settings().unitDistance));
-        EXPECT_TRUE(s.renderOptions().dvrShading);
+        EXPECT_TRUE(s.renderOptions().dvrShading.on);
         EXPECT_NE(s.transferEditor(), nullptr);
         if (s.transferEditor()) {
           EXPECT_EQ(s.transferEditor()->spec(), "ct-bone");
@@ -1380,14 +1380,14 @@ TEST_F(ViewerSession, CartesianDvrSwitchesTheReconstructionKeepingModeAndTransfe
         EXPECT_EQ(s.transfer()->scale.unitDistance, keptTransfer->scale.unitDistance);
         EXPECT_EQ(s.settings().unitDistance, float(keptTransfer->scale.unitDistance));
         EXPECT_EQ(s.settings().stopOpacity, 0.9f);
-        EXPECT_TRUE(s.settings().dvrShading);
+        EXPECT_TRUE(s.settings().dvrShading.on);
         EXPECT_EQ(s.camera().eye, keptCamera.eye);
         EXPECT_EQ(s.camera().lookat, keptCamera.lookat);
         EXPECT_EQ(s.camera().up, keptCamera.up);
         EXPECT_EQ(s.camera().fovYDegrees, keptCamera.fovYDegrees);
         EXPECT_TRUE(h.settle()) << "the tricubic image does not converge";
         EXPECT_EQ(s.renderOptions().terminationOpacity, 0.9f);
-        EXPECT_TRUE(s.renderOptions().dvrShading);
+        EXPECT_TRUE(s.renderOptions().dvrShading.on);
         EXPECT_TRUE(s.panelLayout().isoSlider.empty()) << "an isovalue slider in DVR mode";
         EXPECT_FALSE(s.panelLayout().transferCombo.empty()) << "no transfer function controls";
         tricubicImage = h.pixels();
@@ -1452,7 +1452,7 @@ TEST_F(ViewerSession, CartesianDvrSwitchesTheReconstructionKeepingModeAndTransfe
   h.session = makeSession(fresh);
   h.session->setCamera(keptCamera);
   h.session->settings().stopOpacity = 0.9f;
-  h.session->settings().dvrShading = true;
+  h.session->settings().dvrShading.on = true;
   ASSERT_TRUE(h.settle());
   EXPECT_EQ(differing(tricubicImage, h.pixels()), 0) << "the switched session is not a tricubic DVR session with the view kept";
   EXPECT_NO_THROW(checkGl("a fresh tricubic DVR session"));
