@@ -91,12 +91,20 @@ void integrateSpan(const Reconstruction& recon, const SiteValue& at, const DvrMe
       // e is premultiplied by the extinction: the white highlight too.
       const glm::dvec3 g(vg.gradient);
       const DvrOptions& o = acc.options;
-      const glm::dvec2 lit =
-          o.headlight ? glm::dvec2(dvrShade(g, ray.d, o.normalFromIndex),
-                                   dvrSpecular(g, ray.d, o.normalFromIndex, o.specular, o.specularPower))
-          : !o.kit.empty() ? dvrShadeKit(g, ray.d, o.normalFromIndex, o.kit, o.kitHeadWeight, acc.towardsEyeWorld,
-                                         o.specular, o.specularPower)
-                           : dvrShadeLit(g, o.normalFromIndex, o.lightWorld, acc.towardsEyeWorld, o.specular, o.specularPower);
+      glm::dvec2 lit;
+      switch (o.light) {
+        case DvrOptions::Light::Headlight:
+          lit = glm::dvec2(dvrShade(g, ray.d, o.normalFromIndex),
+                           dvrSpecular(g, ray.d, o.normalFromIndex, o.specular, o.specularPower));
+          break;
+        case DvrOptions::Light::Directional:
+          lit = dvrShadeLit(g, o.normalFromIndex, o.lightWorld, acc.towardsEyeWorld, o.specular, o.specularPower);
+          break;
+        case DvrOptions::Light::Kit:
+          lit = dvrShadeKit(g, ray.d, o.normalFromIndex, o.kit, o.kitHeadWeight, acc.towardsEyeWorld, o.specular,
+                            o.specularPower);
+          break;
+      }
       e = glm::dvec4(glm::dvec3(e) * lit.x + e.a * lit.y, e.a);
     }
     acc.add(e, t, h);
@@ -147,7 +155,7 @@ DvrPixel integrateDvrRay(const Reconstruction& recon, const SiteValue& at, const
     throw ValueError("the DVR reference step must be a positive number of world units, not " + std::to_string(options.step));
   Accumulator acc{options, DvrPixel{}};
   // The world direction: ray.d is indexFromWorld's linear part (normalFromIndex's transpose) times it.
-  if (options.shading && !options.headlight)
+  if (options.shading && options.light != DvrOptions::Light::Headlight)
     acc.towardsEyeWorld = -glm::normalize(glm::inverse(glm::transpose(options.normalFromIndex)) * ray.d);
   if (!(ray.t1 > ray.t0)) return acc.pixel;
   if (!std::isfinite(ray.t0) || !std::isfinite(ray.t1))

@@ -92,12 +92,12 @@ struct DvrOptions {
   double step = 1e-3;                 // world units: the longest sub-step
   bool shading = false;               // gradient shading (dvrShade), with this normalFromIndex
   double specular = 0.0, specularPower = 20.0;  // with shading: dvrSpecular's strength and power
-  // With shading, the light: the headlight (dvrShade, dvrSpecular), or else the directional light
-  // towards lightWorld (unit, world space; dvrShadeLit).
-  bool headlight = true;
+  // With shading, the light (as viewer/DvrLight.h's DvrLight): the headlight (dvrShade, dvrSpecular);
+  // the directional light towards lightWorld (unit, world space; dvrShadeLit); or a light kit, its
+  // lights `kit` and the headlight of weight kitHeadWeight (dvrShadeKit).
+  enum class Light { Headlight, Directional, Kit };
+  Light light = Light::Headlight;
   glm::dvec3 lightWorld{0.0, 0.0, 1.0};
-  // ... or, where `kit` is not empty (headlight false), a light kit: its lights and the headlight of
-  // weight kitHeadWeight (dvrShadeKit).
   std::vector<DvrKitLight> kit;
   double kitHeadWeight = 0.0;
   glm::dmat3 normalFromIndex{1.0};

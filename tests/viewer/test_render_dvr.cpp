@@ -1312,13 +1312,14 @@ TEST_F(RenderDvr, ADirectionalLightAndTheLightKitMatchTheCpuReference) {
       reference.shading = true;
       reference.specular = strength;
       reference.specularPower = power;
-      reference.headlight = false;
+      reference.light = DvrOptions::Light::Directional;
       reference.lightWorld = glm::dvec3(render::lightTowardsWorld(frame, lightInCamera));
       if (light == render::DvrLight::Kit) {
         const render::LightKit& kit = render::defaultLightKit();
         for (std::size_t k = 0; k < kit.inCamera.size(); ++k)
           reference.kit.push_back({glm::dvec3(render::lightTowardsWorld(frame, kit.inCamera[k])), double(kit.weight[k])});
         reference.kitHeadWeight = kit.headWeight;
+        reference.light = DvrOptions::Light::Kit;
       }
       const double db = psnr(lit, scenes.reference(c, reference));
       std::printf("%s under the %s light: PSNR %.1f dB against the CPU reference lit the same way\n", c.name,

@@ -5,32 +5,23 @@
 // largest lane: a warp ends with its last ray). Build:
 //   g++ -O2 -std=c++17 tools/device/dvr_clock_phases.cpp -I/usr/include/OpenEXR -I/usr/include/Imath -lOpenEXR-3_1 -lImath-3_1
 // Run: ./a.out out.exr 4 8 [MODE]   (MODE: the knob's value, 1 or 2, for the phases' names)
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <Imath/ImathBox.h>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
+
+#include "../../tests/tools/ExrRead.h"  // header-only: the tests' reading of one channel
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "usage: %s CLOCK.exr [TILE_W TILE_H [MODE]]\n", argv[0]);
     return 2;
   }
-  Imf::InputFile f(argv[1]);
   const int tw = argc > 2 ? std::atoi(argv[2]) : 4, th = argc > 3 ? std::atoi(argv[3]) : 8;
-  const Imath::Box2i dw = f.header().dataWindow();
-  const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+  int w = 0, h = 0;
   const char* names[4] = {"R", "G", "B", "Z"};
   std::vector<float> ch[4];
-  Imf::FrameBuffer fb;
-  for (int c = 0; c < 4; ++c) {
-    ch[c].resize(size_t(w) * h);
-    fb.insert(names[c], Imf::Slice(Imf::FLOAT, (char*)(ch[c].data() - dw.min.x - size_t(dw.min.y) * w), 4, 4 * size_t(w)));
-  }
-  f.setFrameBuffer(fb);
-  f.readPixels(dw.min.y, dw.max.y);
+  for (int c = 0; c < 4; ++c) ch[c] = fcc::test::readExrChannel(argv[1], names[c], w, h);
   double sum[4] = {0, 0, 0, 0}, busySum = 0, tileMaxSum = 0, busyTiles = 0;
   long busy = 0;
   for (size_t i = 0; i < size_t(w) * h; ++i) {

@@ -4,27 +4,22 @@
 // over warp tiles of W x H pixels (sum over the tile's lanes / (lanes x the tile's largest)). Build:
 //   g++ -O2 -std=c++17 tools/device/dvr_count_tiles.cpp -I/usr/include/OpenEXR -I/usr/include/Imath -lOpenEXR-3_1 -lImath-3_1
 // Run: ./a.out out.exr 4 8
-#include <OpenEXR/ImfRgbaFile.h>
-#include <OpenEXR/ImfArray.h>
-#include <OpenEXR/ImfInputFile.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfChannelList.h>
-#include <Imath/ImathBox.h>
-#include <cstdio>
-#include <vector>
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include "../../tests/tools/ExrRead.h"  // header-only: the tests' reading of one channel
+
 int main(int argc, char** argv) {
-  Imf::InputFile f(argv[1]);
-  int tw = argc > 2 ? atoi(argv[2]) : 4, th = argc > 3 ? atoi(argv[3]) : 8;
-  Imath::Box2i dw = f.header().dataWindow();
-  int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
-  std::vector<float> r(size_t(w) * h), g(size_t(w) * h), b(size_t(w) * h);
-  Imf::FrameBuffer fb;
-  fb.insert("R", Imf::Slice(Imf::FLOAT, (char*)(r.data() - dw.min.x - dw.min.y * w), 4, 4 * w));
-  fb.insert("G", Imf::Slice(Imf::FLOAT, (char*)(g.data() - dw.min.x - dw.min.y * w), 4, 4 * w));
-  fb.insert("B", Imf::Slice(Imf::FLOAT, (char*)(b.data() - dw.min.x - dw.min.y * w), 4, 4 * w));
-  f.setFrameBuffer(fb);
-  f.readPixels(dw.min.y, dw.max.y);
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s COUNT.exr [TILE_W TILE_H]\n", argv[0]);
+    return 2;
+  }
+  int tw = argc > 2 ? std::atoi(argv[2]) : 4, th = argc > 3 ? std::atoi(argv[3]) : 8;
+  int w = 0, h = 0;
+  const std::vector<float> r = fcc::test::readExrChannel(argv[1], "R", w, h), g = fcc::test::readExrChannel(argv[1], "G", w, h),
+                           b = fcc::test::readExrChannel(argv[1], "B", w, h);
   double sumR = 0, sumG = 0, sumB = 0, warpR = 0, warpG = 0; long pixR = 0, tiles = 0;
   for (int ty = 0; ty < h; ty += th)
     for (int tx = 0; tx < w; tx += tw) {
