@@ -61,7 +61,9 @@ const int kDvrMaxSteps = 64;
 // unit cells a ray visits in resident bricks, G those it integrates, B its sub-steps (the opacity and
 // the stopping are as without it). Wrong images: for where a frame's work goes. 2: R the walk's rounds
 // that integrate or prepare a cell, G the cells integrated, B the rounds that only gathered a cell's
-// entry piece (march_fcc.glsl's chain).
+// entry piece (march_fcc.glsl's chain). 3 (raycast.comp's flat walk): R the walk's rounds (dvrRound,
+// those that find nothing too), G its brick steps (resident, skipped or missing bricks and empty
+// nodes alike), B the iterations of its outer loop (R + G, unless FCC_DVR_BRICKS_FIRST).
 #ifndef FCC_DVR_COUNT
 #define FCC_DVR_COUNT 0
 #endif

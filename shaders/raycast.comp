@@ -698,8 +698,14 @@ void main() {
   int rounds = 0;
 #endif
   while (t < tEnd && guard < 4096) {
+#if FCC_DVR_FLAT && FCC_DVR_COUNT == 3
+    st.color.b += 1.0;
+#endif
 #if FCC_DVR_FLAT && !FCC_DVR_BRICKS_FIRST
     if (inBrick) {
+#if FCC_DVR_COUNT == 3
+      st.color.r += 1.0;
+#endif
       if (dvrRound(walk, o, d, invD, st)) {
         found = true;  // opaque enough: nothing behind is integrated or requested
         break;
@@ -715,6 +721,9 @@ void main() {
     while (!inBrick && t < tEnd && guard < 4096) {
 #endif
     ++guard;
+#if FCC_DVR_FLAT && FCC_DVR_COUNT == 3
+    st.color.g += 1.0;
+#endif
     vec3 p = o + t * d;
     ivec3 b = clamp(ivec3(floor(p / kBrickSites)), uBrickMin, uBrickMin + uBrickDims - 1);
     // At a brick's (or node's) exit, rounding can put p back in the brick the ray is leaving: step
@@ -780,6 +789,9 @@ void main() {
 #if FCC_DVR_FLAT && FCC_DVR_BRICKS_FIRST
     }
     if (!inBrick) break;  // past the last brick, or stopped for a missing one
+#if FCC_DVR_COUNT == 3
+    st.color.r += 1.0;
+#endif
     if (dvrRound(walk, o, d, invD, st)) {
       found = true;  // opaque enough: nothing behind is integrated or requested
       break;
