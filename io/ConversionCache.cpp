@@ -103,7 +103,7 @@ FccInput::FccInput(const std::string& input, const ConvertOptions& options, bool
       if (say) say("using the FCC conversion of " + input + " cached as " + path_);
       return;
     }
-    if (say) say("converting " + input + " to FCC once; cached as " + path_ + " (--no-cache: a temporary file)");
+    if (say) say("converting " + input + " to FCC once, to be cached as " + path_ + " (--no-cache: a temporary file)");
     convertToFcc(input, path_, o, progress);
     origin_ = Origin::Converted;
     boundCacheFolder(dir.string(), path_);

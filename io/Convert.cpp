@@ -122,7 +122,7 @@ std::unique_ptr<DenseSource> openDense(const std::string& input, Format format, 
   switch (format) {
     case Format::Raw:
       if (!options.raw)
-        throw ValueError(input + ": raw input needs --dims X,Y,Z and --type (valid inputs by extension: .vdb, "
+        throw ValueError(input + ": raw input needs --dims X,Y,Z (and --type, default u8; valid inputs by extension: .vdb, "
                                  ".nrrd, .nhdr, .nii, .nii.gz, .mha, .mhd, .dcm or a DICOM folder; anything else is raw)");
       return openRaw(input, *options.raw);
     case Format::Nrrd: return openNrrd(input);

@@ -276,8 +276,11 @@ TransferFunction transferFunctionFromSpec(const std::string& spec) {
     return readTransferFunctionFile(named.path, named.colorMapName);
   std::string valid;
   for (const std::string& n : transferFunctionPresetNames()) valid += (valid.empty() ? "" : ", ") + n;
-  throw ValueError("--tf '" + spec + "' is neither a preset (" + valid +
-                   ") nor a file (ParaView colour-map .json, FILE.json:NAME for its map NAME, or a text file of "
+  // A spec that looks like a path (a folder or an extension) was meant as a file: say it is missing.
+  const bool looksLikePath = named.path.find('/') != std::string::npos || named.path.find('.') != std::string::npos;
+  throw ValueError("--tf '" + spec + "' is " + (looksLikePath ? "no such file, and not a preset" : "neither a preset") +
+                   " (" + valid + ") " + (looksLikePath ? "either" : "nor a file") +
+                   " (files: ParaView colour-map .json, FILE.json:NAME for its map NAME, or a text file of "
                    "'value r g b alpha' lines)");
 }
 

@@ -240,6 +240,12 @@ FileHeader readFileHeader(int fd, const std::string& path, uint64_t fileSize) {
     // descriptor at its end. An instance (metadata and transform only) has no buffers: position 0.
     const uint64_t gridPos = c.pos();
     const bool noBuffers = !d.instanceParent.empty() && d.blockPos == 0;
+    // Positions in order but past the end: the file was cut short (a copy or download that stopped).
+    if (d.gridPos == int64_t(gridPos) && (noBuffers || (d.blockPos >= d.gridPos && d.endPos >= d.blockPos)) &&
+        uint64_t(d.endPos) > fileSize)
+      throw InputError(path + ": truncated: grid \"" + escaped(d.displayName()) + "\" ends at byte " +
+                       std::to_string(d.endPos) + ", but the file has " + std::to_string(fileSize) +
+                       " bytes (an incomplete copy or download?)");
     if (d.gridPos != int64_t(gridPos) || (!noBuffers && (d.blockPos < d.gridPos || d.endPos < d.blockPos)) ||
         d.endPos < d.gridPos || uint64_t(d.endPos) > fileSize)
       r.fail("grid \"" + escaped(d.displayName()) + "\" (descriptor at byte " + std::to_string(at) +
@@ -718,6 +724,36 @@ VdbLeafReader::~VdbLeafReader() {
   if (fd_ >= 0) ::close(fd_);
 }
 
+namespace {
+
+// Where the record after a leaf whose head is damaged begins: the first offset from `p` (a record
+// whose head is unreadable, `avail` bytes of it and what follows present, `left` bytes to the buffer
+// section's end) at which the next leaf's value mask `nextMask` stands and its record's head parses
+// cleanly, the record within the section; nullopt if none does within the largest record. For the
+// last leaf (nextMask null) the section's end, `left` itself, if a record can be that long.
+std::optional<uint64_t> recordSizeFromTheNext(const uint8_t* p, uint64_t avail, uint64_t left, const Mask3* nextMask,
+                                              const Format& f) {
+  const uint64_t least = kMaskBytes + 1;
+  if (!nextMask) return left >= least && left <= VdbLeafReader::kMaxLeafBytes ? std::optional<uint64_t>(left) : std::nullopt;
+  uint8_t maskBytes[kMaskBytes];
+  for (int w = 0; w < 8; ++w) {
+    const uint64_t word = nextMask->getWord<uint64_t>(w);
+    std::memcpy(maskBytes + 8 * w, &word, 8);
+  }
+  for (uint64_t at = least; at <= VdbLeafReader::kMaxLeafBytes && at + least <= avail; ++at) {
+    if (std::memcmp(p + at, maskBytes, kMaskBytes) != 0) continue;
+    try {
+      const Record next = parseRecord(p + at, avail - at, *nextMask, f);
+      if (next.damage.empty() && next.size() <= left - at) return at;
+    } catch (const Damaged&) {
+      // not a record: look further
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 template <class TreeT>
 void VdbLeafReader::buildIndex(const TreeT& tree) {
   for (int k = 0; k < components_; ++k) background_[k] = reinterpret_cast<const float*>(&tree.background())[k];
@@ -730,7 +766,11 @@ void VdbLeafReader::buildIndex(const TreeT& tree) {
   origins_.reserve(leaves);
   const Format format{components_, half_, compression_};
   Cursor c(fd_, path_, blockPos_, endPos_, kIndexChunk);
-  for (auto it = tree.cbeginLeaf(); it; ++it) {
+  std::vector<const typename TreeT::LeafNodeType*> leafNodes;  // for the next leaf's mask
+  leafNodes.reserve(leaves);
+  for (auto it = tree.cbeginLeaf(); it; ++it) leafNodes.push_back(&*it);
+  for (size_t n = 0; n < leafNodes.size(); ++n) {
+    const auto* it = leafNodes[n];
     const Coord origin = it->origin();
     const uint64_t at = c.pos();
     auto damaged = [&](const std::string& what) {
@@ -743,12 +783,19 @@ void VdbLeafReader::buildIndex(const TreeT& tree) {
     Record rec;
     try {
       rec = parseRecord(c.peek(size_t(avail)), avail, it->valueMask(), format);
+      if (rec.size() > c.left()) throw Damaged{"its values run past the end of the grid's buffer section"};
+      if (rec.size() > kMaxLeafBytes) throw Damaged{"it is larger than any leaf can be"};  // parseRecord bounds it
     } catch (const Damaged& e) {
-      throw damaged(e.what);
+      // Its head is damaged, so its size is unknown: the next leaf's record, found by its mask, says it.
+      const uint64_t window = std::min<uint64_t>(kMaxLeafBytes + kMaxRecordHead, c.left());
+      const Mask3* nextMask = n + 1 < leafNodes.size() ? &leafNodes[n + 1]->valueMask() : nullptr;
+      const std::optional<uint64_t> size = recordSizeFromTheNext(c.peek(size_t(window)), window, c.left(), nextMask, format);
+      if (!size) throw damaged(e.what);
+      rec = Record{};
+      rec.payloadAt = *size;  // size() is the whole record
+      damagedHeads_.emplace(index_.size(), e.what);
     }
-    if (rec.size() > c.left()) throw damaged("its values run past the end of the grid's buffer section");
-    if (rec.size() > kMaxLeafBytes) throw damaged("it is larger than any leaf can be");  // parseRecord bounds it
-    if (!rec.damage.empty()) ++damagedAtOpen_;  // readLeaf says what, when it is asked for
+    if (!rec.damage.empty() || damagedHeads_.count(index_.size())) ++damagedAtOpen_;  // readLeaf says what
     c.skip(rec.size());
     index_.push_back({at, rec.size()});
     origins_.push_back(origin);
@@ -791,6 +838,8 @@ void VdbLeafReader::readLeaf(size_t i, float* values) const {
   uint8_t record[kMaxLeafBytes];
   if (!preadExact(fd_, path_, e.offset, record, size_t(e.bytes)))
     throw damaged("the file ends inside it (it was truncated after it was opened)");
+  if (const auto head = damagedHeads_.find(i); head != damagedHeads_.end())
+    throw damaged(head->second + " (the next leaf's record was found by its value mask)");
   const Format format{components_, half_, compression_};
   Record rec;
   try {

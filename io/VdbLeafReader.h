@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace fcc::io {
@@ -75,9 +76,11 @@ class VdbLeafReader {
   uint64_t gridBegin() const { return gridPos_; }
   uint64_t bufferBegin() const { return blockPos_; }
   uint64_t bufferEnd() const { return endPos_; }
-  // Leaves found damaged while indexing whose size was still known (a value mask that differs from
-  // the topology's, a blosc header that does not describe the leaf): the file opens, and readLeaf
-  // throws for exactly those.
+  // Leaves found damaged while indexing: those whose size was still known (a value mask that differs
+  // from the topology's, a blosc header that does not describe the leaf), and those whose record head
+  // is damaged (a compression metadata byte or size prefix out of range) where the next leaf's record
+  // was found by its value mask (or the buffer section ends where this one may): the file opens, and
+  // readLeaf throws for exactly those. A damaged head with no such next record fails the opening.
   size_t damagedAtOpen() const { return damagedAtOpen_; }
 
   // Decodes leaf i: 512 * components() floats (component-interleaved, OpenVDB's voxel order: offset
@@ -118,6 +121,7 @@ class VdbLeafReader {
   std::vector<Entry> index_;
   std::vector<openvdb::Coord> origins_;
   size_t damagedAtOpen_ = 0;
+  std::unordered_map<size_t, std::string> damagedHeads_;  // leaf index -> what was wrong with its head
 };
 
 }  // namespace fcc::io

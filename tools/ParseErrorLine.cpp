@@ -25,14 +25,19 @@ bool looksLikeFlag(const std::string& word) {
   return word.size() >= 2 && word[0] == '-' && !std::isdigit(static_cast<unsigned char>(word[1])) && word[1] != '.';
 }
 
-// The deepest subcommand the words name (fccvdb bench render ... -> "render" under "bench").
-CLI::App* chosenSubcommand(CLI::App& app, int argc, const char* const* argv) {
+// The deepest subcommand the words name (fccvdb bench render ... -> "render" under "bench"), and the
+// index of the word after its name (1 for the application itself).
+CLI::App* chosenSubcommand(CLI::App& app, int argc, const char* const* argv, int* after = nullptr) {
   CLI::App* current = &app;
+  if (after) *after = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
     if (word.empty() || word[0] == '-') continue;
     const auto subs = current->get_subcommands([&](CLI::App* s) { return s->get_name() == word; });
-    if (!subs.empty()) current = subs.front();
+    if (!subs.empty()) {
+      current = subs.front();
+      if (after) *after = i + 1;
+    }
   }
   return current;
 }
@@ -43,28 +48,56 @@ std::string commandPath(const CLI::App* app) {
   return path;
 }
 
+// The closest of `names` to `unknown` within a third of its length in edits, or else the one name
+// that starts `unknown` or that `unknown` starts (--isovalue for --iso, --lay for --layout); "" if none.
+std::string closestName(const std::vector<std::string>& names, const std::string& unknown) {
+  std::string best;
+  size_t bestDistance = std::max<size_t>(1, unknown.size() / 3) + 1;
+  for (const std::string& name : names) {
+    const size_t d = editDistance(unknown, name);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = name;
+    }
+  }
+  if (!best.empty()) return best;
+  std::vector<std::string> prefixed;
+  for (const std::string& name : names)
+    if (name.size() >= 3 && unknown.size() >= 3 && (unknown.rfind(name, 0) == 0 || name.rfind(unknown, 0) == 0))
+      prefixed.push_back(name);
+  return prefixed.size() == 1 ? prefixed.front() : "";
+}
+
 }  // namespace
 
 std::string closestFlag(const CLI::App& app, const std::string& unknown) {
-  std::string best;
-  size_t bestDistance = std::max<size_t>(1, unknown.size() / 3) + 1;
-  for (const CLI::Option* option : app.get_options()) {
-    std::vector<std::string> names;
-    for (const std::string& l : option->get_lnames()) names.push_back("--" + l);
-    for (const std::string& s : option->get_snames()) names.push_back("-" + s);
-    for (const std::string& name : names) {
-      const size_t d = editDistance(unknown, name);
-      if (d < bestDistance) {
-        bestDistance = d;
-        best = name;
-      }
-    }
-  }
-  return best;
+  // A short flag is one letter: any other letter is one edit away, so no guess (-r is not -h).
+  if (unknown.size() <= 2) return "";
+  std::vector<std::string> names;
+  for (const CLI::Option* option : app.get_options())
+    for (const std::string& l : option->get_lnames())
+      if (l != "help") names.push_back("--" + l);
+  return closestName(names, unknown);
 }
 
 std::string parseErrorLine(CLI::App& app, const CLI::ParseError& error, int argc, const char* const* argv) {
-  CLI::App* command = chosenSubcommand(app, argc, argv);
+  int after = 1;
+  CLI::App* command = chosenSubcommand(app, argc, argv, &after);
+  const std::vector<CLI::App*> subcommands = command->get_subcommands([](CLI::App*) { return true; });
+  // A command of commands (fccvdb, fccvdb bench) given a word that names none of them.
+  for (int i = after; i < argc && !subcommands.empty(); ++i) {
+    const std::string word = argv[i];
+    if (word.empty() || word[0] == '-') continue;
+    std::vector<std::string> names;
+    std::string valid;
+    for (const CLI::App* s : subcommands) {
+      names.push_back(s->get_name());
+      valid += (valid.empty() ? "" : ", ") + s->get_name();
+    }
+    const std::string suggestion = closestName(names, word);
+    return "unknown command '" + word + "'" + (suggestion.empty() ? "" : ": did you mean " + suggestion + "?") +
+           " (valid: " + valid + "; see " + commandPath(command) + " --help)";
+  }
   std::string line = error.what();
   for (int i = 1; i < argc; ++i) {
     std::string word = argv[i];

@@ -1,6 +1,7 @@
 #include "RenderData.h"
 
 #include <cstdio>
+#include <string>
 
 #include "io/TransferFunctionFile.h"
 #include "sparse/Error.h"
@@ -78,6 +79,20 @@ render::DvrTransfer RenderData::dvrTransfer(const RenderFlags& flags) const {
 }
 
 void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& options) const {
+  if (!flags.clip.empty()) {
+    // A box that misses the data would draw an empty image without a word.
+    glm::dvec3 lo, hi;
+    source_->worldBounds(lo, hi);
+    if (glm::any(glm::lessThan(options.clipHi, lo)) || glm::any(glm::greaterThan(options.clipLo, hi))) {
+      const auto text = [](const glm::dvec3& v) {
+        char s[96];
+        std::snprintf(s, sizeof s, "%.6g,%.6g,%.6g", v.x, v.y, v.z);
+        return std::string(s);
+      };
+      throw ValueError("--clip '" + flags.clip + "' holds none of " + source_->path() + ", whose world bounds are " +
+                       text(lo) + " to " + text(hi));
+    }
+  }
   options.mode = render::parseRenderMode(flags.mode);
   if (flags.dvrMethod != "ray" && options.mode != render::RenderMode::Dvr)
     throw ValueError("--dvr-method " + flags.dvrMethod + " draws direct volume rendering: add --mode dvr");
@@ -88,8 +103,18 @@ void RenderData::applyMode(const RenderFlags& flags, render::RenderOptions& opti
       throw ValueError("--specular applies to --mode dvr --shading on");
     if (flags.light == "kit")
       throw ValueError("--light kit lights --mode dvr --shading on; the isosurface takes headlight or AZIMUTH,ELEVATION");
+    // The transfer function's flags would be ignored: a user who gives them wants the volume.
+    const char* dvrOnly = flags.tfGiven                ? "--tf"
+                          : flags.densityScale != 1.0  ? "--density-scale"
+                          : flags.unitDistance != 0.0  ? "--unit-distance"
+                                                       : nullptr;
+    if (dvrOnly) throw ValueError(std::string(dvrOnly) + " applies to direct volume rendering: add --mode dvr");
     return;
   }
+  // ... and the isosurfaces' would be too: DVR shows every value through the transfer function.
+  if (!flags.iso.empty() || !flags.surfaceColors.empty() || !flags.surfaceOpacity.empty())
+    throw ValueError(std::string(!flags.iso.empty() ? "--iso" : !flags.surfaceColors.empty() ? "--surface-color" : "--surface-opacity") +
+                     " applies to --mode iso; --mode dvr shows every value through --tf (drop one of them)");
   options.dvrShading.on = flags.shading == "on";
   if (flags.specular > 0.0 && !options.dvrShading.on)
     throw ValueError("--specular lights the gradient shading: add --shading on");

@@ -44,7 +44,8 @@ class RenderData {
   // reconstruction takes, from the background when that lies at its low end; or a file's values as
   // they are; a warning when the background gets an opacity: bricks without data are not drawn) sampled for the GPU with --unit-distance
   // (default: the world length of one index unit, the cube root of worldFromIndex's determinant),
-  // --density-scale and --stop-opacity. ValueError / InputError (one line) for a bad --tf.
+  // --density-scale and --stop-opacity. ValueError / InputError (one line) for a bad --tf, for the
+  // other mode's flags (which would be ignored) and for a --clip box that holds none of the data.
   void applyMode(const RenderFlags& flags, render::RenderOptions& options) const;
   // --tf fitted to the source with the optical scale of --unit-distance and --density-scale (the
   // viewer keeps it to rebuild the table). ValueError / InputError (one line) for a bad --tf.

@@ -59,7 +59,8 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
   app.add_option("--tf", flags.tf,
                  "DVR transfer function: a preset (" + presets + "; stretched onto the data's value range) or a file: "
                  "ParaView's colour-map JSON (RGBPoints, Points) or text lines `value r g b alpha` (docs/DVR.md)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->each([&flags](const std::string&) { flags.tfGiven = true; });
   app.add_option("--unit-distance", flags.unitDistance,
                  "DVR: the world length over which an opacity alpha of the transfer function applies (ParaView's "
                  "scalar-opacity unit distance; default: the grid's voxel size)")

@@ -28,6 +28,7 @@ struct RenderFlags {
   std::string reconstruction;                    // empty: FCC (converting a Cartesian FILE); else by name
   std::string mode = "iso";                      // iso | dvr (render::parseRenderMode)
   std::string tf = "grayscale";                  // DVR: a preset or a file (io/TransferFunctionFile.h)
+  bool tfGiven = false;                          // --tf was on the command line (the isosurface refuses it)
   double unitDistance = 0.0;                     // DVR: world units; 0: one index unit of the grid
   double densityScale = 1.0;                     // DVR: multiplies every extinction
   double terminationOpacity = 0.995;             // DVR: a ray stops once this opaque

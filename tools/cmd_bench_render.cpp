@@ -119,7 +119,8 @@ Command addBenchRenderCommand(CLI::App& bench) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 3600.0));
   app->add_option("--work-group", args->workGroup, "Pixels per raycasting work group WxH (tuning)")->capture_default_str();
-  app->add_option("--variants", args->variants, "Variants to time (default: all four)")
+  app->add_option("--variants", args->variants, "Variants to time, separated by spaces or commas (default: all four)")
+      ->delimiter(',')
       ->check(CLI::IsMember({"skip+analytic", "skip+fd", "noskip+analytic", "noskip+fd"}));
   args->flags.layout = "all";
   std::string layouts;

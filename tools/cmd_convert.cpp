@@ -1,4 +1,6 @@
 // fccvdb convert INPUT OUTPUT.vdb: Cartesian data to an FCC grid (io/Convert.h: streamed).
+#include <strings.h>
+
 #include <cstdio>
 
 #include "Command.h"
@@ -46,6 +48,10 @@ Command addConvertCommand(CLI::App& parent) {
   addDeviceOption(*app, args->device);
   return {app, [args, bg]() {
             io::ConvertOptions& o = args->options;
+            // Whatever the name, the output is an OpenVDB file: another extension is a slip (convert a b.png).
+            const std::string& out = args->output;
+            if (out.size() < 4 || strcasecmp(out.c_str() + out.size() - 4, ".vdb") != 0)
+              throw ValueError("OUTPUT '" + out + "': convert writes an OpenVDB file; name it .vdb");
             o.prefilter = !args->noPrefilter;
             if (bg->count() > 0) o.background = args->background;
             o.raw = rawLayoutFromFlags(args->source, args->input);

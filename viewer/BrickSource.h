@@ -10,7 +10,9 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/Damage.h"
@@ -69,6 +71,10 @@ class BrickSource {
   // The range the reconstruction can take (the hull of the bricks' ranges).
   virtual float valueMin() const = 0;
   virtual float valueMax() const = 0;
+  // The range of the data's own samples before any prefilter, where the file records it (FCC files
+  // that convert or synth wrote): valueMin may lie below it (the prefilter's undershoot), which is
+  // not data. nullopt elsewhere.
+  virtual std::optional<std::pair<float, float>> sampleRange() const { return std::nullopt; }
   // Each brick whose reconstruction may vary, with a conservative range of its values on the brick's
   // cells; bricks not visited hold one value and are skipped by rays.
   virtual void forEachVaryingBrick(const std::function<void(const glm::ivec3&, float lo, float hi)>& visit) const = 0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -129,7 +130,11 @@ Camera parseCameraJson(const std::string& text, const std::string& name) {
 
 Camera readCameraFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("camera file " + path + ": cannot be read");
+  if (!in) {
+    std::error_code error;
+    const bool exists = std::filesystem::exists(path, error);
+    throw InputError("camera file " + path + (exists ? ": cannot be read" : ": no such file"));
+  }
   std::stringstream text;
   text << in.rdbuf();
   return parseCameraJson(text.str(), path);

@@ -16,8 +16,10 @@ namespace fcc::render {
 constexpr int kTransferTableSize = 256;
 
 // `tf` as applied to `source`: a normalized one (a preset) stretched onto [background, valueMax] when
-// the background lies in the lowest tenth of the source's range (empty space transparent under every
-// preset's ramp), else onto [valueMin, valueMax]; a file's function (data values) as it is.
+// the background lies below the data (empty space transparent under every preset's ramp): at or below
+// the least of the samples where the source records them (BrickSource::sampleRange), else in the lowest
+// tenth of the source's range; otherwise onto [valueMin, valueMax]. A file's function (data values) as
+// it is.
 TransferFunction fitTransferFunction(const TransferFunction& tf, const BrickSource& source);
 // The world length of one index unit: the cube root of worldFromIndex's determinant (--unit-distance's default).
 double defaultUnitDistance(const BrickSource& source);

@@ -1,5 +1,7 @@
 #include "FccBrickSource.h"
 
+#include "sparse/SampleHistogram.h"
+
 namespace fcc::render {
 
 static_assert(io::kHaloBlockVoxels * 4 == 10 * 10 * 10 * 4, "slotBlockFloats(FccPacked) is the halo block");
@@ -25,6 +27,12 @@ void FccBrickSource::forEachVaryingBrick(const std::function<void(const glm::ive
     const openvdb::Coord c = it.getCoord();
     visit(glm::ivec3(c.x(), c.y(), c.z()), (*it)[0], (*it)[1]);
   }
+}
+
+std::optional<std::pair<float, float>> FccBrickSource::sampleRange() const {
+  const std::optional<SampleSummary> samples = recordedSamples(store_.index());
+  if (!samples) return std::nullopt;
+  return std::make_pair(samples->min, samples->max);
 }
 
 std::size_t FccBrickSource::varyingBrickCount() const { return std::size_t(store_.bounds().activeVoxelCount()); }

@@ -31,6 +31,7 @@ class FccBrickSource : public BrickSource {
   float background() const override { return store_.background(); }
   float valueMin() const override { return store_.valueMin(); }
   float valueMax() const override { return store_.valueMax(); }
+  std::optional<std::pair<float, float>> sampleRange() const override;  // fcc_sample_min, fcc_sample_max
   void forEachVaryingBrick(const std::function<void(const glm::ivec3&, float, float)>& visit) const override;
   std::size_t varyingBrickCount() const override;
   void decode(std::vector<LoadedBrick>& chunk) const override;

@@ -510,6 +510,57 @@ TEST(VdbLeafReader, NoticesAFileChangedAfterOpening) {
   }
 }
 
+// A leaf whose record head is damaged (its compression metadata byte out of range, as one flipped byte
+// makes it) hides its own size, but not the next leaf's record, which starts with that leaf's value mask:
+// the file opens, exactly that leaf is damaged, and every other reads as OpenVDB reads it. The first,
+// a middle and the last leaf (whose record ends the section), blosc and zip, a float level set and a
+// four-channel grid of incompressible values (records of up to 8 KiB, the whole largest one searched).
+template <class GridT>
+void expectOneDamagedLeafPerDamagedHead(const TempDir& dir, const typename GridT::Ptr& grid) {
+  constexpr size_t kFloats = 512 * sizeof(typename GridT::ValueType) / sizeof(float);
+  for (const uint32_t compression : {vio::COMPRESS_BLOSC | kMask, vio::COMPRESS_ZIP | kMask}) {
+    const std::string path = dir / "clean.vdb";
+    writeFile(path, {grid}, compression, false);
+    const auto full = openvdb::gridPtrCast<GridT>(readFully(path, grid->getName()));
+    const VdbLeafReader clean(path, grid->getName(), {});
+    ASSERT_GT(clean.leafCount(), 10u);
+    const std::string bytes = fileBytes(path);
+    for (const size_t target : {size_t(0), clean.leafCount() / 2, clean.leafCount() - 1}) {
+      SCOPED_TRACE(grid->getName() + ", compression " + std::to_string(compression) + ", leaf " + std::to_string(target));
+      std::string damagedBytes = bytes;
+      damagedBytes[size_t(clean.leafOffset(target)) + 64] = char(0xe5);  // the metadata byte after the mask
+      const std::string damagedPath = dir / "damaged.vdb";
+      writeBytes(damagedPath, damagedBytes);
+      const VdbLeafReader reader(damagedPath, grid->getName(), {});
+      ASSERT_EQ(reader.leafCount(), clean.leafCount());
+      EXPECT_EQ(reader.damagedAtOpen(), 1u);
+      size_t i = 0;
+      std::vector<float> values(kFloats);
+      for (auto it = full->tree().cbeginLeaf(); it; ++it, ++i) {
+        EXPECT_EQ(reader.leafOffset(i), clean.leafOffset(i)) << "leaf " << i;
+        if (i == target) {
+          try {
+            reader.readLeaf(i, values.data());
+            ADD_FAILURE() << "the damaged leaf read";
+          } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("is damaged: compression metadata -27 (valid: 0 to 6)"), std::string::npos)
+                << e.what();
+          }
+          continue;
+        }
+        reader.readLeaf(i, values.data());
+        EXPECT_EQ(0, std::memcmp(values.data(), it->buffer().data(), kFloats * sizeof(float))) << "leaf " << i;
+      }
+    }
+  }
+}
+
+TEST(VdbLeafReader, ADamagedRecordHeadIsOneDamagedLeaf) {
+  TempDir dir;
+  expectOneDamagedLeafPerDamagedHead<openvdb::FloatGrid>(dir, levelSet());
+  expectOneDamagedLeafPerDamagedHead<FccGrid>(dir, craftedGrid<FccGrid>("crafted4", openvdb::Vec4f(0.0f)));
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // Error messages
 
@@ -550,6 +601,13 @@ TEST(VdbLeafReader, SaysWhatIsWrong) {
   std::ofstream{empty};
   EXPECT_THAT(errorOf([&] { VdbLeafReader(empty, "", {}); }), StartsWith(empty + ": not an OpenVDB file"));
   EXPECT_THAT(errorOf([&] { VdbLeafReader(dir / "absent.vdb", "", {}); }), StartsWith(dir / "absent.vdb" + ": cannot open"));
+  // Cut short inside the second grid: its descriptor is whole, its end past the file's.
+  const std::string whole = fileBytes(path);
+  const std::string cut = dir / "cut.vdb";
+  writeBytes(cut, whole.substr(0, whole.size() - 10));
+  EXPECT_THAT(errorOf([&] { VdbLeafReader(cut, "crafted4", {}); }),
+              StartsWith(cut + ": truncated: grid \"crafted4\" ends at byte " + std::to_string(whole.size()) +
+                         ", but the file has " + std::to_string(whole.size() - 10) + " bytes"));
 
   // The file format version, right after the magic number.
   for (const uint32_t version : {221u, 225u}) {

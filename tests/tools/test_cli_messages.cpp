@@ -37,6 +37,20 @@ TEST(CliMessages, RawWithExtraBytesSuggestsTheHeaderSize) {
   EXPECT_THAT(shortFile.err, HasSubstr("10 bytes short"));
 }
 
+// convert writes an OpenVDB file whatever OUTPUT is called: another extension is a slip, one line and
+// nothing written.
+TEST(CliMessages, ConvertRefusesAnOutputNotNamedVdb) {
+  TempDir dir;
+  const std::string raw = dir / "cube.raw";
+  writeBytes(raw, 8 * 8 * 8);
+  const CommandResult r = runFccvdb("convert " + raw + " " + (dir / "cube.png") + " --dims 8,8,8 --quiet");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("convert writes an OpenVDB file; name it .vdb"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "cube.png"));
+  EXPECT_EQ(runFccvdb("convert " + raw + " " + (dir / "cube.VDB") + " --dims 8,8,8 --quiet").status, 0) << "any case";
+}
+
 TEST(CliMessages, RawOnlyFlagsAreRefusedForNifti) {
   TempDir dir;
   const std::string nifti = dir / "brain.nii";
@@ -91,6 +105,24 @@ TEST(CliMessages, UnknownFlagSuggestsTheClosestAndTheSubcommandsHelp) {
     EXPECT_THAT(r.err, HasSubstr(c.suggestion)) << c.args;
     EXPECT_THAT(r.err, HasSubstr(c.help)) << c.args;
   }
+  // A flag the known one starts (or a longer spelling of it), and a word that names no command.
+  const Case more[] = {
+      {"render x.vdb out.png --isovalue 3", "--isovalue: did you mean --iso?", "(see fccvdb render --help)"},
+      {"rendr x.vdb out.png", "unknown command 'rendr': did you mean render?", "see fccvdb --help"},
+      {"bench rendr x.vdb", "unknown command 'rendr': did you mean render?", "see fccvdb bench --help"},
+      {"xyzzy x.vdb", "unknown command 'xyzzy' (valid: bench, compare, convert", "see fccvdb --help"},
+  };
+  for (const Case& c : more) {
+    const CommandResult r = runFccvdb(c.args);
+    EXPECT_EQ(r.status, 2) << c.args;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.suggestion)) << c.args << ": " << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.help)) << c.args << ": " << r.err;
+  }
+  // A one-letter flag gets no guess (-r is one edit from -h, which is no help).
+  const CommandResult shortFlag = runFccvdb("render x.vdb out.png -r 64x64");
+  EXPECT_EQ(shortFlag.status, 2);
+  EXPECT_THAT(shortFlag.err, Not(HasSubstr("did you mean")));
   // Nothing close: no suggestion, still the subcommand's help.
   const CommandResult far = runFccvdb("synth sphere x.vdb --dims 8,8,8 --completely-unrelated");
   EXPECT_EQ(far.status, 2);

@@ -234,7 +234,15 @@ TEST(CliRender, BadInputsGiveOneLineStatus1AndNoOutput) {
       {"render " + cartesian + " -o " + (dir / "k.png") + " --reconstruction barycentric", "not a BCC dataset"},
       {"render " + vdb + " -o " + (dir / "l.png") + " --reconstruction trilinear", "holds no grid of type Tree_float"},
       {"render " + vdb + " -o " + (dir / "m.png") + " --mode dvr --tf nope", "grayscale"},
-      {"render " + vdb + " -o " + (dir / "n.png") + " --mode dvr --tf " + (dir / "nothere.json"), "nothere.json"},
+      {"render " + vdb + " -o " + (dir / "n.png") + " --mode dvr --tf " + (dir / "nothere.json"), "nothere.json' is no such file"},
+      {"render " + vdb + " -o " + (dir / "t.png") + " --camera " + (dir / "nothere.json"), "nothere.json: no such file"},
+      {"render " + vdb + " -o " + (dir / "u.png") + " --clip 100,100,100,200,200,200", "holds none of"},
+      // The other mode's flags, which would be ignored.
+      {"render " + vdb + " -o " + (dir / "o.png") + " --tf viridis", "--tf applies to direct volume rendering: add --mode dvr"},
+      {"render " + vdb + " -o " + (dir / "p.png") + " --density-scale 5", "--density-scale applies to direct volume rendering"},
+      {"render " + vdb + " -o " + (dir / "q.png") + " --unit-distance 2", "--unit-distance applies to direct volume rendering"},
+      {"render " + vdb + " -o " + (dir / "r.png") + " --mode dvr --iso 0.3", "--iso applies to --mode iso"},
+      {"render " + vdb + " -o " + (dir / "s.png") + " --mode dvr --surface-opacity 0.5", "--surface-opacity applies to --mode iso"},
   };
   for (const Case& c : cases) {
     const auto r = runFccvdb(c.args);
@@ -267,6 +275,12 @@ TEST(CliRender, BenchRenderJsonHasTheDocumentedKeys) {
       "assert r['gpu_frame_ms'] is not None and 0 < r['gpu_frame_ms'] <= 1.5 * r['frame_ms'], r\n"
       "assert r['shading']['light'] == 'directional' and len(r['shading']['light_in_camera']) == 3, r\n";
   EXPECT_EQ(checkJsonWithPython(dir, r.out, check), 0) << r.out;
+  // --variants takes a comma-separated list as well as several values.
+  const auto two = runFccvdb("bench render " + vdb + " --res 16x16 --frames 1 --warmup 0 --variants skip+analytic,skip+fd"
+                             " --layout texture-vec4 --json");
+  ASSERT_EQ(two.status, 0) << two.err;
+  EXPECT_EQ(checkJsonWithPython(dir, two.out, "assert [r['variant'] for r in rows] == ['skip+analytic', 'skip+fd'], rows\n"), 0)
+      << two.out;
 }
 
 // An isovalue outside the values the spline takes renders an empty image, exit 0, and says so once
