@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -238,6 +239,15 @@ render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& world
       camera.up = patient->superior;
       camera.eye = camera.lookat + glm::normalize(patient->anterior - glm::dot(patient->anterior, patient->superior) * patient->superior) * distance;
     }
+    // Rounding noise of the framing and the upright turn (1e-16 where a 0 is meant) would show in the
+    // printed camera: components that small against the scene's scale are zeros, in the camera used
+    // too (a camera file's and the flags' numbers are the user's, kept as they are).
+    const double scale = std::max({1.0, glm::length(camera.eye), glm::length(camera.lookat)});
+    for (glm::dvec3* v : {&camera.eye, &camera.lookat})
+      for (int a = 0; a < 3; ++a)
+        if (std::abs((*v)[a]) < 1e-12 * scale) (*v)[a] = 0.0;
+    for (int a = 0; a < 3; ++a)
+      if (std::abs(camera.up[a]) < 1e-12 * glm::length(camera.up)) camera.up[a] = 0.0;
     if (!flags.lookat.empty()) {  // the framing distance kept: the eye moves with the look-at point
       const glm::dvec3 lookat = tripleOrThrow(flags.lookat, "--lookat");
       camera.eye += lookat - camera.lookat;
@@ -247,10 +257,14 @@ render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& world
   if (!flags.eye.empty()) camera.eye = tripleOrThrow(flags.eye, "--eye");
   if (!flags.up.empty()) {
     camera.up = tripleOrThrow(flags.up, "--up");
-  } else if (patient && flags.camera.empty() &&
+  } else if (glm::length(camera.lookat - camera.eye) > 0.0 &&
              glm::length(glm::cross(glm::normalize(camera.lookat - camera.eye), camera.up)) < 1e-6) {
-    // An --eye above or below the patient: superior cannot be up, anterior is (the axial convention).
-    camera.up = patient->anterior;
+    // An --eye straight above or below the look-at point along the up vector: that up cannot be kept.
+    // Above or below a patient, anterior is up (the axial convention); elsewhere the up that keeps
+    // world +x to the right (looking down -y: -z up), or +y when the view runs along x.
+    const glm::dvec3 view = glm::normalize(camera.lookat - camera.eye);
+    const glm::dvec3 right = std::abs(view.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 0.0, glm::sign(view.x));
+    camera.up = patient && flags.camera.empty() ? patient->anterior : glm::normalize(glm::cross(right, view));
   }
   render::cameraFrame(camera, aspect);  // validates: throws for a degenerate camera
   return camera;

@@ -31,13 +31,32 @@ struct LevelReport {
   double lodBias = 0.0;
 };
 
+// What the frame showed, beside its mode: the isovalues of its surfaces (the first is --iso's or the
+// default's) or the transfer function --tf named. Empty fields are left out.
+struct FrameLook {
+  std::vector<float> isovalues;
+  std::string transferFunction;
+};
+
+inline std::string frameLookJson(const FrameLook& look) {
+  std::string s;
+  if (!look.isovalues.empty()) {
+    s += ", \"isovalues\": [";
+    for (std::size_t i = 0; i < look.isovalues.size(); ++i) s += (i ? ", " : "") + jsonNumber(look.isovalues[i]);
+    s += "]";
+  }
+  if (!look.transferFunction.empty()) s += ", \"tf\": " + jsonString(look.transferFunction);
+  return s;
+}
+
 inline std::string renderJson(const std::string& file, const std::string& output, const std::string& mode, int width,
                               int height, const std::vector<int>& radices, double frameSeconds,
-                              const std::vector<RankReport>& ranks, const LevelReport& levels = {}) {
+                              const std::vector<RankReport>& ranks, const LevelReport& levels = {},
+                              const FrameLook& look = {}) {
   std::string radixList;
   for (std::size_t i = 0; i < radices.size(); ++i) radixList += (i ? ", " : "") + std::to_string(radices[i]);
   std::string s = "{\"file\": " + jsonString(file) + ", \"output\": " + jsonString(output) + ", \"mode\": " + jsonString(mode) +
-                  ", \"res\": [" + std::to_string(width) + ", " + std::to_string(height) + "], \"ranks\": " +
+                  frameLookJson(look) + ", \"res\": [" + std::to_string(width) + ", " + std::to_string(height) + "], \"ranks\": " +
                   std::to_string(ranks.size()) + ", \"radices\": [" + radixList + "], \"frame_seconds\": " +
                   jsonNumber(frameSeconds);
   if (!levels.bricksPerLevel.empty()) {

@@ -133,4 +133,15 @@ void setSurfaces(render::RenderOptions& options, const std::vector<render::Isosu
   options.moreSurfaces.assign(surfaces.begin() + 1, surfaces.end());
 }
 
+FrameLook frameLook(const render::RenderOptions& options, const std::string& tf) {
+  FrameLook look;
+  if (options.mode == render::RenderMode::Dvr) {
+    look.transferFunction = tf;
+  } else {
+    look.isovalues.push_back(options.iso);
+    for (const render::Isosurface& s : options.moreSurfaces) look.isovalues.push_back(s.iso);
+  }
+  return look;
+}
+
 }  // namespace fcc::cli

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "RenderJson.h"
 #include "viewer/Raycaster.h"
 
 namespace fcc::cli {
@@ -27,5 +28,8 @@ std::vector<render::Isosurface> surfacesFrom(const std::vector<float>& isos, con
                                              const std::string& opacityText);
 // Sets options' surfaces (iso, surfaceColor, surfaceOpacity, moreSurfaces) to `surfaces`.
 void setSurfaces(render::RenderOptions& options, const std::vector<render::Isosurface>& surfaces);
+// What --json says the frame showed: the surfaces' isovalues (options as setSurfaces left them), or in
+// DVR the transfer function `tf` (--tf's preset or file).
+FrameLook frameLook(const render::RenderOptions& options, const std::string& tf);
 
 }  // namespace fcc::cli

@@ -3,15 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <optional>
 
 #include "Command.h"
 #include "JsonText.h"
+#include "ProgressBar.h"
+#include "SourceFlags.h"
 #include "RenderFlags.h"
 #include <tbb/parallel_for.h>
 
 #include "io/BrickStore.h"
+#include "io/ConversionCache.h"
 #include "io/DefaultIsovalue.h"
 #include "io/VdbLeafReader.h"
 #include "sparse/BoundsHierarchy.h"
@@ -24,6 +28,16 @@
 
 namespace fcc::cli {
 namespace {
+
+// An FCC .vdb, or a .vdb whose grid list cannot be read: BrickStore then names what is wrong with it,
+// as for any damaged FCC file (no conversion is tried).
+bool holdsFccGridOrUnreadable(const std::string& path) {
+  try {
+    return io::holdsFccGrid(path);
+  } catch (const Error&) {
+    return true;
+  }
+}
 
 // What the bounds hierarchy says, for an isovalue or none.
 struct BoundsSummary {
@@ -220,17 +234,24 @@ int describeBccDataset(const std::string& file, bool json) {
 Command addInfoCommand(CLI::App& parent) {
   struct Args {
     std::string file, grid;
-    bool json = false, check = false;
+    bool json = false, check = false, noCache = false;
     float iso = 0.0f;
+    SourceFlags source;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* app = parent.add_subcommand("info", "Describe the FCC grids of a .vdb file (or a BCC dataset's cosets)");
-  app->add_option("FILE", args->file, "FCC .vdb file")->required();
+  CLI::App* app = parent.add_subcommand("info", "Describe the FCC grids of a .vdb file (or a BCC dataset's cosets); any other "
+                                                "input as render draws it: converted to FCC once and cached");
+  app->add_option("FILE", args->file,
+                  "FCC .vdb file, or anything convert takes (a Cartesian .vdb, NRRD, NIfTI, raw with --dims/--type): "
+                  "converted as render converts it, into the same cache (--no-cache: a temporary file)")
+      ->required();
+  addRawFlags(*app, args->source);
+  app->add_flag("--no-cache", args->noCache, "Convert a Cartesian FILE into a temporary file instead of the user cache");
   app->add_option("--grid", args->grid, "The FCC grid to describe (default: level 0, the first FCC grid that is not a pyramid level `NAME.lodK`)");
   auto* isoOption = app->add_option("--iso", args->iso, "Isovalue: how many bricks and internal nodes of the bounds hierarchy it leaves active");
   app->add_flag("--check", args->check, "Read every brick and name the damaged ones (exit 1 if any is)");
   app->add_flag("--json", args->json,
-                "One JSON object (keys: file, grid, lattice, values, class, dims (of the active box), samples, bricks, "
+                "One JSON object (keys: file, converted (the FCC file drawn for a Cartesian FILE, or null), grid, lattice, values, class, dims (of the active box), samples, bricks, "
                 "tiles, bytes, min, max (the range the surface can take), range_from, sample_min, sample_max (the "
                 "data's range), percentiles ({\"1\": v, ... \"99\": v} or null), suggested_iso, suggested_iso_basis, "
                 "voxel_size, world_bounds: {min: [x, y, z], max: [x, y, z]} (the active data's box in world space, "
@@ -248,7 +269,18 @@ Command addInfoCommand(CLI::App& parent) {
               if (!std::isfinite(args->iso)) throw ValueError("--iso must be a finite number, got " + isoOption->as<std::string>());
               iso = args->iso;
             }
-            const io::BrickStore store(args->file, args->grid, /*forRendering=*/false);
+            // Not an FCC file: described as render would draw it (the conversion render makes and caches).
+            std::unique_ptr<io::FccInput> converted;
+            if (std::filesystem::exists(args->file) && !holdsFccGridOrUnreadable(args->file)) {
+              io::ConvertOptions options;
+              options.raw = rawLayoutFromFlags(args->source, args->file);
+              options.gridName = args->grid;
+              ProgressBar progress(args->json);
+              converted = std::make_unique<io::FccInput>(args->file, options, !args->noCache, &progress,
+                                                         +[](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+            }
+            const std::string fccPath = converted ? converted->path() : args->file;
+            const io::BrickStore store(fccPath, converted ? std::string() : args->grid, /*forRendering=*/false);
             // As render says it: an isovalue no surface can take keeps no brick (stderr: JSON stays clean).
             if (iso) warnIfIsoOutside(*iso, store);
             const Summary s = summarize(store);
@@ -256,7 +288,7 @@ Command addInfoCommand(CLI::App& parent) {
                 summarizeBounds(store.boundsFromFile() ? &store.bounds() : nullptr, iso);
             std::optional<io::BrickStore::Damage> damage;
             if (args->check) damage = checkBricks(store);
-            const std::vector<LevelSummary> levels = summarizeLevels(args->file, store);
+            const std::vector<LevelSummary> levels = summarizeLevels(fccPath, store);
             const openvdb::Coord dims = s.siteBox.dim();
             if (args->json) {
               glm::dvec3 worldLo, worldHi;
@@ -267,12 +299,12 @@ Command addInfoCommand(CLI::App& parent) {
               const std::string worldBounds = "{\"min\": " + triple(worldLo) + ", \"max\": " + triple(worldHi) + "}";
               std::string meta;
               for (const auto& [k, v] : s.metadata) meta += (meta.empty() ? "" : ", ") + jsonString(k) + ": " + jsonString(v);
-              std::printf("{\"file\": %s, \"grid\": %s, \"lattice\": %s, \"values\": %s, \"class\": %s, "
+              std::printf("{\"file\": %s, \"converted\": %s, \"grid\": %s, \"lattice\": %s, \"values\": %s, \"class\": %s, "
                           "\"dims\": [%d, %d, %d], \"samples\": %llu, \"bricks\": %llu, \"tiles\": %llu, "
                           "\"bytes\": %llu, \"min\": %s, \"max\": %s, \"range_from\": %s, \"sample_min\": %s, "
                           "\"sample_max\": %s, \"percentiles\": %s, \"suggested_iso\": %s, \"suggested_iso_basis\": %s, "
                           "\"voxel_size\": [%s, %s, %s], \"world_bounds\": %s, \"metadata\": {%s}, \"bounds\": %s, \"levels\": %s%s}\n",
-                          jsonString(args->file).c_str(), jsonString(s.name).c_str(), jsonString(s.lattice).c_str(),
+                          jsonString(args->file).c_str(), converted ? jsonString(fccPath).c_str() : "null", jsonString(s.name).c_str(), jsonString(s.lattice).c_str(),
                           jsonString(s.values).c_str(), jsonString(s.gridClass).c_str(), dims.x(), dims.y(), dims.z(),
                           (unsigned long long)s.samples, (unsigned long long)s.bricks, (unsigned long long)s.tiles,
                           (unsigned long long)s.bytes, jsonNumber(s.min).c_str(), jsonNumber(s.max).c_str(),
@@ -287,6 +319,7 @@ Command addInfoCommand(CLI::App& parent) {
               return damage && damage->count > 0 ? 1 : 0;
             }
             std::printf("file:          %s\n", args->file.c_str());
+            if (converted) std::printf("converted:     %s (the FCC file render and view draw for it)\n", fccPath.c_str());
             std::printf("grid:          %s (%s, %s)\n", s.name.c_str(), s.lattice.c_str(), s.gridClass.c_str());
             std::printf("values:        %s\n", s.values.c_str());
             // Not the input's size: inactive background is not stored, and the prefilter spreads the data by

@@ -128,7 +128,7 @@ Command addRenderCommand(CLI::App& parent) {
               report.device = gl.renderer() + " (" + gl.platform() + ")";
               const LevelReport levelReport{stats.bricksPerLevel, stats.fullResolutionFraction, stats.lodBias};
               std::fputs(renderJson(args->flags.file, args->output, args->flags.mode, width, height, {}, report.renderSeconds, {report},
-                                    levelReport)
+                                    levelReport, frameLook(options, args->flags.tf))
                              .c_str(),
                          stdout);
             }

@@ -230,13 +230,32 @@ TEST(Cli, SynthRefusesToOverwriteWithoutForce) {
   EXPECT_EQ(dir.fileCount(), 1) << "no temporary file is left beside the output";
 }
 
-TEST(Cli, NotAnFccFileSaysToConvert) {
+// A Cartesian input is described as render draws it: converted once into the cache render uses (the
+// second info, and render, reuse it), the FCC file named; a .vdb with nothing to convert is one line.
+TEST(Cli, InfoDescribesACartesianInputAsRenderDrawsIt) {
   const std::string sphere = std::string(FCC_SHARED_DATA_DIR) + "/sphere.vdb";
   if (!std::ifstream(sphere)) GTEST_SKIP() << "missing " << sphere;
-  const auto r = runFccvdb("info " + sphere);
-  EXPECT_EQ(r.status, 1);
-  EXPECT_THAT(r.err, HasSubstr("fccvdb convert"));
-  EXPECT_EQ(lineCount(r.err), 1);
+  TempDir dir;
+  const std::string cache = "FCCVDB_CACHE_DIR=" + (dir / "cache") + " ";
+  const auto first = runShell(cache + FCC_FCCVDB_EXE + " info " + sphere);
+  ASSERT_EQ(first.status, 0) << first.err;
+  EXPECT_THAT(first.out, HasSubstr("file:          " + sphere));
+  EXPECT_THAT(first.out, HasSubstr("converted:     " + (dir / "cache")));
+  EXPECT_THAT(first.out, HasSubstr("surface range:"));
+  const auto json = runShell(cache + FCC_FCCVDB_EXE + " info " + sphere + " --json");
+  ASSERT_EQ(json.status, 0) << json.err;
+  EXPECT_THAT(json.err, HasSubstr("using the FCC conversion of")) << "the second info converts nothing";
+  EXPECT_EQ(checkJsonWithPython(dir, json.out,
+                                "assert rows['file'].endswith('sphere.vdb') and rows['converted'].startswith(sys.argv[1].rsplit('/', 1)[0] + '/cache'), rows\n"
+                                "assert rows['lattice'] == 'fcc' and rows['bricks'] > 0, rows\n"),
+            0)
+      << json.out;
+  // An FCC file is described as it is.
+  const std::string fcc = dir / "s.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + fcc + " --dims 8,8,8 --quiet").status, 0);
+  const auto direct = runFccvdb("info " + fcc + " --json");
+  ASSERT_EQ(direct.status, 0) << direct.err;
+  EXPECT_THAT(direct.out, HasSubstr("\"converted\": null"));
 }
 
 TEST(Cli, CorruptVdbGivesOneLineNoCrash) {

@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -36,6 +37,15 @@ bool parsePrintedCamera(const std::string& err, PrintedCamera& c) {
   double fov = 0.0;
   return std::sscanf(c.flags.c_str(), "--eye %lf,%lf,%lf --lookat %lf,%lf,%lf --up %lf,%lf,%lf --fov %lf", &c.eye.x, &c.eye.y,
                      &c.eye.z, &c.lookat.x, &c.lookat.y, &c.lookat.z, &c.up.x, &c.up.y, &c.up.z, &fov) == 10;
+}
+
+// The printed camera carries no rounding noise: each coordinate is 0 or not tiny against the scene
+// (the framing once printed 1e-16 where 0 was meant).
+void expectNoRoundingNoise(const PrintedCamera& c) {
+  const double scale = std::max({1.0, glm::length(c.eye), glm::length(c.lookat)});
+  for (const glm::dvec3& v : {c.eye, c.lookat, c.up})
+    for (int a = 0; a < 3; ++a)
+      EXPECT_TRUE(v[a] == 0.0 || std::abs(v[a]) > 1e-9 * scale) << "coordinate " << v[a] << " in " << c.flags;
 }
 
 std::string triple(const glm::dvec3& v) {
@@ -198,6 +208,7 @@ TEST_F(CliCamera, MedicalDataIsUprightFromTheFrontWhateverTheStorageOrder) {
   const glm::dvec3 view = camera.eye - camera.lookat;
   EXPECT_GT(view.y, 0.0) << camera.flags;
   EXPECT_LT(std::abs(view.x) + std::abs(view.z), 1e-9 * view.y) << camera.flags;
+  expectNoRoundingNoise(camera);
 
   // That camera given explicitly (the direction and up by hand, the framing distance printed) is the
   // same image.
@@ -253,6 +264,7 @@ TEST_F(CliCamera, MedicalDataIsUprightFromTheFrontWhateverTheStorageOrder) {
   PrintedCamera rawCamera;
   ASSERT_TRUE(parsePrintedCamera(raw.err, rawCamera)) << raw.err;
   EXPECT_EQ(rawCamera.up, glm::dvec3(0, 1, 0)) << rawCamera.flags;
+  expectNoRoundingNoise(rawCamera);
 }
 
 // The flags still win: --up alone keeps the upright eye and takes the user's up; an --eye above the
@@ -290,6 +302,32 @@ TEST_F(CliCamera, FlagsWinOverTheUprightDefault) {
   ASSERT_TRUE(parsePrintedCamera(both.err, c)) << both.err;
   EXPECT_EQ(c.up, glm::dvec3(0, 1, 0));
   EXPECT_EQ(c.eye, glm::dvec3(100, 0, 0));
+}
+
+// Without patient axes, an --eye straight above or below the look-at point (along the default up)
+// renders: the up becomes the one that keeps world +x to the right (-z looking down, +z looking up).
+// An --up along the view is still the user's and is refused in one line.
+TEST_F(CliCamera, AViewAlongTheDefaultUpChoosesAnotherUp) {
+  const std::string synth = dir_ / "s.vdb";
+  ASSERT_EQ(runFccvdb("synth sphere " + synth + " --dims 16,16,16 --quiet").status, 0);
+  const CommandResult framed = render(synth, "a.exr");
+  if (failedForLackOfGl(framed)) GTEST_SKIP() << framed.err;
+  ASSERT_EQ(framed.status, 0) << framed.err;
+  PrintedCamera base;
+  ASSERT_TRUE(parsePrintedCamera(framed.err, base)) << framed.err;
+  ASSERT_EQ(base.up, glm::dvec3(0, 1, 0)) << base.flags;
+  for (const double side : {1.0, -1.0}) {
+    const glm::dvec3 eye = base.lookat + glm::dvec3(0, 40.0 * side, 0);
+    const CommandResult along = render(synth, "b.exr", " --iso 0.5 --eye " + triple(eye));
+    ASSERT_EQ(along.status, 0) << "eye " << triple(eye) << ": " << along.err;
+    PrintedCamera c;
+    ASSERT_TRUE(parsePrintedCamera(along.err, c)) << along.err;
+    EXPECT_EQ(c.up, glm::dvec3(0, 0, -side)) << c.flags;
+    EXPECT_EQ(c.eye, eye) << c.flags;
+  }
+  const CommandResult refused = render(synth, "c.exr", " --iso 0.5 --eye " + triple(base.lookat + glm::dvec3(0, 40, 0)) + " --up 0,1,0");
+  EXPECT_EQ(refused.status, 1) << refused.err;
+  EXPECT_NE(refused.err.find("--up"), std::string::npos) << refused.err;
 }
 
 // A file whose patient axes are damaged (one without the other, parallel ones) is one line, exit 1, no image.

@@ -121,6 +121,31 @@ TEST(CliMessages, UnknownFlagSuggestsTheClosestAndTheSubcommandsHelp) {
   EXPECT_THAT(far.err, HasSubstr("(see fccvdb synth --help)"));
 }
 
+// A value of the wrong type names the flag, the value and what is valid, not CLI11's "Could not
+// convert"; words not expected are listed in the order given.
+TEST(CliMessages, ParseErrorsSayTheFlagTheValueAndTheOrderGiven) {
+  struct Case {
+    std::string args, says;
+  };
+  const Case cases[] = {
+      {"info x.vdb --iso abc", "--iso 'abc': expected a number"},
+      {"bench render x.vdb --frames many", "--frames 'many': expected a whole number above 0"},
+      {"bench render x.vdb --frames 0", "--frames '0': expected a whole number above 0"},
+      {"render x.vdb o.png --stop-opacity 2", "--stop-opacity '2': expected a number from 0.5 to 1"},
+      {"render x.vdb o.png --density-scale -1", "--density-scale '-1': expected a number 0 or more"},
+      {"synth sphere x.vdb --dims 8,8,8 --seed x", "--seed 'x': expected a whole number"},
+      {"info x.vdb first second", "were not expected: first second"},
+  };
+  for (const Case& c : cases) {
+    const CommandResult r = runFccvdb(c.args);
+    EXPECT_EQ(r.status, 2) << c.args;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.says)) << c.args << ": " << r.err;
+    EXPECT_THAT(r.err, Not(HasSubstr("Could not convert"))) << c.args << ": " << r.err;
+    EXPECT_THAT(r.err, Not(HasSubstr("000000"))) << c.args << ": " << r.err;
+  }
+}
+
 // render FILE OUT as convert takes it, -o still works, one of them is needed, and an existing image
 // is kept unless --force (as convert and synth keep theirs).
 TEST(CliMessages, RenderTakesThePositionalOutputAndNeedsForceToOverwrite) {

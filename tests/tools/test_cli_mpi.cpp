@@ -79,6 +79,9 @@ void expectSameAsOneProcess(const TempDir& dir, const std::string& file, const s
     const auto r = runShell(mpirun(ranks, "render " + file + " " + many + " " + flags + " --json --quiet --force"));
     ASSERT_EQ(r.status, 0) << r.err;
     expectBricksWithinPartitions(r.out, ranks, needed);
+    for (const char* key : {"isovalues", "tf"})  // what the frame showed, as one process says it
+      EXPECT_EQ(nlohmann::json::parse(r.out).value(key, nlohmann::json()), nlohmann::json::parse(single.out).value(key, nlohmann::json()))
+          << ranks << " ranks, " << key;
     const Image image = readExr(many, names);
     ASSERT_EQ(image.width, reference.width);
     ASSERT_EQ(image.height, reference.height);

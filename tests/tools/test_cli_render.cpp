@@ -444,6 +444,17 @@ TEST(CliRender, SeveralSurfacesFlagsAndTheirMessages) {
   EXPECT_GT(outerOnly, 10);
   EXPECT_GT(both, 10);
 
+  // --json names what the frame showed: every surface's isovalue, or in DVR the transfer function.
+  const auto isoJson = runFccvdb("render " + vdb + " " + (dir / "j.exr") + " --iso 0.1,0.3 --json" + common);
+  ASSERT_EQ(isoJson.status, 0) << isoJson.err;
+  EXPECT_EQ(checkJsonWithPython(dir, isoJson.out,
+                                "assert [round(v, 6) for v in rows['isovalues']] == [0.1, 0.3] and 'tf' not in rows, rows\n"), 0)
+      << isoJson.out;
+  const auto dvrJson = runFccvdb("render " + vdb + " " + (dir / "k.exr") + " --mode dvr --tf inferno --json" + common);
+  ASSERT_EQ(dvrJson.status, 0) << dvrJson.err;
+  EXPECT_EQ(checkJsonWithPython(dir, dvrJson.out, "assert rows['tf'] == 'inferno' and 'isovalues' not in rows, rows\n"), 0)
+      << dvrJson.out;
+
   const auto outside = runFccvdb("render " + vdb + " " + (dir / "w.png") + " --iso 0.25,1000" + common);
   EXPECT_EQ(outside.status, 0) << outside.err;
   EXPECT_EQ(lineCount(outside.err), 1) << outside.err;

@@ -238,6 +238,7 @@ class DistributedRenderer {
   }
 
   bool dvr() const { return options_.mode == render::RenderMode::Dvr; }
+  const render::RenderOptions& options() const { return options_; }
   int width() const { return width_; }
   int height() const { return height_; }
   float iso() const { return options_.iso; }
@@ -286,7 +287,7 @@ int renderDistributed(const DistributedRenderRequest& request) {
   io::writeRenderedImage(request.output, out, glm::vec3(0.08f, 0.09f, 0.11f));
   if (request.json)
     std::fputs(cli::renderJson(flags.file, request.output, flags.mode, width, height, renderer->partition().radices(),
-                               renderer->frameSeconds(), reports)
+                               renderer->frameSeconds(), reports, {}, cli::frameLook(renderer->options(), flags.tf))
                    .c_str(),
                stdout);
   if (!request.quiet) {
