@@ -103,7 +103,7 @@ FccInput::FccInput(const std::string& input, const ConvertOptions& options, bool
       if (say) say("using the FCC conversion of " + input + " cached as " + path_);
       return;
     }
-    if (say) say("converting " + input + " to FCC once, to be cached as " + path_ + " (--no-cache: a temporary file)");
+    if (say) o.onOpened = [say, line = "converting " + input + " to FCC once, to be cached as " + path_ + " (--no-cache: a temporary file)"] { say(line); };
     convertToFcc(input, path_, o, progress);
     origin_ = Origin::Converted;
     boundCacheFolder(dir.string(), path_);
@@ -111,7 +111,7 @@ FccInput::FccInput(const std::string& input, const ConvertOptions& options, bool
   }
   path_ = temporaryPath();
   origin_ = Origin::Temporary;
-  if (say) say("converting " + input + " to a temporary FCC file " + path_);
+  if (say) o.onOpened = [say, line = "converting " + input + " to a temporary FCC file " + path_] { say(line); };
   try {
     convertToFcc(input, path_, o, progress);
   } catch (...) {

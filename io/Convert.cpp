@@ -224,6 +224,7 @@ ConvertSummary convertToFcc(const std::string& input, const std::string& output,
     extent = source->geometry().dims;
   }
 
+  if (options.onOpened) options.onOpened();
   std::unique_ptr<SampleField> field;
   const auto readStart = std::chrono::steady_clock::now();
   const double opening = std::chrono::duration<double>(readStart - openStart).count();

@@ -3,6 +3,7 @@
 
 #include <openvdb/util/NullInterrupter.h>
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -31,6 +32,9 @@ struct ConvertOptions {
   // memory (buildFccGrid, then computeBrickBounds). Without it, the output is built twice and never
   // held (StreamedBuild.h), and a .vdb source is read leaf by leaf (VdbSourceField.h).
   bool inMemory = false;
+  // Called once the input is open and its header understood, before the long read: a line such as
+  // "converting X" then comes only for an input that converts (a bad one is its error line alone).
+  std::function<void()> onOpened;
 };
 
 struct ConvertSummary {

@@ -62,6 +62,9 @@ DenseVolume toDense(const Image& image, const std::string& path, std::optional<P
 // The DICOM files of the series `path` names: a folder (its one series, or the largest, by slices) or
 // one of its files (that file's series).
 std::vector<std::string> seriesFiles(const std::string& path) {
+  // ITK writes its warnings ("WARNING: In .../itkGDCMSeriesFileNames.cxx ... No Series were found") as
+  // blocks on stderr; what they say reaches the user as our one line (the InputErrors below).
+  itk::Object::GlobalWarningDisplayOff();
   const bool folder = fs::is_directory(path);
   const std::string dir = folder ? path : fs::path(path).parent_path().string();
   auto names = itk::GDCMSeriesFileNames::New();
@@ -206,6 +209,7 @@ namespace {
 // A MetaImage's ImageIO with its header read and checked: a 3-D scalar image whose data is the size the
 // header says (one place for the whole read and the streamed source).
 itk::MetaImageIO::Pointer openMetaImageIO(const std::string& path) {
+  itk::Object::GlobalWarningDisplayOff();  // as for DICOM: the InputErrors say it in one line
   auto io = itk::MetaImageIO::New();
   if (!io->CanReadFile(path.c_str())) throw InputError(path + ": not a MetaImage (.mha/.mhd) file ITK can read");
   io->SetFileName(path);

@@ -37,6 +37,33 @@ TEST(CliMessages, RawWithExtraBytesSuggestsTheHeaderSize) {
   EXPECT_THAT(shortFile.err, HasSubstr("10 bytes short"));
 }
 
+// An input that render, view or info would convert but cannot open is its one error line: no
+// "converting ..." before it, no ITK warning block (a folder without a DICOM series).
+TEST(CliMessages, AnInputThatCannotConvertIsOneLineWithoutConvertingFirst) {
+  TempDir dir;
+  const std::string folder = dir / "notdicom";
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder + "/a.txt") << "not a DICOM file\n";
+  const std::string raw = dir / "short.raw";
+  writeBytes(raw, 8 * 8 * 8 - 10);
+  struct Case {
+    std::string args, says;
+  };
+  const Case cases[] = {
+      {"render " + folder + " " + (dir / "a.png"), "no DICOM series found in this folder"},
+      {"info " + folder, "no DICOM series found in this folder"},
+      {"render " + raw + " " + (dir / "b.png") + " --dims 8,8,8 --type u8", "10 bytes short"},
+      {"info " + raw + " --dims 8,8,8 --type u8 --no-cache", "10 bytes short"},
+  };
+  for (const Case& c : cases) {
+    const CommandResult r = runFccvdb(c.args);
+    EXPECT_EQ(r.status, 1) << c.args << "\n" << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << c.args << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.says)) << c.args;
+    EXPECT_THAT(r.err, Not(HasSubstr("converting"))) << c.args;
+  }
+}
+
 // convert writes an OpenVDB file whatever OUTPUT is called: another extension is a slip, one line and
 // nothing written.
 TEST(CliMessages, ConvertRefusesAnOutputNotNamedVdb) {
