@@ -1,5 +1,7 @@
 #include "VdbFile.h"
 
+#include "VdbLeafReader.h"
+
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -180,6 +182,9 @@ void guardLeafRead(const std::string& path, const std::string& gridName, const s
 namespace {
 
 openvdb::GridPtrVecPtr readAllGrids(const std::string& path) {
+  // Our own parse of the header and grid descriptors first: a cut or damaged header is named as such
+  // ("truncated: ... ends at byte E"), where OpenVDB would say "Grid type  is not registered".
+  VdbLeafReader::listGrids(path);
   guardVdbFile(path);
   initializeVdb();
   try {

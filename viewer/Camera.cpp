@@ -17,7 +17,7 @@ CameraFrame cameraFrame(const Camera& camera, double aspect) {
   f.forward = glm::normalize(view);
   const glm::dvec3 side = glm::cross(f.forward, camera.up);
   if (!(glm::length(side) > 1e-9 * glm::length(camera.up)))
-    throw ValueError("camera: the up vector (--up) is parallel to the view direction (or zero); valid is any up across the view");
+    throw ValueError("camera: the up vector is parallel to the view direction (or zero); valid is any up across the view");
   const double tanHalf = std::tan(glm::radians(camera.fovYDegrees) * 0.5);
   f.right = glm::normalize(side) * tanHalf * aspect;
   f.up = glm::normalize(glm::cross(side, f.forward)) * tanHalf;
