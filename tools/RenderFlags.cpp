@@ -260,11 +260,8 @@ render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& world
   } else if (glm::length(camera.lookat - camera.eye) > 0.0 &&
              glm::length(glm::cross(glm::normalize(camera.lookat - camera.eye), camera.up)) < 1e-6) {
     // An --eye straight above or below the look-at point along the up vector: that up cannot be kept.
-    // Above or below a patient, anterior is up (the axial convention); elsewhere the up that keeps
-    // world +x to the right (looking down -y: -z up), or +y when the view runs along x.
-    const glm::dvec3 view = glm::normalize(camera.lookat - camera.eye);
-    const glm::dvec3 right = std::abs(view.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 0.0, glm::sign(view.x));
-    camera.up = patient && flags.camera.empty() ? patient->anterior : glm::normalize(glm::cross(right, view));
+    // Above or below a patient, anterior is up (the axial convention); elsewhere render::upAcross.
+    camera.up = patient && flags.camera.empty() ? patient->anterior : render::upAcross(camera.lookat - camera.eye);
   }
   render::cameraFrame(camera, aspect);  // validates: throws for a degenerate camera
   return camera;

@@ -24,6 +24,12 @@ CameraFrame cameraFrame(const Camera& camera, double aspect) {
   return f;
 }
 
+glm::dvec3 upAcross(const glm::dvec3& view) {
+  const glm::dvec3 v = glm::normalize(view);
+  const glm::dvec3 right = std::abs(v.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 0.0, v.x > 0.0 ? 1.0 : -1.0);
+  return glm::normalize(glm::cross(right, v));  // forward x up = right - (right . v) v
+}
+
 glm::dvec3 pixelRay(const CameraFrame& frame, int px, int py, int width, int height) {
   const double x = (px + 0.5) / width * 2.0 - 1.0;
   const double y = 1.0 - (py + 0.5) / height * 2.0;

@@ -23,6 +23,11 @@ struct CameraFrame {
 // field of view outside (0, 180)).
 CameraFrame cameraFrame(const Camera& camera, double aspect);
 
+// The up vector for a view along `view` (any length but 0) when the default up cannot be kept (the
+// view runs along it): the one that keeps world +x to the right (looking down -y: -z up; looking up
+// +y: +z up), or +y up when the view runs along x. Unit length.
+glm::dvec3 upAcross(const glm::dvec3& view);
+
 // The unit world direction of the ray through the centre of pixel (px, py) of a width x height image.
 glm::dvec3 pixelRay(const CameraFrame& frame, int px, int py, int width, int height);
 

@@ -99,7 +99,7 @@ std::string cameraJson(const Camera& camera) {
 Camera parseCameraJson(const std::string& text, const std::string& name) {
   Reader r(text, name);
   Camera camera;
-  bool haveEye = false, haveLookat = false;
+  bool haveEye = false, haveLookat = false, haveUp = false;
   r.expect('{', "to start the object");
   if (!r.take('}')) {
     do {
@@ -111,7 +111,7 @@ Camera parseCameraJson(const std::string& text, const std::string& name) {
       if (key == "fov" && v.size() != 1) r.fail("\"fov\" is one number of degrees");
       if (key == "eye") camera.eye = {v[0], v[1], v[2]}, haveEye = true;
       else if (key == "lookat") camera.lookat = {v[0], v[1], v[2]}, haveLookat = true;
-      else if (key == "up") camera.up = {v[0], v[1], v[2]};
+      else if (key == "up") camera.up = {v[0], v[1], v[2]}, haveUp = true;
       else if (key == "fov") camera.fovYDegrees = v[0];
       else r.fail("unknown key \"" + key + "\"");
     } while (r.take(','));
@@ -120,6 +120,10 @@ Camera parseCameraJson(const std::string& text, const std::string& name) {
   if (!r.atEnd()) r.fail("text after the object");
   if (!haveEye) r.fail("no \"eye\"");
   if (!haveLookat) r.fail("no \"lookat\"");
+  // Without "up", a view straight along the default up takes the one across it (render's rule).
+  const glm::dvec3 view = camera.lookat - camera.eye;
+  if (!haveUp && glm::length(view) > 0.0 && glm::length(glm::cross(glm::normalize(view), camera.up)) < 1e-6)
+    camera.up = upAcross(view);
   try {
     cameraFrame(camera, 1.0);  // validates the camera
   } catch (const ValueError& e) {

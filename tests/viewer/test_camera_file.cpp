@@ -51,7 +51,7 @@ TEST(CameraFile, BadFilesAreOneLineNamingFileProblemAndTheValidForm) {
       {"{\"eye\": [1,2,\"a\"], \"lookat\": [0,0,0]}", "\"eye\" expects numbers"},
       {"{\"eye\": [1,2,3], \"lookat\": [0,0,0], \"fov\": 1e999}", "not finite"},
       {"{\"eye\": [1,2,3], \"lookat\": [1,2,3]}", "the eye and the look-at point coincide"},
-      {"{\"eye\": [0,5,0], \"lookat\": [0,0,0]}", "up vector is parallel"},
+      {"{\"eye\": [0,5,0], \"lookat\": [0,0,0], \"up\": [0,1,0]}", "up vector is parallel"},
       {"{\"eye\": [1,2,3], \"lookat\": [0,0,0], \"fov\": 180}", "field of view"},
       {"{\"eye\": [1,2,3], \"lookat\": [0,0,0]} x", "text after the object"},
   };
@@ -68,6 +68,27 @@ TEST(CameraFile, BadFilesAreOneLineNamingFileProblemAndTheValidForm) {
     }
   }
   EXPECT_THROW(readCameraFile("/nonexistent/cam.json"), InputError);
+}
+
+// A view along the default up without "up" takes upAcross's: across the view, world +x to the right
+// where the view allows (views along y), and for every view direction a valid frame.
+TEST(CameraFile, AViewAlongTheDefaultUpWithoutUpTakesOneAcrossIt) {
+  const Camera down = parseCameraJson("{\"eye\": [0,5,0], \"lookat\": [0,0,0]}", "cam.json");
+  EXPECT_EQ(down.up, glm::dvec3(0, 0, -1));
+  const Camera up = parseCameraJson("{\"eye\": [1,-5,2], \"lookat\": [1,0,2]}", "cam.json");
+  EXPECT_EQ(up.up, glm::dvec3(0, 0, 1));
+  for (const glm::dvec3& view : {glm::dvec3(0, -1, 0), glm::dvec3(0, 1, 0), glm::dvec3(1, 0, 0), glm::dvec3(-1, 0, 0),
+                                 glm::dvec3(0, 0, 1), glm::dvec3(0.3, -2, 0.1), glm::dvec3(-3, 0.2, 0.5)}) {
+    const glm::dvec3 u = upAcross(view);
+    EXPECT_NEAR(glm::length(u), 1.0, 1e-12) << view.x << "," << view.y << "," << view.z;
+    EXPECT_NEAR(glm::dot(u, glm::normalize(view)), 0.0, 1e-12) << view.x << "," << view.y << "," << view.z;
+    const CameraFrame frame = cameraFrame(Camera{glm::dvec3(0.0), view, u, 40.0}, 1.0);
+    if (std::abs(glm::normalize(view).x) < 0.9) {
+      EXPECT_GT(frame.right.x, 0.0) << "world +x to the right, view " << view.x << "," << view.y << "," << view.z;
+    } else {
+      EXPECT_GT(frame.up.y, 0.0) << "+y up for a view along x";
+    }
+  }
 }
 
 }  // namespace
