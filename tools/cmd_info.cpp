@@ -271,9 +271,10 @@ Command addInfoCommand(CLI::App& parent) {
             }
             // Not an FCC file: described as render would draw it (the conversion render makes and caches).
             std::unique_ptr<io::FccInput> converted;
+            const std::optional<io::RawLayout> raw = rawLayoutFromFlags(args->source, args->file);  // refuses raw flags elsewhere
             if (std::filesystem::exists(args->file) && !holdsFccGridOrUnreadable(args->file)) {
               io::ConvertOptions options;
-              options.raw = rawLayoutFromFlags(args->source, args->file);
+              options.raw = raw;
               options.gridName = args->grid;
               ProgressBar progress(args->json);
               converted = std::make_unique<io::FccInput>(args->file, options, !args->noCache, &progress,

@@ -256,6 +256,11 @@ TEST(Cli, InfoDescribesACartesianInputAsRenderDrawsIt) {
   const auto direct = runFccvdb("info " + fcc + " --json");
   ASSERT_EQ(direct.status, 0) << direct.err;
   EXPECT_THAT(direct.out, HasSubstr("\"converted\": null"));
+  // Raw-only flags for an input that is not raw would be ignored: one line, as render says it.
+  const auto rawFlag = runFccvdb("info " + fcc + " --dims 8,8,8");
+  EXPECT_EQ(rawFlag.status, 1) << rawFlag.err;
+  EXPECT_EQ(lineCount(rawFlag.err), 1) << rawFlag.err;
+  EXPECT_THAT(rawFlag.err, HasSubstr("--dims"));
 }
 
 TEST(Cli, CorruptVdbGivesOneLineNoCrash) {
