@@ -131,6 +131,8 @@ Command addViewCommand(CLI::App& parent) {
             // A bad camera file is one line before any window opens (it is read again for the camera).
             if (!args->flags.camera.empty()) render::readCameraFile(args->flags.camera);
 
+            // No display: say so before a Cartesian input is converted (minutes for a large one).
+            render::ViewerWindow::requireDisplay();
             const render::RenderOptions budgets = renderOptionsFromFlags(args->flags);
             Dataset data = openDataset(args->flags, budgets.hostCacheBytes);
             render::WindowOptions windowOptions;

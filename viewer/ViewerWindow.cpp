@@ -37,9 +37,13 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
-ViewerWindow::ViewerWindow(const WindowOptions& options) : options_(options) {
+void ViewerWindow::requireDisplay() {
   glfwSetErrorCallback(onGlfwError);
   if (!glfwInit()) throw Error("no display: use `fccvdb render` for headless images (GLFW: " + glfwLastError + ")");
+}
+
+ViewerWindow::ViewerWindow(const WindowOptions& options) : options_(options) {
+  requireDisplay();
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

@@ -29,6 +29,9 @@ class ViewerWindow {
   // Opens the window and makes its context current. Throws fcc::Error "no display: use `fccvdb
   // render` for headless images" when there is no display, or a line naming what GLFW said.
   explicit ViewerWindow(const WindowOptions& options);
+  // The same "no display" Error, before anything slow (a conversion) runs; GLFW stays initialized
+  // for the window that follows.
+  static void requireDisplay();
   ~ViewerWindow();
   ViewerWindow(const ViewerWindow&) = delete;
   ViewerWindow& operator=(const ViewerWindow&) = delete;

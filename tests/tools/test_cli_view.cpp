@@ -214,6 +214,15 @@ TEST(CliView, NoDisplayGivesOneLineAndStatus1) {
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(lineCount(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("no display: use `fccvdb render` for headless images"), std::string::npos) << r.err;
+  // A Cartesian input: the same line before any conversion (none is cached, nothing is said of one).
+  const std::string raw = dir / "cube.raw";
+  std::ofstream(raw, std::ios::binary) << std::string(8 * 8 * 8, '\x40');
+  const CommandResult cartesian = runShell("FCCVDB_CACHE_DIR=" + (dir / "cache") + " env -u DISPLAY -u WAYLAND_DISPLAY " +
+                                           std::string(FCC_FCCVDB_EXE) + " view " + raw + " --dims 8,8,8 --type u8");
+  EXPECT_EQ(cartesian.status, 1);
+  EXPECT_EQ(lineCount(cartesian.err), 1) << cartesian.err;
+  EXPECT_NE(cartesian.err.find("no display"), std::string::npos) << cartesian.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "cache")) << "converted before saying there is no display";
 }
 
 TEST(CliView, CartesianInputIsConvertedIntoTheCache) {
