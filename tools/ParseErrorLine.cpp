@@ -71,62 +71,69 @@ std::string closestName(const std::vector<std::string>& names, const std::string
   return prefixed.size() == 1 ? prefixed.front() : "";
 }
 
-// CLI11's own words, made plainer: "Could not convert: --iso = abc" as "--iso 'abc': expected a
-// number", and the arguments not expected in the order they were given (CLI11 2.1 lists them reversed).
+// CLI11's "Could not convert: --iso = abc" as "--iso 'abc': expected a number".
+std::string conversionMessage(const CLI::App& command, const std::string& what) {
+  const std::string head = "Could not convert: ";
+  const std::size_t equals = what.find(" = ");
+  if (what.rfind(head, 0) != 0 || equals == std::string::npos) return what;
+  const std::string name = what.substr(head.size(), equals - head.size()), value = what.substr(equals + 3);
+  const CLI::Option* option = command.get_option_no_throw(name);
+  const std::string type = option ? option->get_type_name() : "";
+  const std::string expected = type.empty()      ? "another value"
+                               : type == "FLOAT" ? "a number"
+                               : type == "INT"   ? "a whole number"
+                               : type == "UINT"  ? "a whole number, 0 or more"
+                                                 : "a value of type " + type;
+  return name + " '" + value + "': expected " + expected;
+}
+
+// CLI::Range's "--frames: Value 0 not in range 0.000000 to 1797...(309 digits).000000" with the bounds
+// as a person says them (PositiveNumber's lower bound is DBL_MIN, printed as 0: the option's type,
+// INT:POSITIVE or FLOAT:NONNEGATIVE, tells them apart, and whether the number is whole).
+std::string rangeMessage(const CLI::App& command, const std::string& what) {
+  const std::size_t valueAt = what.find(": Value "), rangeAt = what.find(" not in range ");
+  const std::size_t toAt = rangeAt == std::string::npos ? std::string::npos : what.find(" to ", rangeAt);
+  if (valueAt == std::string::npos || toAt == std::string::npos || valueAt > rangeAt) return what;
+  const std::string name = what.substr(0, valueAt), value = what.substr(valueAt + 8, rangeAt - valueAt - 8);
+  const double lo = std::strtod(what.c_str() + rangeAt + 14, nullptr), hi = std::strtod(what.c_str() + toAt + 4, nullptr);
+  const auto number = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return std::string(text);
+  };
+  const CLI::Option* option = command.get_option_no_throw(name);
+  const std::string type = option ? option->get_type_name() : "";
+  const bool positive = type.find("POSITIVE") != std::string::npos && type.find("NONNEGATIVE") == std::string::npos;
+  const bool whole = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0;
+  const bool unbounded = hi >= 0.5 * std::numeric_limits<double>::max();
+  const std::string valid = !unbounded  ? "from " + number(lo) + " to " + number(hi)
+                            : positive  ? "above 0"
+                            : lo == 0.0 ? "0 or more"
+                                        : "at least " + number(lo);
+  return name + " '" + value + "': expected " + (whole ? "a whole number " : "a number ") + valid;
+}
+
+// "The following arguments were not expected: c b a" in the order given (CLI11 2.1 lists them reversed).
+std::string extrasMessage(const std::string& what) {
+  const std::size_t colon = what.find(": ");
+  if (colon == std::string::npos) return what;
+  std::vector<std::string> words;
+  for (std::size_t at = colon + 2; at < what.size();) {
+    const std::size_t end = std::min(what.find(' ', at), what.size());
+    words.push_back(what.substr(at, end - at));
+    at = end + 1;
+  }
+  std::string inOrder;
+  for (auto w = words.rbegin(); w != words.rend(); ++w) inOrder += (inOrder.empty() ? "" : " ") + *w;
+  return what.substr(0, colon + 2) + inOrder;
+}
+
+// CLI11's own words, made plainer where they are a program's rather than a person's.
 std::string plainerMessage(const CLI::App& command, const CLI::ParseError& error) {
   const std::string what = error.what();
-  if (dynamic_cast<const CLI::ConversionError*>(&error)) {
-    const std::string head = "Could not convert: ";
-    const std::size_t equals = what.find(" = ");
-    if (what.rfind(head, 0) == 0 && equals != std::string::npos) {
-      const std::string name = what.substr(head.size(), equals - head.size()), value = what.substr(equals + 3);
-      const CLI::Option* option = command.get_option_no_throw(name);
-      const std::string type = option ? option->get_type_name() : "";
-      const std::string expected = type == "FLOAT" ? "a number" : type == "INT" ? "a whole number"
-                                   : type == "UINT" ? "a whole number, 0 or more" : "a value of type " + type;
-      return name + " '" + value + "': expected " + (type.empty() ? "another value" : expected);
-    }
-  }
-  if (dynamic_cast<const CLI::ValidationError*>(&error)) {
-    // CLI::Range's "--frames: Value 0 not in range 0.000000 to 1797...(309 digits).000000": the
-    // bounds as a person says them (PositiveNumber's lower bound is DBL_MIN, printed as 0).
-    const std::size_t valueAt = what.find(": Value "), rangeAt = what.find(" not in range ");
-    const std::size_t toAt = what.find(" to ", rangeAt == std::string::npos ? 0 : rangeAt);
-    if (valueAt != std::string::npos && rangeAt != std::string::npos && toAt != std::string::npos && valueAt < rangeAt) {
-      const std::string name = what.substr(0, valueAt), value = what.substr(valueAt + 8, rangeAt - valueAt - 8);
-      const double lo = std::strtod(what.c_str() + rangeAt + 14, nullptr), hi = std::strtod(what.c_str() + toAt + 4, nullptr);
-      const auto number = [](double v) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%g", v);
-        return std::string(text);
-      };
-      // The option's type names its validators (INT:POSITIVE, FLOAT:NONNEGATIVE) and whether it is whole.
-      const CLI::Option* option = command.get_option_no_throw(name);
-      const std::string type = option ? option->get_type_name() : "";
-      const bool positive = type.find("POSITIVE") != std::string::npos && type.find("NONNEGATIVE") == std::string::npos;
-      const bool whole = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0;
-      const bool unbounded = hi >= 0.5 * std::numeric_limits<double>::max();
-      const std::string valid = !unbounded ? "from " + number(lo) + " to " + number(hi)
-                                : positive ? "above 0"
-                                : lo == 0.0 ? "0 or more"
-                                            : "at least " + number(lo);
-      return name + " '" + value + "': expected " + (whole ? "a whole number " : "a number ") + valid;
-    }
-  }
-  if (dynamic_cast<const CLI::ExtrasError*>(&error)) {
-    const std::size_t colon = what.find(": ");
-    if (colon != std::string::npos) {
-      std::vector<std::string> words;
-      for (std::size_t at = colon + 2; at < what.size();) {
-        const std::size_t end = std::min(what.find(' ', at), what.size());
-        words.push_back(what.substr(at, end - at));
-        at = end + 1;
-      }
-      std::string inOrder;
-      for (auto w = words.rbegin(); w != words.rend(); ++w) inOrder += (inOrder.empty() ? "" : " ") + *w;
-      return what.substr(0, colon + 2) + inOrder;
-    }
-  }
+  if (dynamic_cast<const CLI::ConversionError*>(&error)) return conversionMessage(command, what);
+  if (dynamic_cast<const CLI::ValidationError*>(&error)) return rangeMessage(command, what);
+  if (dynamic_cast<const CLI::ExtrasError*>(&error)) return extrasMessage(what);
   return what;
 }
 

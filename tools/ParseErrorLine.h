@@ -1,4 +1,5 @@
-// The one line a command-line error prints: CLI11's message, "did you mean --X?" for a flag the
+// The one line a command-line error prints: CLI11's message (a bad value, a range or words not
+// expected said in plain words: "--frames '0': expected a whole number above 0"), "did you mean --X?" for a flag the
 // subcommand does not have but has one close to, and where to look: the subcommand's own --help
 // (fccvdb render --help), not the top level's. A word that names no subcommand where one is needed
 // (fccvdb rendr) is "unknown command", with the closest and the valid ones.
