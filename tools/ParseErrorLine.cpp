@@ -71,14 +71,19 @@ std::string closestName(const std::vector<std::string>& names, const std::string
   return prefixed.size() == 1 ? prefixed.front() : "";
 }
 
+// The type CLI11 gives option `name` of `command` (FLOAT, INT:POSITIVE, ...); "" for no such option.
+std::string typeNameOf(const CLI::App& command, const std::string& name) {
+  const CLI::Option* option = command.get_option_no_throw(name);
+  return option ? option->get_type_name() : "";
+}
+
 // CLI11's "Could not convert: --iso = abc" as "--iso 'abc': expected a number".
 std::string conversionMessage(const CLI::App& command, const std::string& what) {
   const std::string head = "Could not convert: ";
   const std::size_t equals = what.find(" = ");
   if (what.rfind(head, 0) != 0 || equals == std::string::npos) return what;
   const std::string name = what.substr(head.size(), equals - head.size()), value = what.substr(equals + 3);
-  const CLI::Option* option = command.get_option_no_throw(name);
-  const std::string type = option ? option->get_type_name() : "";
+  const std::string type = typeNameOf(command, name);
   const std::string expected = type.empty()      ? "another value"
                                : type == "FLOAT" ? "a number"
                                : type == "INT"   ? "a whole number"
@@ -101,8 +106,7 @@ std::string rangeMessage(const CLI::App& command, const std::string& what) {
     std::snprintf(text, sizeof text, "%g", v);
     return std::string(text);
   };
-  const CLI::Option* option = command.get_option_no_throw(name);
-  const std::string type = option ? option->get_type_name() : "";
+  const std::string type = typeNameOf(command, name);
   const bool positive = type.find("POSITIVE") != std::string::npos && type.find("NONNEGATIVE") == std::string::npos;
   const bool whole = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0;
   const bool unbounded = hi >= 0.5 * std::numeric_limits<double>::max();

@@ -30,13 +30,18 @@ std::size_t mibToBytes(double mib) { return std::size_t(mib * 1024.0 * 1024.0); 
 
 }  // namespace
 
-std::unique_ptr<io::FccInput> openFccInput(const RenderFlags& flags, bool quiet) {
+std::unique_ptr<io::FccInput> openFccInput(const std::string& file, const SourceFlags& source, const std::string& grid,
+                                           bool useCache, bool quiet) {
   io::ConvertOptions options;
-  options.raw = rawLayoutFromFlags(flags.source, flags.file);
-  options.gridName = flags.grid;
+  options.raw = rawLayoutFromFlags(source, file);
+  options.gridName = grid;
   ProgressBar progress(quiet);
-  return std::make_unique<io::FccInput>(flags.file, options, !flags.noCache, &progress,
+  return std::make_unique<io::FccInput>(file, options, useCache, &progress,
                                         quiet ? nullptr : +[](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+}
+
+std::unique_ptr<io::FccInput> openFccInput(const RenderFlags& flags, bool quiet) {
+  return openFccInput(flags.file, flags.source, flags.grid, !flags.noCache, quiet);
 }
 
 void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault) {
@@ -257,8 +262,7 @@ render::Camera cameraFromFlags(const RenderFlags& flags, const glm::dvec3& world
   if (!flags.eye.empty()) camera.eye = tripleOrThrow(flags.eye, "--eye");
   if (!flags.up.empty()) {
     camera.up = tripleOrThrow(flags.up, "--up");
-  } else if (glm::length(camera.lookat - camera.eye) > 0.0 &&
-             glm::length(glm::cross(glm::normalize(camera.lookat - camera.eye), camera.up)) < 1e-6) {
+  } else if (render::viewRunsAlongUp(camera)) {
     // An --eye straight above or below the look-at point along the up vector: that up cannot be kept.
     // Above or below a patient, anterior is up (the axial convention); elsewhere render::upAcross.
     camera.up = patient && flags.camera.empty() ? patient->anterior : render::upAcross(camera.lookat - camera.eye);

@@ -62,6 +62,10 @@ void addRenderFlags(CLI::App& app, RenderFlags& flags, bool levelsByDefault = fa
 // FILE as an FCC .vdb: itself, or its conversion (io/ConversionCache.h: cached, or temporary with
 // --no-cache), saying so in one line on stderr with a progress bar unless `quiet`.
 std::unique_ptr<io::FccInput> openFccInput(const RenderFlags& flags, bool quiet);
+// The same for `file` with its raw layout flags, --grid (a Cartesian .vdb's float grid) and the cache
+// choice (info's flags, which are not all of render's).
+std::unique_ptr<io::FccInput> openFccInput(const std::string& file, const SourceFlags& source, const std::string& grid,
+                                           bool useCache, bool quiet);
 
 // --iso's first value, or the default (io/DefaultIsovalue.h, with its basis); ValueError if --iso is
 // not a list of 1 to 4 finite numbers (tools/SurfaceFlags.h).

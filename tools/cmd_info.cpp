@@ -9,7 +9,6 @@
 
 #include "Command.h"
 #include "JsonText.h"
-#include "ProgressBar.h"
 #include "SourceFlags.h"
 #include "RenderFlags.h"
 #include <tbb/parallel_for.h>
@@ -271,15 +270,9 @@ Command addInfoCommand(CLI::App& parent) {
             }
             // Not an FCC file: described as render would draw it (the conversion render makes and caches).
             std::unique_ptr<io::FccInput> converted;
-            const std::optional<io::RawLayout> raw = rawLayoutFromFlags(args->source, args->file);  // refuses raw flags elsewhere
-            if (std::filesystem::exists(args->file) && !holdsFccGridOrUnreadable(args->file)) {
-              io::ConvertOptions options;
-              options.raw = raw;
-              options.gridName = args->grid;
-              ProgressBar progress(args->json);
-              converted = std::make_unique<io::FccInput>(args->file, options, !args->noCache, &progress,
-                                                         +[](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
-            }
+            rawLayoutFromFlags(args->source, args->file);  // refuses raw flags for an input that is not raw
+            if (std::filesystem::exists(args->file) && !holdsFccGridOrUnreadable(args->file))
+              converted = openFccInput(args->file, args->source, args->grid, !args->noCache, /*quiet=*/false);
             const std::string fccPath = converted ? converted->path() : args->file;
             const io::BrickStore store(fccPath, converted ? std::string() : args->grid, /*forRendering=*/false);
             // As render says it: an isovalue no surface can take keeps no brick (stderr: JSON stays clean).

@@ -30,6 +30,11 @@ glm::dvec3 upAcross(const glm::dvec3& view) {
   return glm::normalize(glm::cross(right, v));  // forward x up = right - (right . v) v
 }
 
+bool viewRunsAlongUp(const Camera& camera) {
+  const glm::dvec3 view = camera.lookat - camera.eye;
+  return glm::length(view) > 0.0 && glm::length(glm::cross(glm::normalize(view), camera.up)) < 1e-6;
+}
+
 glm::dvec3 pixelRay(const CameraFrame& frame, int px, int py, int width, int height) {
   const double x = (px + 0.5) / width * 2.0 - 1.0;
   const double y = 1.0 - (py + 0.5) / height * 2.0;

@@ -27,6 +27,8 @@ CameraFrame cameraFrame(const Camera& camera, double aspect);
 // view runs along it): the one that keeps world +x to the right (looking down -y: -z up; looking up
 // +y: +z up), or +y up when the view runs along x. Unit length.
 glm::dvec3 upAcross(const glm::dvec3& view);
+// True when the eye and look-at point differ and the view runs along camera.up (it cannot be kept).
+bool viewRunsAlongUp(const Camera& camera);
 
 // The unit world direction of the ray through the centre of pixel (px, py) of a width x height image.
 glm::dvec3 pixelRay(const CameraFrame& frame, int px, int py, int width, int height);

@@ -121,9 +121,7 @@ Camera parseCameraJson(const std::string& text, const std::string& name) {
   if (!haveEye) r.fail("no \"eye\"");
   if (!haveLookat) r.fail("no \"lookat\"");
   // Without "up", a view straight along the default up takes the one across it (render's rule).
-  const glm::dvec3 view = camera.lookat - camera.eye;
-  if (!haveUp && glm::length(view) > 0.0 && glm::length(glm::cross(glm::normalize(view), camera.up)) < 1e-6)
-    camera.up = upAcross(view);
+  if (!haveUp && viewRunsAlongUp(camera)) camera.up = upAcross(camera.lookat - camera.eye);
   try {
     cameraFrame(camera, 1.0);  // validates the camera
   } catch (const ValueError& e) {
